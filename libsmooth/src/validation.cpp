@@ -1,0 +1,186 @@
+#include "smooth/validation.h"
+
+#include "smooth/adjacency.h"
+#include "smooth/errors.h"
+
+#include <algorithm>
+#include <cmath>
+#include <sstream>
+
+namespace contourmesh {
+
+const char* to_string(MeshProblemKind kind) {
+  switch (kind) {
+    case MeshProblemKind::NonFiniteCoordinate: return "non-finite coordinate";
+    case MeshProblemKind::IndexOutOfRange: return "triangle index out of range";
+    case MeshProblemKind::DegenerateTriangle: return "degenerate triangle";
+    case MeshProblemKind::DuplicateTriangle: return "duplicate triangle";
+    case MeshProblemKind::NonManifoldEdge: return "non-manifold edge";
+    case MeshProblemKind::NonManifoldVertex: return "non-manifold vertex";
+    case MeshProblemKind::IdSizeMismatch: return "contour-id array size mismatch";
+  }
+  return "unknown problem";
+}
+
+std::string describe(const MeshProblem& p) {
+  std::ostringstream out;
+  out << to_string(p.kind);
+  switch (p.kind) {
+    case MeshProblemKind::NonFiniteCoordinate:
+    case MeshProblemKind::NonManifoldVertex: out << " at vertex " << p.index; break;
+    case MeshProblemKind::IndexOutOfRange:
+    case MeshProblemKind::DegenerateTriangle: out << " at triangle " << p.index; break;
+    case MeshProblemKind::DuplicateTriangle: out << ": triangle " << p.index << " repeats triangle " << p.other; break;
+    case MeshProblemKind::NonManifoldEdge: out << " between vertices " << p.index << " and " << p.other; break;
+    case MeshProblemKind::IdSizeMismatch: out << " (" << p.index << " ids for " << p.other << " vertices)"; break;
+  }
+  return out.str();
+}
+
+namespace {
+
+class ProblemList {
+ public:
+  explicit ProblemList(std::size_t limit) : limit_(limit) {}
+  bool add(MeshProblemKind kind, Index index, Index other = -1) {
+    if (problems_.size() >= limit_) return false;
+    problems_.push_back({kind, index, other});
+    return true;
+  }
+  [[nodiscard]] bool full() const { return problems_.size() >= limit_; }
+  std::vector<MeshProblem> take() { return std::move(problems_); }
+
+ private:
+  std::size_t limit_;
+  std::vector<MeshProblem> problems_;
+};
+
+// Number of connected fans formed by the faces around vertex v (1 for a manifold vertex).
+// Two incident faces are connected when they share an edge through v.
+int count_fans(const Mesh& mesh, const MeshAdjacency& adj, Index v, std::vector<Index>& parent) {
+  const auto faces = adj.incident_faces(v);
+  const auto k = static_cast<Index>(faces.size());
+  parent.resize(faces.size());
+  for (Index a = 0; a < k; ++a) parent[a] = a;
+  auto find = [&](Index x) {
+    while (parent[x] != x) x = parent[x] = parent[parent[x]];
+    return x;
+  };
+  for (Index a = 0; a < k; ++a) {
+    const Triangle& ta = mesh.triangles[faces[a]];
+    for (Index b = a + 1; b < k; ++b) {
+      const Triangle& tb = mesh.triangles[faces[b]];
+      // Shared vertices other than v.
+      for (Index x : ta) {
+        if (x == v) continue;
+        if (std::find(tb.begin(), tb.end(), x) != tb.end()) {
+          parent[find(a)] = find(b);
+          break;
+        }
+      }
+    }
+  }
+  int fans = 0;
+  for (Index a = 0; a < k; ++a) fans += (find(a) == a) ? 1 : 0;
+  return fans;
+}
+
+}  // namespace
+
+std::vector<MeshProblem> find_mesh_problems(const Mesh& mesh, const ValidationOptions& options) {
+  ProblemList problems(options.max_problems);
+  const Index n = mesh.num_vertices();
+  const Index nf = mesh.num_faces();
+
+  if (!mesh.slice_ids.empty() || !mesh.contour_ids.empty()) {
+    if (mesh.slice_ids.size() != static_cast<std::size_t>(n)) {
+      problems.add(MeshProblemKind::IdSizeMismatch, static_cast<Index>(mesh.slice_ids.size()), n);
+    } else if (mesh.contour_ids.size() != static_cast<std::size_t>(n)) {
+      problems.add(MeshProblemKind::IdSizeMismatch, static_cast<Index>(mesh.contour_ids.size()), n);
+    }
+  }
+  for (Index i = 0; i < n; ++i) {
+    if (!mesh.positions.col(i).allFinite()) problems.add(MeshProblemKind::NonFiniteCoordinate, i);
+  }
+  bool indices_ok = true;
+  for (Index f = 0; f < nf; ++f) {
+    for (Index v : mesh.triangles[f]) {
+      if (v < 0 || v >= n) {
+        problems.add(MeshProblemKind::IndexOutOfRange, f);
+        indices_ok = false;
+        break;
+      }
+    }
+  }
+  if (!indices_ok) return problems.take();
+
+  // Degenerate triangles, relative to the mean edge length.
+  double edge_sum = 0.0;
+  for (const Triangle& t : mesh.triangles) {
+    for (int k = 0; k < 3; ++k) edge_sum += (mesh.positions.col(t[k]) - mesh.positions.col(t[(k + 1) % 3])).norm();
+  }
+  const double mean_edge = nf > 0 ? edge_sum / (3.0 * nf) : 0.0;
+  const double area_floor = options.relative_area_epsilon * mean_edge * mean_edge;
+  for (Index f = 0; f < nf; ++f) {
+    const Triangle& t = mesh.triangles[f];
+    bool bad = t[0] == t[1] || t[1] == t[2] || t[0] == t[2];
+    if (!bad) {
+      const Eigen::Vector3d e1 = mesh.positions.col(t[1]) - mesh.positions.col(t[0]);
+      const Eigen::Vector3d e2 = mesh.positions.col(t[2]) - mesh.positions.col(t[0]);
+      const double area = 0.5 * e1.cross(e2).norm();
+      bad = !(area > area_floor);  // also catches NaN
+    }
+    if (bad) problems.add(MeshProblemKind::DegenerateTriangle, f);
+  }
+
+  // Duplicate triangles: same vertex set, whatever the order.
+  {
+    std::vector<std::pair<Triangle, Index>> keyed(static_cast<std::size_t>(nf));
+    for (Index f = 0; f < nf; ++f) {
+      Triangle t = mesh.triangles[f];
+      std::sort(t.begin(), t.end());
+      keyed[f] = {t, f};
+    }
+    std::sort(keyed.begin(), keyed.end());
+    for (std::size_t k = 1; k < keyed.size(); ++k) {
+      if (keyed[k].first == keyed[k - 1].first) {
+        problems.add(MeshProblemKind::DuplicateTriangle, keyed[k].second, keyed[k - 1].second);
+      }
+    }
+  }
+
+  const MeshAdjacency adj = build_adjacency(mesh);
+  for (Index i = 0; i < n && !problems.full(); ++i) {
+    for (Index k = adj.neighbor_offsets[i]; k < adj.neighbor_offsets[i + 1]; ++k) {
+      const Index j = adj.neighbors[k];
+      if (j > i && adj.edge_face_count[k] > 2) problems.add(MeshProblemKind::NonManifoldEdge, i, j);
+    }
+  }
+  std::vector<Index> scratch;
+  for (Index i = 0; i < n && !problems.full(); ++i) {
+    if (adj.valence(i) > 0 && count_fans(mesh, adj, i, scratch) > 1) {
+      problems.add(MeshProblemKind::NonManifoldVertex, i);
+    }
+  }
+  return problems.take();
+}
+
+void validate_mesh(const Mesh& mesh, const ValidationOptions& options) {
+  const std::vector<MeshProblem> problems = find_mesh_problems(mesh, options);
+  if (problems.empty()) return;
+  std::ostringstream msg;
+  msg << problems.size() << (problems.size() >= options.max_problems ? "+" : "") << " mesh problem"
+      << (problems.size() == 1 ? "" : "s") << ": ";
+  const std::size_t shown = std::min<std::size_t>(problems.size(), 5);
+  for (std::size_t k = 0; k < shown; ++k) msg << (k ? "; " : "") << describe(problems[k]);
+  if (shown < problems.size()) msg << "; ...";
+  bool input_error = false;
+  for (const MeshProblem& p : problems) {
+    input_error = input_error || p.kind == MeshProblemKind::NonFiniteCoordinate ||
+                  p.kind == MeshProblemKind::IndexOutOfRange || p.kind == MeshProblemKind::IdSizeMismatch;
+  }
+  if (input_error) throw InvalidInputError(msg.str());
+  throw TopologyError(msg.str());
+}
+
+}  // namespace contourmesh

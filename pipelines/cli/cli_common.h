@@ -1,0 +1,42 @@
+// Conventions shared by the contourmesh subcommands: exit codes, error reporting, JSON output.
+#pragma once
+
+#include <nlohmann/json.hpp>
+
+#include <chrono>
+#include <functional>
+#include <string>
+
+namespace CLI {
+class App;
+}
+
+namespace contourmesh::cli {
+
+/// Documented exit codes (docs/cli.md).
+enum ExitCode : int {
+  kOk = 0,
+  kUsage = 1,     ///< bad command line
+  kBadInput = 2,  ///< unreadable or invalid input, or an output that cannot be written
+  kInternal = 3,  ///< a bug or an unexpected failure
+};
+
+/// Runs a subcommand body, mapping exceptions to exit codes and one-line messages on stderr:
+/// InvalidInputError -> 2, CancelledError -> 2, anything else -> 3.
+int run_guarded(const std::string& command, const std::function<int()>& body);
+
+/// The exit code of the subcommand that ran (subcommand callbacks cannot return one).
+void set_exit_code(int code);
+int last_exit_code();
+
+/// Prints `json` as one line on stdout.
+void print_json(const nlohmann::json& json);
+
+/// Seconds since `start`.
+double seconds_since(std::chrono::steady_clock::time_point start);
+
+/// Registers the subcommands on `app`.
+void add_smooth_command(CLI::App& app);
+void add_demo_command(CLI::App& app);
+
+}  // namespace contourmesh::cli

@@ -1,0 +1,61 @@
+// Mesh file I/O for ContourMesh: STL (binary, ASCII), PLY, VTP and OBJ, through VTK readers and
+// writers (PLY through our own codec so that the contour-id arrays survive, see ply_io.h).
+#pragma once
+
+#include <smooth/mesh.h>
+
+#include <filesystem>
+#include <string>
+#include <string_view>
+
+namespace contourmesh {
+
+enum class MeshFormat {
+  Auto,       ///< from the file extension (.stl -> binary STL)
+  StlBinary,
+  StlAscii,
+  Ply,        ///< binary little-endian when writing; ASCII and both binaries when reading
+  Vtp,        ///< VTK XML PolyData, appended binary, zlib-compressed
+  Obj,
+};
+
+/// "stl", "stl-ascii", "ply", "vtp", "obj" (and "auto").
+[[nodiscard]] std::string_view to_string(MeshFormat format);
+/// Inverse of to_string; throws InvalidInputError naming the accepted values.
+[[nodiscard]] MeshFormat parse_mesh_format(std::string_view name);
+/// The format implied by the extension of `path` (case-insensitive); throws InvalidInputError naming
+/// the file when the extension is not one of .stl .ply .vtp .obj.
+[[nodiscard]] MeshFormat format_from_extension(const std::filesystem::path& path);
+/// True when the format stores per-vertex contour ids (PLY, VTP).
+[[nodiscard]] bool format_keeps_contour_ids(MeshFormat format);
+
+/// Names of the per-vertex id arrays (SPEC 2).
+struct ContourIdArrayNames {
+  std::string slice = "ContourId";       ///< c(i), the slice index
+  std::string contour = "ContourIndex";  ///< which contour of that slice
+};
+
+struct MeshReadOptions {
+  MeshFormat format = MeshFormat::Auto;
+  ContourIdArrayNames arrays;
+};
+
+struct MeshWriteOptions {
+  MeshFormat format = MeshFormat::Auto;
+  ContourIdArrayNames arrays;
+};
+
+/// Reads a triangle mesh. Polygons with more than three corners are triangulated; lines and vertices
+/// are ignored. STL vertices are merged (STL stores each triangle's corners separately). Contour ids
+/// are read from the named point arrays when present (both or neither).
+/// Throws InvalidInputError with the file name and the problem: missing or unreadable file, unknown
+/// extension, a file VTK cannot parse, no triangles, id arrays of the wrong size.
+[[nodiscard]] Mesh read_mesh(const std::filesystem::path& path, const MeshReadOptions& options = {});
+
+/// Writes a mesh atomically: to a temporary file in the same directory, renamed over `path` only once
+/// complete, so a failure never leaves a partial file nor truncates an existing one. Contour ids are
+/// written for PLY and VTP when the mesh has them. Throws InvalidInputError naming the file on failure
+/// (missing directory, no permission, disk full).
+void write_mesh(const Mesh& mesh, const std::filesystem::path& path, const MeshWriteOptions& options = {});
+
+}  // namespace contourmesh

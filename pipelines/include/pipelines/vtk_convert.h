@@ -1,0 +1,23 @@
+// Conversion between contourmesh::Mesh and vtkPolyData.
+#pragma once
+
+#include "pipelines/mesh_io.h"
+
+#include <smooth/mesh.h>
+
+#include <vtkSmartPointer.h>
+
+class vtkPolyData;
+
+namespace contourmesh {
+
+/// Points (double precision), triangles, and the two contour-id point arrays (vtkIntArray) when the
+/// mesh has ids.
+[[nodiscard]] vtkSmartPointer<vtkPolyData> to_polydata(const Mesh& mesh, const ContourIdArrayNames& arrays = {});
+
+/// Triangles of the polydata's polygons (larger polygons are triangulated, strips are converted) and
+/// contour ids from the named point arrays when both are present. Throws InvalidInputError when an id
+/// array has the wrong size or component count.
+[[nodiscard]] Mesh from_polydata(vtkPolyData* polydata, const ContourIdArrayNames& arrays = {});
+
+}  // namespace contourmesh

@@ -1,0 +1,200 @@
+#include "pipelines/mesh_io.h"
+
+#include "pipelines/atomic_file.h"
+#include "pipelines/ply_io.h"
+#include "pipelines/vtk_convert.h"
+
+#include <smooth/errors.h>
+
+#include <vtkAlgorithm.h>
+#include <vtkNew.h>
+#include <vtkOBJReader.h>
+#include <vtkOBJWriter.h>
+#include <vtkOutputWindow.h>
+#include <vtkPolyData.h>
+#include <vtkSTLReader.h>
+#include <vtkSTLWriter.h>
+#include <vtkSmartPointer.h>
+#include <vtkStringOutputWindow.h>
+#include <vtkXMLPolyDataReader.h>
+#include <vtkXMLPolyDataWriter.h>
+
+#include <algorithm>
+#include <cctype>
+#include <fstream>
+#include <sstream>
+
+namespace contourmesh {
+
+namespace fs = std::filesystem;
+
+std::string_view to_string(MeshFormat format) {
+  switch (format) {
+    case MeshFormat::Auto: return "auto";
+    case MeshFormat::StlBinary: return "stl";
+    case MeshFormat::StlAscii: return "stl-ascii";
+    case MeshFormat::Ply: return "ply";
+    case MeshFormat::Vtp: return "vtp";
+    case MeshFormat::Obj: return "obj";
+  }
+  return "unknown";
+}
+
+MeshFormat parse_mesh_format(std::string_view name) {
+  for (MeshFormat f : {MeshFormat::Auto, MeshFormat::StlBinary, MeshFormat::StlAscii, MeshFormat::Ply, MeshFormat::Vtp,
+                       MeshFormat::Obj}) {
+    if (name == to_string(f)) return f;
+  }
+  throw InvalidInputError("unknown mesh format '" + std::string(name) + "' (expected stl, stl-ascii, ply, vtp, obj)");
+}
+
+MeshFormat format_from_extension(const fs::path& path) {
+  std::string ext = path.extension().string();
+  std::transform(ext.begin(), ext.end(), ext.begin(), [](unsigned char c) { return std::tolower(c); });
+  if (ext == ".stl") return MeshFormat::StlBinary;
+  if (ext == ".ply") return MeshFormat::Ply;
+  if (ext == ".vtp") return MeshFormat::Vtp;
+  if (ext == ".obj") return MeshFormat::Obj;
+  throw InvalidInputError(path.string() + ": unknown mesh extension '" + ext + "' (expected .stl, .ply, .vtp or .obj)");
+}
+
+bool format_keeps_contour_ids(MeshFormat format) { return format == MeshFormat::Ply || format == MeshFormat::Vtp; }
+
+namespace {
+
+// Routes VTK's error and warning text into a string for the lifetime of the object, so failures can
+// be reported as one clear exception instead of VTK's multi-line console output.
+class CapturedVtkMessages {
+ public:
+  CapturedVtkMessages() : previous_(vtkOutputWindow::GetInstance()) { vtkOutputWindow::SetInstance(window_); }
+  ~CapturedVtkMessages() { vtkOutputWindow::SetInstance(previous_); }
+  CapturedVtkMessages(const CapturedVtkMessages&) = delete;
+  CapturedVtkMessages& operator=(const CapturedVtkMessages&) = delete;
+
+  // The first error's message without VTK's "ERROR: In file, line" preamble; empty if none.
+  [[nodiscard]] std::string first_error() const {
+    std::istringstream lines(window_->GetOutput());
+    std::string line;
+    bool in_error = false;
+    while (std::getline(lines, line)) {
+      if (line.find("ERROR:") != std::string::npos) {
+        in_error = true;
+        continue;
+      }
+      if (in_error && !line.empty()) {
+        const auto pos = line.find("): ");
+        return pos == std::string::npos ? line : line.substr(pos + 3);
+      }
+    }
+    return {};
+  }
+
+ private:
+  vtkSmartPointer<vtkOutputWindow> previous_;
+  vtkNew<vtkStringOutputWindow> window_;
+};
+
+MeshFormat resolve(MeshFormat requested, const fs::path& path) {
+  return requested == MeshFormat::Auto ? format_from_extension(path) : requested;
+}
+
+vtkSmartPointer<vtkPolyData> run_reader(vtkAlgorithm* reader, vtkPolyData* output, const fs::path& path,
+                                        const CapturedVtkMessages& messages) {
+  reader->Update();
+  const std::string error = messages.first_error();
+  if (!error.empty()) throw InvalidInputError(path.string() + ": cannot read: " + error);
+  return output;
+}
+
+}  // namespace
+
+Mesh read_mesh(const fs::path& path, const MeshReadOptions& options) {
+  std::error_code ec;
+  if (!fs::exists(path, ec)) throw InvalidInputError(path.string() + ": no such file");
+  if (fs::is_directory(path, ec)) throw InvalidInputError(path.string() + ": is a directory, expected a mesh file");
+  {
+    std::ifstream probe(path, std::ios::binary);
+    if (!probe) throw InvalidInputError(path.string() + ": cannot open for reading (permission?)");
+  }
+  if (fs::file_size(path, ec) == 0) throw InvalidInputError(path.string() + ": file is empty");
+  const MeshFormat format = resolve(options.format, path);
+
+  Mesh mesh;
+  if (format == MeshFormat::Ply) {
+    std::ifstream in(path, std::ios::binary);
+    try {
+      mesh = read_ply(in, options.arrays);
+    } catch (const InvalidInputError& e) {
+      throw InvalidInputError(path.string() + ": " + e.what());
+    }
+  } else {
+    CapturedVtkMessages messages;
+    vtkSmartPointer<vtkPolyData> poly;
+    if (format == MeshFormat::StlBinary || format == MeshFormat::StlAscii) {
+      vtkNew<vtkSTLReader> reader;  // merges coincident corners into shared vertices by default
+      reader->SetFileName(path.c_str());
+      poly = run_reader(reader, reader->GetOutput(), path, messages);
+    } else if (format == MeshFormat::Vtp) {
+      vtkNew<vtkXMLPolyDataReader> reader;
+      reader->SetFileName(path.c_str());
+      poly = run_reader(reader, reader->GetOutput(), path, messages);
+    } else {
+      vtkNew<vtkOBJReader> reader;
+      reader->SetFileName(path.c_str());
+      poly = run_reader(reader, reader->GetOutput(), path, messages);
+    }
+    try {
+      mesh = from_polydata(poly, options.arrays);
+    } catch (const InvalidInputError& e) {
+      throw InvalidInputError(path.string() + ": " + e.what());
+    }
+  }
+  if (mesh.num_faces() == 0) {
+    throw InvalidInputError(path.string() + ": no triangles found (" + std::to_string(mesh.num_vertices()) +
+                            " points); is it a " + std::string(to_string(format)) + " surface mesh?");
+  }
+  return mesh;
+}
+
+void write_mesh(const Mesh& mesh, const fs::path& path, const MeshWriteOptions& options) {
+  const MeshFormat format = resolve(options.format, path);
+  write_atomically(path, [&](const fs::path& tmp) {
+    if (format == MeshFormat::Ply) {
+      std::ofstream out(tmp, std::ios::binary);
+      if (!out) throw InvalidInputError(path.string() + ": cannot open for writing");
+      write_ply(out, mesh, options.arrays);
+      out.flush();
+      if (!out) throw InvalidInputError(path.string() + ": write failed (disk full?)");
+      return;
+    }
+    CapturedVtkMessages messages;
+    const vtkSmartPointer<vtkPolyData> poly = to_polydata(mesh, options.arrays);
+    int ok = 0;
+    if (format == MeshFormat::StlBinary || format == MeshFormat::StlAscii) {
+      vtkNew<vtkSTLWriter> writer;
+      writer->SetInputData(poly);
+      writer->SetFileName(tmp.c_str());
+      if (format == MeshFormat::StlBinary) writer->SetFileTypeToBinary();
+      else writer->SetFileTypeToASCII();
+      ok = writer->Write() && writer->GetErrorCode() == 0;
+    } else if (format == MeshFormat::Vtp) {
+      vtkNew<vtkXMLPolyDataWriter> writer;
+      writer->SetInputData(poly);
+      writer->SetFileName(tmp.c_str());
+      writer->SetDataModeToAppended();
+      writer->SetCompressorTypeToZLib();
+      ok = writer->Write() && writer->GetErrorCode() == 0;
+    } else {
+      vtkNew<vtkOBJWriter> writer;
+      writer->SetInputData(poly);
+      writer->SetFileName(tmp.c_str());
+      ok = writer->Write();
+    }
+    const std::string error = messages.first_error();
+    if (!ok || !error.empty()) {
+      throw InvalidInputError(path.string() + ": cannot write: " + (error.empty() ? "VTK writer failed" : error));
+    }
+  });
+}
+
+}  // namespace contourmesh
