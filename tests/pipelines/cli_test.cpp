@@ -1,1 +1,152 @@
+// Runs the contourmesh executable as a user would and checks exit codes, JSON and outputs.
+#include <pipelines/mesh_io.h>
+#include <smooth/adjacency.h>
+#include <smooth/shapes.h>
+
 #include <gtest/gtest.h>
+#include <nlohmann/json.hpp>
+
+#include <sys/wait.h>
+
+#include <array>
+#include <cstdio>
+#include <filesystem>
+#include <fstream>
+
+namespace contourmesh {
+namespace {
+
+namespace fs = std::filesystem;
+
+struct CliRun {
+  int code = -1;
+  std::string out;  // stdout; stderr is redirected to `err_file`
+  std::string err;
+};
+
+CliRun run_cli(const std::string& args, const fs::path& dir) {
+  const fs::path err_file = dir / "stderr.txt";
+  const std::string cmd = std::string(CONTOURMESH_CLI) + " " + args + " 2>" + err_file.string();
+  CliRun r;
+  FILE* pipe = popen(cmd.c_str(), "r");
+  if (!pipe) return r;
+  std::array<char, 4096> buf{};
+  std::size_t n = 0;
+  while ((n = fread(buf.data(), 1, buf.size(), pipe)) > 0) r.out.append(buf.data(), n);
+  const int status = pclose(pipe);
+  r.code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
+  std::ifstream in(err_file);
+  r.err.assign(std::istreambuf_iterator<char>(in), {});
+  return r;
+}
+
+class Cli : public ::testing::Test {
+ protected:
+  void SetUp() override {
+    dir_ = fs::temp_directory_path() /
+           ("contourmesh_cli_" + std::string(::testing::UnitTest::GetInstance()->current_test_info()->name()));
+    fs::remove_all(dir_);
+    fs::create_directories(dir_);
+    ContourStackSpec spec;
+    spec.curve = ridge_circle_curve(10.0, 3.0, 0.4);
+    spec.slices = 10;
+    spec.points_per_contour = 60;
+    Mesh m = make_contour_stack(spec);
+    add_noise(m, {0.1, 2, NoiseDirection::InPlane});
+    input_ = dir_ / "in.vtp";
+    write_mesh(m, input_);
+  }
+  void TearDown() override { fs::remove_all(dir_); }
+  fs::path dir_;
+  fs::path input_;
+};
+
+TEST_F(Cli, SmoothEveryMethodWithJson) {
+  for (const std::string method : {"none", "laplacian", "taubin", "mcf", "mindist"}) {
+    const fs::path out = dir_ / ("out_" + method + ".ply");
+    const CliRun r = run_cli("smooth " + input_.string() + " -o " + out.string() + " --method " + method + " --json", dir_);
+    ASSERT_EQ(r.code, 0) << method << ": " << r.err;
+    const auto j = nlohmann::json::parse(r.out);
+    for (const char* key : {"method", "iterations", "vertices", "faces", "volume_before", "volume_after", "seconds"}) {
+      EXPECT_TRUE(j.contains(key)) << key;
+    }
+    EXPECT_EQ(j["method"], method);
+    EXPECT_EQ(j["iterations"], 20);
+    EXPECT_EQ(j["vertices"], 600);
+    const Mesh result = read_mesh(out);
+    EXPECT_TRUE(result.has_contour_ids()) << "PLY output keeps the contour ids";
+    if (method == "none") {
+      EXPECT_EQ(j["volume_before"], j["volume_after"]);
+    }
+    if (method == "laplacian") {
+      EXPECT_LT(j["volume_after"].get<double>(), 0.97 * j["volume_before"].get<double>());
+    }
+  }
+}
+
+TEST_F(Cli, SmoothHonoursParameters) {
+  const fs::path out = dir_ / "o.stl";
+  const CliRun r = run_cli("smooth " + input_.string() + " -o " + out.string() +
+                            " --method taubin --iterations 3 --lambda 0.5 --mu -0.53 --json",
+                        dir_);
+  ASSERT_EQ(r.code, 0) << r.err;
+  const auto j = nlohmann::json::parse(r.out);
+  EXPECT_EQ(j["iterations"], 3);
+  EXPECT_EQ(j["lambda"], 0.5);
+  EXPECT_EQ(j["mu"], -0.53);
+  EXPECT_TRUE(fs::exists(out));
+}
+
+TEST_F(Cli, BadInputExitsTwoNamingTheFileAndWritesNothing) {
+  const fs::path out = dir_ / "never.stl";
+  CliRun r = run_cli("smooth " + (dir_ / "absent.vtp").string() + " -o " + out.string(), dir_);
+  EXPECT_EQ(r.code, 2);
+  EXPECT_NE(r.err.find("absent.vtp"), std::string::npos) << r.err;
+  EXPECT_FALSE(fs::exists(out));
+
+  std::ofstream(dir_ / "nan.ply") << "ply\nformat ascii 1.0\nelement vertex 3\nproperty float x\nproperty float y\n"
+                                     "property float z\nelement face 1\nproperty list uchar int vertex_indices\n"
+                                     "end_header\n0 0 0\n1 0 0\n0 nan 0\n3 0 1 2\n";
+  r = run_cli("smooth " + (dir_ / "nan.ply").string() + " -o " + out.string(), dir_);
+  EXPECT_EQ(r.code, 2) << r.err;
+  EXPECT_NE(r.err.find("non-finite"), std::string::npos) << r.err;
+  EXPECT_FALSE(fs::exists(out));
+
+  r = run_cli("smooth " + input_.string() + " -o " + (dir_ / "missing_dir" / "x.stl").string(), dir_);
+  EXPECT_EQ(r.code, 2);
+  EXPECT_NE(r.err.find("does not exist"), std::string::npos) << r.err;
+
+  r = run_cli("smooth " + input_.string() + " -o " + out.string() + " --lambda 3", dir_);
+  EXPECT_EQ(r.code, 2);
+  EXPECT_NE(r.err.find("lambda"), std::string::npos) << r.err;
+  EXPECT_FALSE(fs::exists(out));
+}
+
+TEST_F(Cli, UsageErrorsExitOne) {
+  EXPECT_EQ(run_cli("smooth", dir_).code, 1);
+  EXPECT_EQ(run_cli("frobnicate", dir_).code, 1);
+  EXPECT_EQ(run_cli("smooth " + input_.string() + " -o x.stl --iterations many", dir_).code, 1);
+  const CliRun help = run_cli("smooth --help", dir_);
+  EXPECT_EQ(help.code, 0);
+  for (const char* option : {"--method", "--iterations", "--lambda", "--mu", "--beta", "--json", "--output"}) {
+    EXPECT_NE(help.out.find(option), std::string::npos) << option;
+  }
+}
+
+TEST_F(Cli, DemoWritesAClosedStlAndReportsAccuracy) {
+  const fs::path out = dir_ / "demo.stl";
+  const CliRun r = run_cli("demo -o " + out.string() + " --json", dir_);
+  ASSERT_EQ(r.code, 0) << r.err;
+  const auto j = nlohmann::json::parse(r.out);
+  EXPECT_TRUE(j["is_closed"].get<bool>());
+  EXPECT_LT(std::abs(j["volume_change_percent"].get<double>()), 1.0);  // Taubin by default
+  const Mesh m = read_mesh(out);
+  EXPECT_EQ(m.num_vertices(), j["vertices"].get<int>());
+  EXPECT_TRUE(build_adjacency(m).is_closed());
+  const CliRun human = run_cli("demo -o " + out.string(), dir_);
+  EXPECT_EQ(human.code, 0);
+  EXPECT_NE(human.out.find("wrote"), std::string::npos);
+}
+
+}  // namespace
+}  // namespace contourmesh

@@ -1,1 +1,190 @@
+#include <pipelines/atomic_file.h>
+#include <pipelines/mesh_io.h>
+#include <smooth/errors.h>
+#include <smooth/shapes.h>
+
 #include <gtest/gtest.h>
+
+#include <filesystem>
+#include <fstream>
+#include <random>
+
+namespace contourmesh {
+namespace {
+
+namespace fs = std::filesystem;
+
+class MeshIo : public ::testing::Test {
+ protected:
+  void SetUp() override {
+    dir_ = fs::temp_directory_path() /
+           ("contourmesh_io_" + std::to_string(::testing::UnitTest::GetInstance()->random_seed()) + "_" +
+            ::testing::UnitTest::GetInstance()->current_test_info()->name());
+    fs::remove_all(dir_);
+    fs::create_directories(dir_);
+  }
+  void TearDown() override { fs::remove_all(dir_); }
+
+  static Mesh stack_with_ids() {
+    ContourStackSpec spec;
+    spec.curve = ridge_circle_curve(10.0, 2.0, 0.4);
+    spec.slices = 5;
+    spec.points_per_contour = 30;
+    Mesh m = make_contour_stack(spec);
+    add_noise(m, {0.1, 9, NoiseDirection::InPlane});
+    for (std::size_t i = 0; i < m.contour_ids.size(); ++i) m.contour_ids[i] = static_cast<int>(i % 3);
+    return m;
+  }
+
+  static void write_bytes(const fs::path& p, const std::string& bytes) {
+    std::ofstream(p, std::ios::binary) << bytes;
+  }
+
+  // Files in the test directory other than `keep`.
+  [[nodiscard]] std::vector<std::string> stray_files(const fs::path& keep = {}) const {
+    std::vector<std::string> out;
+    for (const auto& e : fs::directory_iterator(dir_)) {
+      if (e.path() != keep) out.push_back(e.path().filename().string());
+    }
+    return out;
+  }
+
+  fs::path dir_;
+};
+
+TEST_F(MeshIo, RoundTripKeepsPositionsConnectivityAndIds) {
+  const Mesh m = stack_with_ids();
+  struct Case {
+    const char* file;
+    double tolerance;  // STL stores floats
+    bool ids;
+  };
+  for (const Case c : {Case{"m.ply", 0.0, true}, Case{"m.vtp", 0.0, true}, Case{"m.obj", 1e-5, false},
+                       Case{"m.stl", 1e-5, false}}) {
+    const fs::path p = dir_ / c.file;
+    write_mesh(m, p);
+    const Mesh r = read_mesh(p);
+    ASSERT_EQ(r.num_vertices(), m.num_vertices()) << c.file;  // STL corners are merged back
+    ASSERT_EQ(r.num_faces(), m.num_faces()) << c.file;
+    EXPECT_EQ(r.has_contour_ids(), c.ids) << c.file;
+    if (c.ids) {
+      EXPECT_EQ(r.slice_ids, m.slice_ids) << c.file;
+      EXPECT_EQ(r.contour_ids, m.contour_ids) << c.file;
+      EXPECT_EQ(r.positions, m.positions) << c.file;
+      EXPECT_EQ(r.triangles, m.triangles) << c.file;
+    } else {
+      // Vertex order may change (STL merging): compare each triangle's corners geometrically.
+      double worst = 0.0;
+      for (Index f = 0; f < m.num_faces(); ++f) {
+        for (int k = 0; k < 3; ++k) {
+          worst = std::max(worst, (r.positions.col(r.triangles[f][k]) - m.positions.col(m.triangles[f][k])).norm());
+        }
+      }
+      EXPECT_LE(worst, c.tolerance * 20.0) << c.file;
+    }
+  }
+  EXPECT_EQ(stray_files().size(), 4u);  // no temporaries left behind
+}
+
+TEST_F(MeshIo, AsciiStlAndExplicitFormat) {
+  const Mesh m = make_icosphere(2);
+  const fs::path p = dir_ / "ascii.stl";
+  write_mesh(m, p, {MeshFormat::StlAscii, {}});
+  std::ifstream in(p);
+  std::string first;
+  in >> first;
+  EXPECT_EQ(first, "solid");
+  EXPECT_EQ(read_mesh(p).num_faces(), m.num_faces());
+  // A .dat file written as PLY by explicit format, read back the same way.
+  const fs::path q = dir_ / "mesh.dat";
+  write_mesh(m, q, {MeshFormat::Ply, {}});
+  EXPECT_EQ(read_mesh(q, {MeshFormat::Ply, {}}).num_vertices(), m.num_vertices());
+}
+
+TEST_F(MeshIo, CustomIdArrayNames) {
+  const Mesh m = stack_with_ids();
+  const ContourIdArrayNames names{"Slice", "Which"};
+  for (const char* file : {"n.vtp", "n.ply"}) {
+    write_mesh(m, dir_ / file, {MeshFormat::Auto, names});
+    EXPECT_FALSE(read_mesh(dir_ / file).has_contour_ids()) << file;
+    EXPECT_EQ(read_mesh(dir_ / file, {MeshFormat::Auto, names}).slice_ids, m.slice_ids) << file;
+  }
+}
+
+TEST_F(MeshIo, AsciiPlyWithQuadsAndExtraElements) {
+  write_bytes(dir_ / "quad.ply",
+              "ply\nformat ascii 1.0\ncomment hand written\nelement vertex 4\nproperty float x\nproperty float y\n"
+              "property float z\nproperty uchar red\nelement face 1\nproperty list uchar int vertex_indices\n"
+              "element edge 1\nproperty int vertex1\nproperty int vertex2\nend_header\n"
+              "0 0 0 1\n1 0 0 2\n1 1 0 3\n0 1 0 4\n4 0 1 2 3\n0 1\n");
+  const Mesh m = read_mesh(dir_ / "quad.ply");
+  EXPECT_EQ(m.num_vertices(), 4);
+  ASSERT_EQ(m.num_faces(), 2);
+  EXPECT_EQ(m.triangles[1], (Triangle{0, 2, 3}));
+}
+
+void expect_error(const fs::path& p, const std::string& fragment) {
+  try {
+    (void)read_mesh(p);
+    FAIL() << "no error for " << p;
+  } catch (const InvalidInputError& e) {
+    const std::string what = e.what();
+    EXPECT_NE(what.find(p.string()), std::string::npos) << what;
+    EXPECT_NE(what.find(fragment), std::string::npos) << what;
+  }
+}
+
+TEST_F(MeshIo, BadInputsGiveClearErrorsNamingTheFile) {
+  expect_error(dir_ / "missing.stl", "no such file");
+  write_bytes(dir_ / "empty.stl", "");
+  expect_error(dir_ / "empty.stl", "empty");
+  write_bytes(dir_ / "mesh.xyz", "hello");
+  expect_error(dir_ / "mesh.xyz", "unknown mesh extension");
+  std::mt19937 rng(1);
+  std::string noise(4096, '\0');
+  for (char& ch : noise) ch = static_cast<char>(rng());
+  write_bytes(dir_ / "noise.vtp", noise);
+  expect_error(dir_ / "noise.vtp", "cannot read");
+  write_bytes(dir_ / "noise.ply", noise);
+  expect_error(dir_ / "noise.ply", "not a PLY file");
+  write_bytes(dir_ / "cut.ply", "ply\nformat binary_little_endian 1.0\nelement vertex 100\nproperty double x\n"
+                                "property double y\nproperty double z\nend_header\n0123456789");
+  expect_error(dir_ / "cut.ply", "data ends inside element 'vertex'");
+  write_bytes(dir_ / "points.obj", "v 0 0 0\nv 1 0 0\nv 0 1 0\n");
+  expect_error(dir_ / "points.obj", "no triangles");
+  write_bytes(dir_ / "badindex.ply", "ply\nformat ascii 1.0\nelement vertex 3\nproperty float x\nproperty float y\n"
+                                     "property float z\nelement face 1\nproperty list uchar int vertex_indices\n"
+                                     "end_header\n0 0 0\n1 0 0\n0 1 0\n3 0 1 7\n");
+  expect_error(dir_ / "badindex.ply", "references vertex 7");
+  expect_error(dir_, "is a directory");
+}
+
+TEST_F(MeshIo, FailedWriteLeavesNothingAndKeepsAnExistingFile) {
+  const Mesh m = make_icosphere(1);
+  EXPECT_THROW(write_mesh(m, dir_ / "no" / "such" / "dir.stl"), InvalidInputError);
+  EXPECT_TRUE(stray_files().empty());
+
+  const fs::path existing = dir_ / "keep.stl";
+  write_bytes(existing, "precious");
+  EXPECT_THROW(write_atomically(existing, [](const fs::path& tmp) {
+                 std::ofstream(tmp) << "half";
+                 throw InvalidInputError("simulated failure half way");
+               }),
+               InvalidInputError);
+  std::ifstream in(existing);
+  std::string content;
+  in >> content;
+  EXPECT_EQ(content, "precious");
+  EXPECT_EQ(stray_files(existing).size(), 0u);
+}
+
+TEST_F(MeshIo, FormatNames) {
+  EXPECT_EQ(parse_mesh_format("stl-ascii"), MeshFormat::StlAscii);
+  EXPECT_THROW((void)parse_mesh_format("3mf"), InvalidInputError);
+  EXPECT_EQ(format_from_extension("A.STL"), MeshFormat::StlBinary);
+  EXPECT_TRUE(format_keeps_contour_ids(MeshFormat::Vtp));
+  EXPECT_FALSE(format_keeps_contour_ids(MeshFormat::StlBinary));
+}
+
+}  // namespace
+}  // namespace contourmesh

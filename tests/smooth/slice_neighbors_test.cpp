@@ -34,8 +34,12 @@ TEST(SliceNeighbors, SplitsEveryRingIntoSameBelowAbove) {
       EXPECT_GE(rings.below(i).size(), 1u);
       EXPECT_GE(rings.above(i).size(), 1u);
     }
-    if (s == 0) EXPECT_TRUE(rings.below(i).empty());
-    if (s == 5) EXPECT_TRUE(rings.above(i).empty());
+    if (s == 0) {
+      EXPECT_TRUE(rings.below(i).empty());
+    }
+    if (s == 5) {
+      EXPECT_TRUE(rings.above(i).empty());
+    }
   }
 }
 

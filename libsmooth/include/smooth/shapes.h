@@ -42,7 +42,7 @@ struct ContourStackSpec {
 
 /// Exact signed distance (negative inside) to the prism between the first and last slice planes,
 /// using the curve sampled at `curve_samples` points (error about R (2 pi / samples)^2 / 8).
-[[nodiscard]] ScalarField contour_stack_sdf(const ContourStackSpec& spec, int curve_samples = 8192);
+[[nodiscard]] ScalarField contour_stack_sdf(const ContourStackSpec& spec, int curve_samples = 2048);
 
 /// A circle of `radius` with one sharp triangular ridge of `height` centred at angle 0 and spanning
 /// +/- `half_width` radians: r(theta) = radius + height * max(0, 1 - |theta| / half_width).
