@@ -1,5 +1,6 @@
 #include "smooth/umbrella.h"
 
+#include "detail/ring_sum.h"
 #include "smooth/errors.h"
 
 namespace contourmesh {
@@ -11,31 +12,18 @@ void umbrella(const Eigen::Matrix3Xd& positions, const MeshAdjacency& adj, Eigen
                             std::to_string(n) + " vertices");
   }
   out.resize(3, n);
-  const Index* offsets = adj.neighbor_offsets.data();
-  const Index* nbrs = adj.neighbors.data();
-  const double* p = positions.data();
   double* u = out.data();
-  for (Index i = 0; i < n; ++i) {
-    const Index begin = offsets[i];
-    const Index end = offsets[i + 1];
-    double sx = 0.0, sy = 0.0, sz = 0.0;
-    for (Index k = begin; k < end; ++k) {
-      const double* q = p + 3 * static_cast<std::ptrdiff_t>(nbrs[k]);
-      sx += q[0];
-      sy += q[1];
-      sz += q[2];
-    }
-    const double* pi = p + 3 * static_cast<std::ptrdiff_t>(i);
+  detail::for_each_ring_sum(positions, adj, [u](Index i, const double* pi, double sx, double sy, double sz, Index count) {
     double* ui = u + 3 * static_cast<std::ptrdiff_t>(i);
-    if (end > begin) {
-      const double inv = 1.0 / static_cast<double>(end - begin);
-      ui[0] = sx * inv - pi[0];
-      ui[1] = sy * inv - pi[1];
-      ui[2] = sz * inv - pi[2];
-    } else {
+    if (count == 0) {
       ui[0] = ui[1] = ui[2] = 0.0;
+      return;
     }
-  }
+    const double inv = 1.0 / static_cast<double>(count);
+    ui[0] = sx * inv - pi[0];
+    ui[1] = sy * inv - pi[1];
+    ui[2] = sz * inv - pi[2];
+  });
 }
 
 Eigen::Matrix3Xd umbrella(const Eigen::Matrix3Xd& positions, const MeshAdjacency& adj) {

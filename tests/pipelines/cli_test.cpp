@@ -13,6 +13,8 @@
 #include <filesystem>
 #include <fstream>
 
+#include "test_support.h"
+
 namespace contourmesh {
 namespace {
 
@@ -43,21 +45,11 @@ CliRun run_cli(const std::string& args, const fs::path& dir) {
 class Cli : public ::testing::Test {
  protected:
   void SetUp() override {
-    dir_ = fs::temp_directory_path() /
-           ("contourmesh_cli_" + std::string(::testing::UnitTest::GetInstance()->current_test_info()->name()));
-    fs::remove_all(dir_);
-    fs::create_directories(dir_);
-    ContourStackSpec spec;
-    spec.curve = ridge_circle_curve(10.0, 3.0, 0.4);
-    spec.slices = 10;
-    spec.points_per_contour = 60;
-    Mesh m = make_contour_stack(spec);
-    add_noise(m, {0.1, 2, NoiseDirection::InPlane});
     input_ = dir_ / "in.vtp";
-    write_mesh(m, input_);
+    write_mesh(test::noisy_ridge_stack(10, 60, 3.0, 2), input_);
   }
-  void TearDown() override { fs::remove_all(dir_); }
-  fs::path dir_;
+  test::ScopedTempDir tmp_{"contourmesh_cli"};
+  const fs::path& dir_ = tmp_.path();
   fs::path input_;
 };
 

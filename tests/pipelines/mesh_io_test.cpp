@@ -9,6 +9,8 @@
 #include <fstream>
 #include <random>
 
+#include "test_support.h"
+
 namespace contourmesh {
 namespace {
 
@@ -16,22 +18,8 @@ namespace fs = std::filesystem;
 
 class MeshIo : public ::testing::Test {
  protected:
-  void SetUp() override {
-    dir_ = fs::temp_directory_path() /
-           ("contourmesh_io_" + std::to_string(::testing::UnitTest::GetInstance()->random_seed()) + "_" +
-            ::testing::UnitTest::GetInstance()->current_test_info()->name());
-    fs::remove_all(dir_);
-    fs::create_directories(dir_);
-  }
-  void TearDown() override { fs::remove_all(dir_); }
-
   static Mesh stack_with_ids() {
-    ContourStackSpec spec;
-    spec.curve = ridge_circle_curve(10.0, 2.0, 0.4);
-    spec.slices = 5;
-    spec.points_per_contour = 30;
-    Mesh m = make_contour_stack(spec);
-    add_noise(m, {0.1, 9, NoiseDirection::InPlane});
+    Mesh m = test::noisy_ridge_stack(5, 30, 2.0, 9);
     for (std::size_t i = 0; i < m.contour_ids.size(); ++i) m.contour_ids[i] = static_cast<int>(i % 3);
     return m;
   }
@@ -49,7 +37,8 @@ class MeshIo : public ::testing::Test {
     return out;
   }
 
-  fs::path dir_;
+  test::ScopedTempDir tmp_{"contourmesh_io"};
+  const fs::path& dir_ = tmp_.path();
 };
 
 TEST_F(MeshIo, RoundTripKeepsPositionsConnectivityAndIds) {

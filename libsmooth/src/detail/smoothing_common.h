@@ -1,6 +1,7 @@
 // Private helpers shared by the smoother implementations.
 #pragma once
 
+#include "detail/ring_sum.h"
 #include "smooth/adjacency.h"
 #include "smooth/errors.h"
 #include "smooth/smoothing.h"
@@ -42,36 +43,22 @@ inline void end_iteration(const SmoothingOptions& options, int done, int total, 
 /// out_i = in_i + factor * U(in)_i for movable vertices, in_i otherwise (one Jacobi umbrella step).
 inline void umbrella_step(const Eigen::Matrix3Xd& in, Eigen::Matrix3Xd& out, const MeshAdjacency& adj, double factor,
                           const std::vector<std::uint8_t>& movable) {
-  const Index n = adj.num_vertices();
-  out.resize(3, n);
-  const Index* offsets = adj.neighbor_offsets.data();
-  const Index* nbrs = adj.neighbors.data();
-  const double* p = in.data();
+  out.resize(3, adj.num_vertices());
   double* q = out.data();
   const std::uint8_t* mv = movable.data();
-  for (Index i = 0; i < n; ++i) {
-    const double* pi = p + 3 * static_cast<std::ptrdiff_t>(i);
+  for_each_ring_sum(in, adj, [=](Index i, const double* pi, double sx, double sy, double sz, Index count) {
     double* qi = q + 3 * static_cast<std::ptrdiff_t>(i);
     if (!mv[i]) {
       qi[0] = pi[0];
       qi[1] = pi[1];
       qi[2] = pi[2];
-      continue;
+      return;
     }
-    const Index begin = offsets[i];
-    const Index end = offsets[i + 1];
-    double sx = 0.0, sy = 0.0, sz = 0.0;
-    for (Index k = begin; k < end; ++k) {
-      const double* pj = p + 3 * static_cast<std::ptrdiff_t>(nbrs[k]);
-      sx += pj[0];
-      sy += pj[1];
-      sz += pj[2];
-    }
-    const double w = factor / static_cast<double>(end - begin);
+    const double w = factor / static_cast<double>(count);  // movable vertices have count > 0
     qi[0] = pi[0] + (sx * w - factor * pi[0]);
     qi[1] = pi[1] + (sy * w - factor * pi[1]);
     qi[2] = pi[2] + (sz * w - factor * pi[2]);
-  }
+  });
 }
 
 }  // namespace contourmesh::detail
