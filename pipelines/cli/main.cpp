@@ -10,6 +10,8 @@ int main(int argc, char** argv) {
   app.set_version_flag("--version", std::string("contourmesh ") + CONTOURMESH_VERSION);
   app.require_subcommand(1);
   app.fallthrough(false);
+  contourmesh::cli::add_phantom_command(app);
+  contourmesh::cli::add_reconstruct_command(app);
   contourmesh::cli::add_smooth_command(app);
   contourmesh::cli::add_demo_command(app);
   try {

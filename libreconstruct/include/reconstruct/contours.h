@@ -1,0 +1,59 @@
+// Ordered planar contours per slice: the output of segmentation and the input of tiling.
+#pragma once
+
+#include <Eigen/Core>
+
+#include <vector>
+
+namespace contourmesh {
+
+/// One closed contour in its slice plane. Points are in the slice's own 2-D frame (u, v) in mm, closed
+/// implicitly (the last point connects to the first, which is not repeated). Outer contours run
+/// counter-clockwise, holes clockwise, seen from +w (the slice axis).
+struct Contour {
+  std::vector<Eigen::Vector2d> points;
+  bool is_hole = false;
+  /// For a hole: index (in the same slice) of the outer contour that encloses it; -1 otherwise.
+  int parent = -1;
+};
+
+/// The contours of one slice plane.
+struct SliceContours {
+  double w = 0.0;  ///< position of the slice plane along the slice axis, mm
+  std::vector<Contour> contours;
+};
+
+/// A stack of slices with the frame that maps slice coordinates to physical space:
+/// physical = origin + u * axis_u + v * axis_v + w * axis_w (orthonormal, right-handed axes).
+/// Slices are ordered by increasing w; their index in `slices` is the slice id c(i) of SPEC 2.
+struct ContourStack {
+  std::vector<SliceContours> slices;
+  Eigen::Vector3d origin = Eigen::Vector3d::Zero();
+  Eigen::Vector3d axis_u = Eigen::Vector3d::UnitX();
+  Eigen::Vector3d axis_v = Eigen::Vector3d::UnitY();
+  Eigen::Vector3d axis_w = Eigen::Vector3d::UnitZ();
+
+  [[nodiscard]] Eigen::Vector3d to_physical(const Eigen::Vector2d& uv, double w) const {
+    return origin + uv.x() * axis_u + uv.y() * axis_v + w * axis_w;
+  }
+  [[nodiscard]] std::size_t num_contours() const {
+    std::size_t n = 0;
+    for (const auto& s : slices) n += s.contours.size();
+    return n;
+  }
+};
+
+/// Signed area of a closed polygon (positive when counter-clockwise), mm^2.
+[[nodiscard]] double signed_area(const std::vector<Eigen::Vector2d>& polygon);
+
+/// Perimeter of a closed polygon, mm.
+[[nodiscard]] double perimeter(const std::vector<Eigen::Vector2d>& polygon);
+
+/// Even-odd point-in-polygon test.
+[[nodiscard]] bool point_in_polygon(const std::vector<Eigen::Vector2d>& polygon, const Eigen::Vector2d& p);
+
+/// Resamples a closed polygon uniformly by arc length to round(perimeter / spacing) points (at least
+/// 3), starting at its first point. Throws InvalidInputError for spacing <= 0 or < 3 input points.
+[[nodiscard]] std::vector<Eigen::Vector2d> resample_closed(const std::vector<Eigen::Vector2d>& polygon, double spacing);
+
+}  // namespace contourmesh

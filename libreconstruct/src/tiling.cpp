@@ -1,0 +1,3 @@
+#include "reconstruct/contours.h"
+
+namespace contourmesh {}  // namespace contourmesh
