@@ -1,1 +1,204 @@
+#include <reconstruct/tiling.h>
+#include <smooth/adjacency.h>
+#include <smooth/errors.h>
+#include <smooth/metrics.h>
+
 #include <gtest/gtest.h>
+
+#include <cmath>
+#include <numbers>
+
+#include "reconstruct/mesh_checks.h"
+
+namespace contourmesh {
+namespace {
+
+Contour circle(double cx, double cy, double r, int n, bool hole = false, int parent = -1) {
+  Contour c;
+  for (int k = 0; k < n; ++k) {
+    const double a = 2.0 * std::numbers::pi * k / n;
+    c.points.emplace_back(cx + r * std::cos(a), cy + r * std::sin(a));
+  }
+  if (hole) std::reverse(c.points.begin(), c.points.end());
+  c.is_hole = hole;
+  c.parent = parent;
+  return c;
+}
+
+ContourStack stack_of(int slices, double spacing = 2.0) {
+  ContourStack s;
+  s.slices.resize(static_cast<std::size_t>(slices));
+  for (int k = 0; k < slices; ++k) s.slices[k].w = k * spacing;
+  return s;
+}
+
+void expect_sound(const Mesh& m, long euler, int components) {
+  const test::Topology t = test::topology_of(m);
+  EXPECT_TRUE(t.closed);
+  EXPECT_TRUE(t.manifold) << t.problems;
+  EXPECT_EQ(t.euler, euler);
+  EXPECT_EQ(t.components, components);
+  EXPECT_GT(enclosed_volume(m), 0.0) << "outward orientation";
+}
+
+TEST(Tiling, CylinderIsClosedWithPrismVolumeAndIds) {
+  ContourStack s = stack_of(8);
+  for (auto& slice : s.slices) slice.contours.push_back(circle(0, 0, 10, 60));
+  const TilingResult r = tile_contours(s);
+  expect_sound(r.mesh, 2, 1);
+  EXPECT_EQ(r.stats.one_to_one, 7u);
+  EXPECT_EQ(r.stats.caps, 2u);
+  const double polygon_area = 0.5 * 60 * 100 * std::sin(2 * std::numbers::pi / 60);
+  EXPECT_NEAR(enclosed_volume(r.mesh), polygon_area * 14.0, 1e-6 * polygon_area);
+  ASSERT_TRUE(r.mesh.has_contour_ids());
+  // Edges join vertices of one contour in a slice, or of adjacent slices.
+  const MeshAdjacency adj = build_adjacency(r.mesh);
+  for (Index i = 0; i < r.mesh.num_vertices(); ++i) {
+    EXPECT_EQ(r.mesh.slice_ids[i], i / 60);
+    for (Index j : adj.ring(i)) EXPECT_LE(std::abs(r.mesh.slice_ids[i] - r.mesh.slice_ids[j]), 1);
+  }
+}
+
+TEST(Tiling, DifferentCountsAndShiftedContours) {
+  ContourStack s = stack_of(6);
+  for (int k = 0; k < 6; ++k) s.slices[k].contours.push_back(circle(0.5 * k, 0.3 * k, 8 + k, 30 + 7 * k));
+  const TilingResult r = tile_contours(s);
+  expect_sound(r.mesh, 2, 1);
+}
+
+TEST(Tiling, OrientationOfInputIsNormalised) {
+  ContourStack s = stack_of(4);
+  for (auto& slice : s.slices) {
+    Contour c = circle(0, 0, 5, 20);
+    std::reverse(c.points.begin(), c.points.end());  // clockwise outer: fixed by the tiler
+    slice.contours.push_back(c);
+  }
+  expect_sound(tile_contours(s).mesh, 2, 1);
+}
+
+TEST(Tiling, OneToTwoBranchIsOneClosedSurface) {
+  ContourStack s = stack_of(10);
+  for (int k = 0; k < 10; ++k) {
+    if (k < 5) s.slices[k].contours.push_back(circle(0, 0, 10, 64));
+    else {
+      s.slices[k].contours.push_back(circle(-6, 0, 5, 32));
+      s.slices[k].contours.push_back(circle(6, 0, 5, 32));
+    }
+  }
+  const TilingResult r = tile_contours(s);
+  EXPECT_EQ(r.stats.branchings, 1u);
+  expect_sound(r.mesh, 2, 1);
+  int mid = 0;
+  for (Index i = 0; i < r.mesh.num_vertices(); ++i) mid += r.mesh.slice_ids[i] == kNoId;
+  EXPECT_EQ(mid, 64);  // the two copies on the mid-plane
+}
+
+TEST(Tiling, TwoToOneAndThreeWayBranches) {
+  ContourStack s = stack_of(9);
+  for (int k = 0; k < 9; ++k) {
+    if (k < 3) {
+      s.slices[k].contours.push_back(circle(-7, 0, 4, 24));
+      s.slices[k].contours.push_back(circle(7, 0, 4, 24));
+    } else if (k < 6) {
+      s.slices[k].contours.push_back(circle(0, 0, 12, 70));
+    } else {
+      s.slices[k].contours.push_back(circle(-7, -4, 3.5, 20));
+      s.slices[k].contours.push_back(circle(7, -4, 3.5, 20));
+      s.slices[k].contours.push_back(circle(0, 7, 3.5, 20));
+    }
+  }
+  const TilingResult r = tile_contours(s);
+  EXPECT_EQ(r.stats.branchings, 2u);
+  expect_sound(r.mesh, 2, 1);
+}
+
+TEST(Tiling, ManyToManyGroup) {
+  ContourStack s = stack_of(6);
+  for (int k = 0; k < 6; ++k) {
+    if (k < 3) {
+      s.slices[k].contours.push_back(circle(-6, 0, 5, 30));
+      s.slices[k].contours.push_back(circle(6, 0, 5, 30));
+    } else {
+      s.slices[k].contours.push_back(circle(0, -6, 5, 30));
+      s.slices[k].contours.push_back(circle(0, 6, 5, 30));
+    }
+  }
+  const TilingResult r = tile_contours(s);
+  EXPECT_EQ(r.stats.branchings, 1u);
+  expect_sound(r.mesh, 2, 1);
+}
+
+TEST(Tiling, AnnulusStackIsATorus) {
+  ContourStack s = stack_of(6);
+  for (auto& slice : s.slices) {
+    slice.contours.push_back(circle(0, 0, 12, 60));
+    slice.contours.push_back(circle(0, 0, 6, 30, /*hole=*/true, 0));
+  }
+  const TilingResult r = tile_contours(s);
+  EXPECT_EQ(r.stats.hole_contours, 6u);
+  expect_sound(r.mesh, 0, 1);
+}
+
+TEST(Tiling, InternalCavityIsASecondSurface) {
+  ContourStack s = stack_of(10);
+  for (int k = 0; k < 10; ++k) {
+    s.slices[k].contours.push_back(circle(0, 0, 12, 60));
+    if (k >= 3 && k <= 6) s.slices[k].contours.push_back(circle(1, 0, 5, 30, true));  // parent found by the tiler
+  }
+  const TilingResult r = tile_contours(s);
+  expect_sound(r.mesh, 4, 2);
+  const double outer = 0.5 * 60 * 144 * std::sin(2 * std::numbers::pi / 60) * 18.0;
+  const double cavity = 0.5 * 30 * 25 * std::sin(2 * std::numbers::pi / 30) * 6.0;
+  EXPECT_NEAR(enclosed_volume(r.mesh), outer - cavity, 1e-6 * outer);
+}
+
+TEST(Tiling, TwoObjectsAndAHoleThatSplits) {
+  ContourStack s = stack_of(8);
+  for (int k = 0; k < 8; ++k) {
+    s.slices[k].contours.push_back(circle(-30, 0, 8, 40));
+    s.slices[k].contours.push_back(circle(30, 0, 20, 90));
+    // A hole in the second object that splits into two holes halfway up.
+    if (k >= 2 && k < 4) s.slices[k].contours.push_back(circle(30, 0, 10, 50, true, 1));
+    if (k >= 4 && k < 6) {
+      s.slices[k].contours.push_back(circle(24, 0, 4, 24, true, 1));
+      s.slices[k].contours.push_back(circle(36, 0, 4, 24, true, 1));
+    }
+  }
+  const TilingResult r = tile_contours(s);
+  expect_sound(r.mesh, 6, 3);  // a cylinder, and a solid with a Y-shaped cavity (two surfaces)
+}
+
+TEST(Tiling, SingleSliceContoursAreDroppedAndLeftHandedFramesStayOutward) {
+  ContourStack s = stack_of(5);
+  for (auto& slice : s.slices) slice.contours.push_back(circle(0, 0, 5, 24));
+  s.slices[2].contours.push_back(circle(40, 0, 3, 12));  // exists in one slice only
+  s.axis_w = -Eigen::Vector3d::UnitZ();                   // a left-handed frame
+  const TilingResult r = tile_contours(s);
+  EXPECT_EQ(r.stats.dropped_contours, 1u);
+  expect_sound(r.mesh, 2, 1);
+}
+
+TEST(Tiling, BadStacksAreRejected) {
+  ContourStack s = stack_of(3);
+  for (auto& slice : s.slices) slice.contours.push_back(circle(0, 0, 5, 24));
+  ContourStack unordered = s;
+  unordered.slices[2].w = 1.0;
+  EXPECT_THROW((void)tile_contours(unordered), InvalidInputError);
+  ContourStack tiny = s;
+  tiny.slices[1].contours[0].points.resize(2);
+  EXPECT_THROW((void)tile_contours(tiny), InvalidInputError);
+  ContourStack orphan = s;
+  orphan.slices[1].contours.push_back(circle(50, 0, 1, 10, true));
+  EXPECT_THROW((void)tile_contours(orphan), InvalidInputError);
+}
+
+TEST(Tiling, LargeContoursUseTheBandedProgramme) {
+  ContourStack s = stack_of(3);
+  for (auto& slice : s.slices) slice.contours.push_back(circle(0, 0, 100, 2500));
+  TilingOptions o;
+  o.full_dp_limit = 1000;  // force the band
+  expect_sound(tile_contours(s, o).mesh, 2, 1);
+}
+
+}  // namespace
+}  // namespace contourmesh

@@ -1,0 +1,63 @@
+// Tiling (SPEC 4): stitching the contours of adjacent slices into a closed triangle mesh that keeps,
+// for every vertex, the slice and contour it came from.
+#pragma once
+
+#include "reconstruct/contours.h"
+
+#include <smooth/mesh.h>
+#include <smooth/progress.h>
+
+#include <cstddef>
+
+namespace contourmesh {
+
+struct TilingOptions {
+  /// Two contours of adjacent slices correspond when the area of overlap of their regions exceeds this
+  /// fraction of the smaller region (outer contours: the filled outline; holes: the hole). In (0, 1].
+  double min_overlap_fraction = 0.05;
+  /// One-to-one pairs are tiled by the minimum-area dynamic programme of Fuchs, Kedem and Uselton
+  /// (1977) over the full m x n grid while m * n is at most this; larger pairs use a band of
+  /// +/- `band_fraction` of the contour length around the arc-length diagonal.
+  std::size_t full_dp_limit = 4'000'000;
+  double band_fraction = 0.15;
+};
+
+/// What the tiler did, for reports.
+struct TilingStats {
+  std::size_t one_to_one = 0;        ///< contour pairs tiled directly
+  std::size_t branchings = 0;        ///< groups with more than one contour on a side (mid-plane composites)
+  std::size_t caps = 0;              ///< capped contour ends (outer ends and hole ends)
+  std::size_t dropped_contours = 0;  ///< contours with no partner above or below (a single slice): not meshed
+  std::size_t hole_contours = 0;     ///< hole contours meshed
+};
+
+struct TilingResult {
+  Mesh mesh;
+  TilingStats stats;
+};
+
+/// Tiles a contour stack into a closed, consistently outward-oriented, edge-manifold mesh per object.
+///
+/// - Correspondence: by overlap of regions between adjacent slices (outer with outer, hole with hole,
+///   a hole only with holes of corresponding outers); the connected groups of this relation are tiled
+///   together.
+/// - One-to-one groups: Fuchs-Kedem-Uselton minimum total triangle area, by dynamic programming,
+///   starting from the pair of nearest points.
+/// - Branching groups (one-to-many, many-to-one, many-to-many): after Meyers, Skinner and Sloan
+///   (1992), the contours of the side with several are copied onto an intermediate plane (the
+///   mid-plane; thirds for many-to-many), joined into one composite contour by bridges between nearest
+///   points, tiled one-to-one to the other side, each copy joined to its original by a straight band,
+///   and the gap under each bridge closed by two triangles.
+/// - Ends: a contour with no partner on one side is capped in its own slice plane by ear clipping that
+///   respects its holes (cap triangles use that slice's vertices only); a hole that ends is closed by
+///   a cap facing into the cavity. Contours present in one slice only (no partner on either side)
+///   would make a zero-thickness sheet and are dropped (counted in the stats).
+///
+/// Vertex ids: a vertex of contour c of slice s has slice id s and contour id c. Vertices of the
+/// intermediate copies made for branching lie between two slices and have slice id and contour id
+/// kNoId. Throws InvalidInputError for a stack whose slices are not ordered by increasing w, a contour
+/// with fewer than 3 points, or a hole whose parent is not an outer contour of its slice.
+[[nodiscard]] TilingResult tile_contours(const ContourStack& stack, const TilingOptions& options = {},
+                                         const ProgressCallback& progress = {});
+
+}  // namespace contourmesh

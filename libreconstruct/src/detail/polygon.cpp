@@ -1,0 +1,243 @@
+#include "detail/polygon.h"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+
+namespace contourmesh::detail {
+
+namespace {
+
+void crossings(const Polygon& poly, double y, std::vector<double>& xs) {
+  xs.clear();
+  const std::size_t n = poly.size();
+  for (std::size_t i = 0, j = n - 1; i < n; j = i++) {
+    const Eigen::Vector2d& p = poly[j];
+    const Eigen::Vector2d& q = poly[i];
+    if ((p.y() > y) != (q.y() > y)) xs.push_back(p.x() + (y - p.y()) * (q.x() - p.x()) / (q.y() - p.y()));
+  }
+  std::sort(xs.begin(), xs.end());
+}
+
+Eigen::AlignedBox2d box_of(const Polygon& p) {
+  Eigen::AlignedBox2d b;
+  for (const auto& v : p) b.extend(v);
+  return b;
+}
+
+}  // namespace
+
+double overlap_area(const Polygon& a, const Polygon& b, int rows) {
+  if (a.size() < 3 || b.size() < 3) return 0.0;
+  const Eigen::AlignedBox2d ba = box_of(a), bb = box_of(b);
+  const Eigen::AlignedBox2d common = ba.intersection(bb);
+  if (common.isEmpty() || common.sizes().x() <= 0.0 || common.sizes().y() <= 0.0) return 0.0;
+  const double h = common.sizes().y() / rows;
+  std::vector<double> xa, xb;
+  double area = 0.0;
+  for (int r = 0; r < rows; ++r) {
+    const double y = common.min().y() + (r + 0.5) * h;
+    crossings(a, y, xa);
+    crossings(b, y, xb);
+    // Intersect the two sorted interval lists [x0, x1], [x2, x3], ...
+    std::size_t i = 0, j = 0;
+    while (i + 1 < xa.size() && j + 1 < xb.size()) {
+      const double lo = std::max(xa[i], xb[j]);
+      const double hi = std::min(xa[i + 1], xb[j + 1]);
+      if (hi > lo) area += (hi - lo) * h;
+      if (xa[i + 1] < xb[j + 1]) i += 2;
+      else j += 2;
+    }
+  }
+  return area;
+}
+
+namespace {
+
+struct Node {
+  Eigen::Vector2d p;
+  PolygonVertex id;
+  int prev = -1;
+  int next = -1;
+};
+
+double cross(const Eigen::Vector2d& a, const Eigen::Vector2d& b, const Eigen::Vector2d& c) {
+  return (b.x() - a.x()) * (c.y() - a.y()) - (b.y() - a.y()) * (c.x() - a.x());
+}
+
+bool in_triangle(const Eigen::Vector2d& a, const Eigen::Vector2d& b, const Eigen::Vector2d& c, const Eigen::Vector2d& p) {
+  return cross(a, b, p) >= 0.0 && cross(b, c, p) >= 0.0 && cross(c, a, p) >= 0.0;
+}
+
+class Ring {
+ public:
+  int add_loop(const Polygon& poly, int polygon_index) {
+    const int first = static_cast<int>(nodes_.size());
+    const int n = static_cast<int>(poly.size());
+    for (int k = 0; k < n; ++k) {
+      Node node;
+      node.p = poly[k];
+      node.id = {polygon_index, k};
+      node.prev = first + (k + n - 1) % n;
+      node.next = first + (k + 1) % n;
+      nodes_.push_back(node);
+    }
+    return first;
+  }
+
+  // Joins the hole loop starting at `hole_start` to the ring containing `outer_start` (Eberly).
+  void eliminate_hole(int outer_start, int hole_start) {
+    // Rightmost vertex M of the hole.
+    int m = hole_start;
+    for (int k = nodes_[hole_start].next; k != hole_start; k = nodes_[k].next) {
+      if (nodes_[k].p.x() > nodes_[m].p.x()) m = k;
+    }
+    const Eigen::Vector2d M = nodes_[m].p;
+    // Nearest crossing of the ray M + t (1, 0), t > 0, with the outer ring.
+    double best_x = std::numeric_limits<double>::infinity();
+    int best = -1;
+    int k = outer_start;
+    do {
+      const int nk = nodes_[k].next;
+      const Eigen::Vector2d& a = nodes_[k].p;
+      const Eigen::Vector2d& b = nodes_[nk].p;
+      if ((a.y() <= M.y() && b.y() >= M.y()) || (b.y() <= M.y() && a.y() >= M.y())) {
+        double x;
+        if (a.y() == b.y()) x = std::min(a.x(), b.x());
+        else x = a.x() + (M.y() - a.y()) * (b.x() - a.x()) / (b.y() - a.y());
+        if (x >= M.x() && x < best_x) {
+          best_x = x;
+          best = a.x() > b.x() ? k : nk;  // the endpoint with the larger x
+        }
+      }
+      k = nk;
+    } while (k != outer_start);
+    if (best < 0) best = outer_start;  // degenerate: should not happen for a hole inside the outer
+    // A reflex vertex inside triangle (M, I, P) blocks P: take the one closest in angle to the ray.
+    const Eigen::Vector2d I(best_x, M.y());
+    const Eigen::Vector2d P = nodes_[best].p;
+    int chosen = best;
+    double best_angle = std::numeric_limits<double>::infinity();
+    if (std::isfinite(best_x)) {
+      k = outer_start;
+      do {
+        const Node& n = nodes_[k];
+        const bool reflex = cross(nodes_[n.prev].p, n.p, nodes_[n.next].p) <= 0.0;
+        if (k != best && reflex && n.p.x() >= M.x()) {
+          const bool inside = (P.y() >= M.y()) ? in_triangle(M, I, P, n.p) : in_triangle(M, P, I, n.p);
+          if (inside) {
+            const Eigen::Vector2d d = n.p - M;
+            const double angle = std::atan2(std::abs(d.y()), d.x());
+            if (angle < best_angle) {
+              best_angle = angle;
+              chosen = k;
+            }
+          }
+        }
+        k = n.next;
+      } while (k != outer_start);
+    }
+    // Splice: ... chosen -> m -> (hole) -> m' -> chosen' -> old chosen.next ...
+    const int chosen_next = nodes_[chosen].next;
+    const int m_prev = nodes_[m].prev;
+    Node m_copy = nodes_[m];
+    Node c_copy = nodes_[chosen];
+    const int m2 = static_cast<int>(nodes_.size());
+    const int c2 = m2 + 1;
+    nodes_.push_back(m_copy);
+    nodes_.push_back(c_copy);
+    nodes_[chosen].next = m;
+    nodes_[m].prev = chosen;
+    nodes_[m_prev].next = m2;
+    nodes_[m2].prev = m_prev;
+    nodes_[m2].next = c2;
+    nodes_[c2].prev = m2;
+    nodes_[c2].next = chosen_next;
+    nodes_[chosen_next].prev = c2;
+  }
+
+  std::vector<std::array<PolygonVertex, 3>> clip(int start) {
+    std::vector<std::array<PolygonVertex, 3>> out;
+    int size = 1;
+    for (int k = nodes_[start].next; k != start; k = nodes_[k].next) ++size;
+    int cur = start;
+    int stall = 0;
+    while (size > 3) {
+      if (is_ear(cur) || stall > size) {
+        if (stall > size) cur = fallback(cur);
+        const Node& n = nodes_[cur];
+        out.push_back({nodes_[n.prev].id, n.id, nodes_[n.next].id});
+        nodes_[n.prev].next = n.next;
+        nodes_[n.next].prev = n.prev;
+        cur = n.prev;  // the neighbours may have become ears
+        --size;
+        stall = 0;
+      } else {
+        cur = nodes_[cur].next;
+        ++stall;
+      }
+    }
+    const Node& n = nodes_[cur];
+    out.push_back({nodes_[n.prev].id, n.id, nodes_[n.next].id});
+    return out;
+  }
+
+ private:
+  bool is_ear(int b) const {
+    const Node& nb = nodes_[b];
+    const Eigen::Vector2d& A = nodes_[nb.prev].p;
+    const Eigen::Vector2d& B = nb.p;
+    const Eigen::Vector2d& C = nodes_[nb.next].p;
+    if (cross(A, B, C) <= 0.0) return false;
+    for (int k = nodes_[nb.next].next; k != nb.prev; k = nodes_[k].next) {
+      const Node& n = nodes_[k];
+      if (n.p == A || n.p == B || n.p == C) continue;  // bridge duplicates
+      if (cross(nodes_[n.prev].p, n.p, nodes_[n.next].p) > 0.0) continue;  // convex vertices cannot block
+      if (in_triangle(A, B, C, n.p)) return false;
+    }
+    return true;
+  }
+
+  // No ear found in a full turn (numerically degenerate input): clip the most convex corner.
+  int fallback(int start) const {
+    int best = start;
+    double best_cross = -std::numeric_limits<double>::infinity();
+    int k = start;
+    do {
+      const Node& n = nodes_[k];
+      const double c = cross(nodes_[n.prev].p, n.p, nodes_[n.next].p);
+      if (c > best_cross) {
+        best_cross = c;
+        best = k;
+      }
+      k = n.next;
+    } while (k != start);
+    return best;
+  }
+
+  std::vector<Node> nodes_;
+};
+
+}  // namespace
+
+std::vector<std::array<PolygonVertex, 3>> triangulate_with_holes(const Polygon& outer, const std::vector<Polygon>& holes) {
+  Ring ring;
+  const int start = ring.add_loop(outer, 0);
+  // Eberly: holes in order of decreasing rightmost x.
+  std::vector<int> order(holes.size());
+  for (std::size_t h = 0; h < holes.size(); ++h) order[h] = static_cast<int>(h);
+  auto max_x = [&](int h) {
+    double m = -std::numeric_limits<double>::infinity();
+    for (const auto& p : holes[h]) m = std::max(m, p.x());
+    return m;
+  };
+  std::sort(order.begin(), order.end(), [&](int a, int b) { return max_x(a) > max_x(b); });
+  for (int h : order) {
+    if (holes[h].size() < 3) continue;
+    const int hole_start = ring.add_loop(holes[h], h + 1);
+    ring.eliminate_hole(start, hole_start);
+  }
+  return ring.clip(start);
+}
+
+}  // namespace contourmesh::detail
