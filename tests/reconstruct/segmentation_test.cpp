@@ -1,1 +1,152 @@
+#include <reconstruct/segmentation.h>
+#include <reconstruct/tiling.h>
+#include <smooth/errors.h>
+#include <smooth/metrics.h>
+
 #include <gtest/gtest.h>
+
+#include <cmath>
+#include <functional>
+#include <numbers>
+
+#include "reconstruct/mesh_checks.h"
+
+namespace contourmesh {
+namespace {
+
+// A volume whose voxels hold `inside_hu` where sdf < 0 (4x4 in-plane supersampling for partial
+// volume) and `outside_hu` elsewhere; physical point of index (i, j, k) = origin + spacing * index.
+CtImage::Pointer make_volume(const std::array<int, 3>& n, const Eigen::Vector3d& spacing, const Eigen::Vector3d& origin,
+                             const std::function<double(const Eigen::Vector3d&)>& sdf, float inside_hu = 1000.0f,
+                             float outside_hu = 0.0f) {
+  auto image = CtImage::New();
+  CtImage::RegionType region;
+  region.SetSize({{static_cast<itk::SizeValueType>(n[0]), static_cast<itk::SizeValueType>(n[1]),
+                   static_cast<itk::SizeValueType>(n[2])}});
+  image->SetRegions(region);
+  image->SetSpacing(spacing.data());
+  image->SetOrigin(origin.data());
+  image->Allocate();
+  for (int k = 0; k < n[2]; ++k) {
+    for (int j = 0; j < n[1]; ++j) {
+      for (int i = 0; i < n[0]; ++i) {
+        int inside = 0;
+        for (int a = 0; a < 4; ++a) {
+          for (int b = 0; b < 4; ++b) {
+            const Eigen::Vector3d p = origin + Eigen::Vector3d((i - 0.375 + 0.25 * a) * spacing.x(),
+                                                              (j - 0.375 + 0.25 * b) * spacing.y(), k * spacing.z());
+            inside += sdf(p) < 0.0;
+          }
+        }
+        image->SetPixel({{i, j, k}}, outside_hu + (inside_hu - outside_hu) * inside / 16.0f);
+      }
+    }
+  }
+  return image;
+}
+
+double cylinder(const Eigen::Vector3d& p, double cx, double cy, double r) { return std::hypot(p.x() - cx, p.y() - cy) - r; }
+
+TEST(Segmentation, CylinderGivesOneAccurateCounterClockwiseContourPerSlice) {
+  const auto image = make_volume({60, 60, 5}, {0.5, 0.5, 2.0}, {-15, -15, 0},
+                                 [](const Eigen::Vector3d& p) { return cylinder(p, 0, 0, 10); });
+  SegmentationOptions o;
+  o.threshold = 500;
+  o.sampling = 0.4;
+  const SegmentationResult r = segment_contours(*image, o);
+  ASSERT_EQ(r.stack.slices.size(), 5u);
+  for (std::size_t k = 0; k < 5; ++k) {
+    const SliceContours& s = r.stack.slices[k];
+    EXPECT_DOUBLE_EQ(s.w, 2.0 * k);
+    ASSERT_EQ(s.contours.size(), 1u);
+    const Contour& c = s.contours[0];
+    EXPECT_FALSE(c.is_hole);
+    EXPECT_GT(signed_area(c.points), 0.0);
+    for (std::size_t i = 0; i < c.points.size(); ++i) {
+      const Eigen::Vector3d p = r.stack.to_physical(c.points[i], s.w);
+      EXPECT_NEAR(std::hypot(p.x(), p.y()), 10.0, 0.1);  // sub-pixel: well under the 0.5 mm pixel
+      EXPECT_NEAR((c.points[(i + 1) % c.points.size()] - c.points[i]).norm(), 0.4, 0.05);
+    }
+  }
+}
+
+TEST(Segmentation, HolesAreClockwiseWithParentsAndSmallOnesAreFilled) {
+  // A ring (hole radius 5) with a tiny pit (radius 0.4 mm) in its wall, and a speck far away.
+  const auto image = make_volume({80, 80, 3}, {0.5, 0.5, 1.0}, {-20, -20, 0}, [](const Eigen::Vector3d& p) {
+    const double ring = std::max(cylinder(p, 0, 0, 12), -cylinder(p, 0, 0, 5));
+    const double pit = -cylinder(p, 8.5, 0, 0.4);
+    const double speck = cylinder(p, -17, -17, 0.5);
+    return std::min(std::max(ring, pit), speck);
+  });
+  SegmentationOptions o;
+  o.threshold = 500;
+  const SegmentationResult r = segment_contours(*image, o);
+  for (const SliceContours& s : r.stack.slices) {
+    ASSERT_EQ(s.contours.size(), 2u);  // outer + hole; speck dropped, pit filled
+    EXPECT_FALSE(s.contours[0].is_hole);
+    EXPECT_TRUE(s.contours[1].is_hole);
+    EXPECT_EQ(s.contours[1].parent, 0);
+    EXPECT_LT(signed_area(s.contours[1].points), 0.0);
+    EXPECT_NEAR(-signed_area(s.contours[1].points), std::numbers::pi * 25.0, 2.0);
+  }
+  EXPECT_GE(r.dropped_regions, 3u);
+  o.fill_holes = true;
+  for (const SliceContours& s : segment_contours(*image, o).stack.slices) EXPECT_EQ(s.contours.size(), 1u);
+}
+
+TEST(Segmentation, KeepLargestDropsTheSmallerObject) {
+  const auto image = make_volume({80, 40, 3}, {0.5, 0.5, 1.0}, {-20, -10, 0}, [](const Eigen::Vector3d& p) {
+    return std::min(cylinder(p, -10, 0, 6), cylinder(p, 10, 0, 4));
+  });
+  SegmentationOptions o;
+  o.threshold = 500;
+  EXPECT_EQ(segment_contours(*image, o).stack.slices[1].contours.size(), 2u);
+  o.components = ComponentSelection::KeepLargest;
+  const auto r = segment_contours(*image, o);
+  ASSERT_EQ(r.stack.slices[1].contours.size(), 1u);
+  EXPECT_LT(r.stack.to_physical(r.stack.slices[1].contours[0].points[0], 0).x(), 0.0);
+}
+
+TEST(Segmentation, OtsuFindsAThresholdBetweenTheTwoClasses) {
+  const auto image = make_volume({40, 40, 2}, {1, 1, 1}, {-20, -20, 0},
+                                 [](const Eigen::Vector3d& p) { return cylinder(p, 0, 0, 9); }, 900.0f, 100.0f);
+  SegmentationOptions o;
+  o.threshold_method = ThresholdMethod::Otsu;
+  o.smoothing = ImageSmoothing::Median;
+  const SegmentationResult r = segment_contours(*image, o);
+  EXPECT_GT(r.threshold, 150.0);
+  EXPECT_LT(r.threshold, 850.0);
+  EXPECT_EQ(r.stack.slices[0].contours.size(), 1u);
+}
+
+TEST(Segmentation, CylinderReconstructsToAClosedMeshWithTheRightVolume) {
+  const auto image = make_volume({70, 70, 12}, {0.5, 0.5, 2.0}, {-17.5, -17.5, -2}, [](const Eigen::Vector3d& p) {
+    return std::max(cylinder(p, 0, 0, 12), std::abs(p.z() - 10.0) - 8.9);  // z in [1.1, 18.9]
+  });
+  SegmentationOptions o;
+  o.threshold = 500;
+  o.smoothing = ImageSmoothing::CurvatureAnisotropic;
+  const auto seg = segment_contours(*image, o);
+  const TilingResult tiled = tile_contours(seg.stack);
+  const test::Topology t = test::topology_of(tiled.mesh);
+  EXPECT_TRUE(t.closed);
+  EXPECT_TRUE(t.manifold) << t.problems;
+  EXPECT_EQ(t.euler, 2);
+  // Slices at z = 2, 4, ..., 18 hold the disc: the prism between the end slices is 16 mm tall.
+  EXPECT_NEAR(enclosed_volume(tiled.mesh), std::numbers::pi * 144.0 * 16.0, 0.02 * std::numbers::pi * 144.0 * 16.0);
+}
+
+TEST(Segmentation, BadOptionsAndEmptyResultsAreReported) {
+  const auto image = make_volume({10, 10, 2}, {1, 1, 1}, {0, 0, 0}, [](const Eigen::Vector3d&) { return 1.0; });
+  SegmentationOptions o;
+  o.sampling = -1;
+  EXPECT_THROW((void)segment_contours(*image, o), InvalidInputError);
+  const auto r = segment_contours(*image);  // all below threshold: no contours, not an error here
+  EXPECT_EQ(r.stack.num_contours(), 0u);
+  int calls = 0;
+  EXPECT_THROW((void)segment_contours(*image, {}, [&](std::string_view, double) { return ++calls < 1; }),
+               CancelledError);
+}
+
+}  // namespace
+}  // namespace contourmesh

@@ -1,0 +1,63 @@
+// Segmentation of a CT volume into ordered contours per slice (SPEC 1 and 4): optional denoising,
+// threshold in HU (or Otsu), connected components, per-slice hole handling, sub-pixel contours with
+// itk::ContourExtractor2DImageFilter, orientation, and resampling to a target in-plane spacing.
+#pragma once
+
+#include "reconstruct/contours.h"
+#include "reconstruct/volume.h"
+
+#include <smooth/progress.h>
+
+#include <cstddef>
+
+namespace contourmesh {
+
+enum class ThresholdMethod {
+  Fixed,  ///< voxels >= `threshold` are foreground
+  Otsu,   ///< Otsu's threshold of the (smoothed) volume's histogram; for data that is not in HU
+};
+
+enum class ImageSmoothing {
+  None,
+  Median,                  ///< 3 x 3 median in each slice plane
+  CurvatureAnisotropic,    ///< 5 steps of curvature anisotropic diffusion (edge preserving), 3-D
+};
+
+enum class ComponentSelection {
+  KeepAll,      ///< every region of at least `min_region_area` in its slice
+  KeepLargest,  ///< only the largest 6-connected 3-D component (drops the table, loose fragments)
+};
+
+struct SegmentationOptions {
+  ThresholdMethod threshold_method = ThresholdMethod::Fixed;
+  /// Foreground threshold in the image's units (HU for CT). 300 HU keeps cortical and most
+  /// trabecular bone and rejects soft tissue and contrast-free vessels.
+  double threshold = 300.0;
+  ImageSmoothing smoothing = ImageSmoothing::None;
+  ComponentSelection components = ComponentSelection::KeepAll;
+  /// Per slice, foreground regions smaller than this (mm^2) are dropped and holes smaller than this
+  /// are filled. >= 0.
+  double min_region_area = 2.0;
+  /// Fill every hole of every region (per slice), not only the small ones.
+  bool fill_holes = false;
+  /// Target distance between contour points (the paper's "horizontal sampling rate"), mm.
+  /// 0 = the smaller in-plane pixel spacing.
+  double sampling = 0.0;
+  /// Contours shorter than this (mm) are dropped, with their holes. >= 0.
+  double min_contour_length = 3.0;
+};
+
+struct SegmentationResult {
+  ContourStack stack;        ///< one entry per image slice (possibly with no contours), ids = slice index
+  double threshold = 0.0;    ///< the threshold used (the Otsu value when chosen)
+  std::size_t dropped_regions = 0;  ///< regions dropped as too small or too short
+};
+
+/// Segments every slice (index axis 2) of `image` and extracts its contours in the slice frame
+/// (origin, axes and w from the image's origin, direction and spacing). Outer contours are
+/// counter-clockwise, holes clockwise with `parent` set. Throws InvalidInputError for an empty image
+/// or options out of range; CancelledError when `progress` (stage "segment") returns false.
+[[nodiscard]] SegmentationResult segment_contours(const CtImage& image, const SegmentationOptions& options = {},
+                                                  const ProgressCallback& progress = {});
+
+}  // namespace contourmesh
