@@ -1,0 +1,22 @@
+// Topological summary of a triangle mesh: closedness, manifoldness, Euler characteristic, components.
+#pragma once
+
+#include "smooth/mesh.h"
+
+#include <string>
+
+namespace contourmesh {
+
+struct TopologySummary {
+  bool closed = false;    ///< no boundary edge
+  bool manifold = false;  ///< no degenerate, duplicate or non-manifold element (find_mesh_problems is empty)
+  long euler_characteristic = 0;  ///< V - E + F, counting only vertices used by a triangle
+  int components = 0;             ///< connected components of the triangles
+  std::string first_problems;     ///< up to five problems, "; "-separated, when not manifold
+};
+
+/// Computes the summary in O(V + F) plus validation. For a closed manifold mesh with c components of
+/// genus g_k, euler_characteristic = sum_k (2 - 2 g_k).
+[[nodiscard]] TopologySummary summarize_topology(const Mesh& mesh);
+
+}  // namespace contourmesh
