@@ -97,9 +97,14 @@ void tile_band(const Ring& lower, const Ring& upper, const TilingOptions& option
   std::vector<std::uint8_t> from_lower(row_start[m + 1], 0);  // 1: came by advancing i
   auto at = [&](int i, int j) { return row_start[i] + static_cast<std::size_t>(j - lo[i]); };
   cost[at(0, 0)] = 0.0;
+  // Grid node (i, j) is the edge lower[i mod m] - upper[j mod n]; (0, j) and (m, j) are the same edge,
+  // as are (i, 0) and (i, n). So that the start edge (0, 0) = (m, n) is the only edge met twice, the
+  // path leaves (0, 0) along the lower ring and enters (m, n) along the upper ring: nodes (0, j > 0),
+  // (m, 0) and (i < m, n) are never used.
   for (int i = 0; i <= m; ++i) {
     for (int j = lo[i]; j <= hi[i]; ++j) {
       if (i == 0 && j == 0) continue;
+      if ((i == 0 && j > 0) || (i == m && j == 0) || (j == n && i < m)) continue;
       double c = inf;
       std::uint8_t fl = 0;
       if (i > 0 && j >= lo[i - 1] && j <= hi[i - 1] && cost[at(i - 1, j)] < inf) {

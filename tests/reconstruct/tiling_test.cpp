@@ -66,6 +66,17 @@ TEST(Tiling, DifferentCountsAndShiftedContours) {
   expect_sound(r.mesh, 2, 1);
 }
 
+TEST(Tiling, TinyContourNextToALargeOneKeepsTheBandManifold) {
+  // The band between very different rings must stay an annulus (see RealScans for the case that broke).
+  // Small rings near the rim of large ones, as where a bone process ends.
+  ContourStack s = stack_of(4);
+  s.slices[0].contours.push_back(circle(5.2, 0, 0.6, 3));
+  s.slices[1].contours.push_back(circle(0, 0, 6, 40));
+  s.slices[2].contours.push_back(circle(0, 0.4, 6, 40));
+  s.slices[3].contours.push_back(circle(-5.0, 0.5, 0.5, 4));
+  expect_sound(tile_contours(s).mesh, 2, 1);
+}
+
 TEST(Tiling, OrientationOfInputIsNormalised) {
   ContourStack s = stack_of(4);
   for (auto& slice : s.slices) {

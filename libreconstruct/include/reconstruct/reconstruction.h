@@ -1,0 +1,42 @@
+// The reconstruction chain of SPEC 1: CT volume -> segmentation -> contours -> tiling -> mesh.
+#pragma once
+
+#include "reconstruct/segmentation.h"
+#include "reconstruct/tiling.h"
+#include "reconstruct/volume.h"
+
+#include <smooth/mesh.h>
+#include <smooth/progress.h>
+
+namespace contourmesh {
+
+struct ReconstructionOptions {
+  SegmentationOptions segmentation;
+  TilingOptions tiling;
+};
+
+struct ReconstructionReport {
+  std::size_t slices = 0;          ///< slices of the volume
+  std::size_t slices_with_contours = 0;
+  std::size_t contours = 0;        ///< outer and hole contours extracted
+  std::size_t hole_contours = 0;
+  double threshold = 0.0;          ///< the threshold used (HU or raw units)
+  std::size_t dropped_regions = 0;
+  TilingStats tiling;
+  double seconds_segment = 0.0;
+  double seconds_tile = 0.0;
+};
+
+struct Reconstruction {
+  Mesh mesh;  ///< tiled mesh with slice and contour ids (see tile_contours)
+  ContourStack contours;
+  ReconstructionReport report;
+};
+
+/// Segments and tiles a volume. Throws InvalidInputError when no contour is found (for example an
+/// all-air volume or a threshold above every voxel) or when fewer than two slices hold contours,
+/// naming the threshold used; CancelledError when `progress` returns false.
+[[nodiscard]] Reconstruction reconstruct(const CtImage& image, const ReconstructionOptions& options = {},
+                                         const ProgressCallback& progress = {});
+
+}  // namespace contourmesh
