@@ -442,31 +442,30 @@ TilingResult tile_contours(const ContourStack& stack, const TilingOptions& optio
     }
   }
 
-  // Caps: ends of outer contours (with their holes) and ends of holes inside continuing outers.
-  auto cap = [&](std::size_t s, int outer, const std::vector<int>& holes, bool facing_up) {
-    const Ring& o = rings[s][outer];
+  // Ends: outer contours (with their holes) and holes inside continuing outers. With
+  // EndCaps::HalfSpacing the ending rings are first extended by half the slice spacing (a straight band
+  // to a copy), as a slice samples a slab of that thickness.
+  auto extend = [&](std::size_t s, const Ring& r, bool upward) {
+    if (options.end_caps == EndCaps::AtEndSlice || S < 2) return r;
+    const double gap = upward ? (s + 1 < S ? stack.slices[s + 1].w - stack.slices[s].w
+                                           : stack.slices[s].w - stack.slices[s - 1].w)
+                              : (s > 0 ? stack.slices[s].w - stack.slices[s - 1].w
+                                       : stack.slices[s + 1].w - stack.slices[s].w);
+    Ring copy = copy_ring(r, r.w + (upward ? 0.5 : -0.5) * gap);
+    if (upward) tile_copy_band(r, copy, builder);
+    else tile_copy_band(copy, r, builder);
+    return copy;
+  };
+  auto cap = [&](const Ring& outer, const std::vector<Ring>& holes, bool facing_up) {
     std::vector<Polygon> hole_polys;
-    for (int h : holes) hole_polys.push_back(rings[s][h].pts);
-    const auto tris = detail::triangulate_with_holes(o.pts, hole_polys);
-    for (const auto& t : tris) {
+    for (const Ring& h : holes) hole_polys.push_back(h.pts);
+    for (const auto& t : detail::triangulate_with_holes(outer.pts, hole_polys)) {
       Index v[3];
       for (int k = 0; k < 3; ++k) {
-        v[k] = t[k].polygon == 0 ? o.ids[t[k].vertex] : rings[s][holes[t[k].polygon - 1]].ids[t[k].vertex];
+        v[k] = t[k].polygon == 0 ? outer.ids[t[k].vertex] : holes[t[k].polygon - 1].ids[t[k].vertex];
       }
       if (facing_up) builder.add_triangle(v[0], v[1], v[2]);
       else builder.add_triangle(v[0], v[2], v[1]);
-    }
-    ++result.stats.caps;
-  };
-  auto cap_hole = [&](std::size_t s, int hole, bool facing_up) {
-    Ring r = rings[s][hole];  // clockwise: reverse to triangulate the hole's inside
-    std::reverse(r.pts.begin(), r.pts.end());
-    std::reverse(r.ids.begin(), r.ids.end());
-    const auto tris = detail::triangulate_with_holes(r.pts, {});
-    for (const auto& t : tris) {
-      const Index a = r.ids[t[0].vertex], b = r.ids[t[1].vertex], c = r.ids[t[2].vertex];
-      if (facing_up) builder.add_triangle(a, b, c);
-      else builder.add_triangle(a, c, b);
     }
     ++result.stats.caps;
   };
@@ -478,16 +477,25 @@ TilingResult tile_contours(const ContourStack& stack, const TilingOptions& optio
       if (!cs[c].is_hole) {
         for (const bool upward : {true, false}) {
           if (!(upward ? up[s][c] : down[s][c]).empty()) continue;
-          std::vector<int> holes;
+          std::vector<Ring> holes;
           for (std::size_t h = 0; h < cs.size(); ++h) {
-            if (kept[s][h] && cs[h].is_hole && cs[h].parent == ci) holes.push_back(static_cast<int>(h));
+            if (kept[s][h] && cs[h].is_hole && cs[h].parent == ci) holes.push_back(extend(s, rings[s][h], upward));
           }
-          cap(s, ci, holes, upward);
+          cap(extend(s, rings[s][c], upward), holes, upward);
         }
       } else {
+        // A hole ending inside a continuing outer: close it with a cap facing into the cavity. Its
+        // inside is triangulated as a counter-clockwise polygon (the hole ring reversed).
         const int p = cs[c].parent;
-        if (up[s][c].empty() && !up[s][p].empty()) cap_hole(s, ci, /*facing_up=*/false);
-        if (down[s][c].empty() && !down[s][p].empty()) cap_hole(s, ci, /*facing_up=*/true);
+        for (const bool upward : {true, false}) {
+          const bool hole_ends = (upward ? up[s][c] : down[s][c]).empty();
+          const bool parent_continues = !(upward ? up[s][p] : down[s][p]).empty();
+          if (!hole_ends || !parent_continues) continue;
+          Ring r = extend(s, rings[s][c], upward);
+          std::reverse(r.pts.begin(), r.pts.end());
+          std::reverse(r.ids.begin(), r.ids.end());
+          cap(r, {}, !upward);
+        }
       }
     }
   }

@@ -132,8 +132,9 @@ TEST(Segmentation, CylinderReconstructsToAClosedMeshWithTheRightVolume) {
   EXPECT_TRUE(t.closed);
   EXPECT_TRUE(t.manifold) << t.problems;
   EXPECT_EQ(t.euler, 2);
-  // Slices at z = 2, 4, ..., 18 hold the disc: the prism between the end slices is 16 mm tall.
-  EXPECT_NEAR(enclosed_volume(tiled.mesh), std::numbers::pi * 144.0 * 16.0, 0.02 * std::numbers::pi * 144.0 * 16.0);
+  // Slices at z = 2, 4, ..., 18 hold the disc; with the half-spacing ends the mesh spans z = 1 .. 19,
+  // the solid z = 1.1 .. 18.9.
+  EXPECT_NEAR(enclosed_volume(tiled.mesh), std::numbers::pi * 144.0 * 17.8, 0.02 * std::numbers::pi * 144.0 * 17.8);
 }
 
 TEST(Segmentation, BadOptionsAndEmptyResultsAreReported) {

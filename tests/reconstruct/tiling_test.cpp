@@ -44,18 +44,36 @@ void expect_sound(const Mesh& m, long euler, int components) {
 TEST(Tiling, CylinderIsClosedWithPrismVolumeAndIds) {
   ContourStack s = stack_of(8);
   for (auto& slice : s.slices) slice.contours.push_back(circle(0, 0, 10, 60));
+  const double polygon_area = 0.5 * 60 * 100 * std::sin(2 * std::numbers::pi / 60);
+  // Default: the ends extend half a spacing beyond the end slices (16 mm of prism).
   const TilingResult r = tile_contours(s);
   expect_sound(r.mesh, 2, 1);
   EXPECT_EQ(r.stats.one_to_one, 7u);
   EXPECT_EQ(r.stats.caps, 2u);
-  const double polygon_area = 0.5 * 60 * 100 * std::sin(2 * std::numbers::pi / 60);
-  EXPECT_NEAR(enclosed_volume(r.mesh), polygon_area * 14.0, 1e-6 * polygon_area);
-  ASSERT_TRUE(r.mesh.has_contour_ids());
-  // Edges join vertices of one contour in a slice, or of adjacent slices.
-  const MeshAdjacency adj = build_adjacency(r.mesh);
-  for (Index i = 0; i < r.mesh.num_vertices(); ++i) {
-    EXPECT_EQ(r.mesh.slice_ids[i], i / 60);
-    for (Index j : adj.ring(i)) EXPECT_LE(std::abs(r.mesh.slice_ids[i] - r.mesh.slice_ids[j]), 1);
+  EXPECT_NEAR(enclosed_volume(r.mesh), polygon_area * 16.0, 1e-6 * polygon_area);
+  // In the end-slice planes: 14 mm, and every vertex is on a slice.
+  TilingOptions flat;
+  flat.end_caps = EndCaps::AtEndSlice;
+  const TilingResult f = tile_contours(s, flat);
+  expect_sound(f.mesh, 2, 1);
+  EXPECT_NEAR(enclosed_volume(f.mesh), polygon_area * 14.0, 1e-6 * polygon_area);
+  EXPECT_EQ(f.mesh.num_vertices(), 8 * 60);
+  for (const Mesh* m : {&r.mesh, &f.mesh}) {
+    ASSERT_TRUE(m->has_contour_ids());
+    // Edges join vertices of one contour in a slice, or of adjacent slices; copies have no slice.
+    const MeshAdjacency adj = build_adjacency(*m);
+    int copies = 0;
+    for (Index i = 0; i < m->num_vertices(); ++i) {
+      if (m->slice_ids[i] == kNoId) {
+        ++copies;
+        continue;
+      }
+      EXPECT_EQ(m->slice_ids[i], i / 60);
+      for (Index j : adj.ring(i)) {
+        if (m->slice_ids[j] != kNoId) EXPECT_LE(std::abs(m->slice_ids[i] - m->slice_ids[j]), 1);
+      }
+    }
+    EXPECT_EQ(copies, m == &r.mesh ? 120 : 0);
   }
 }
 
@@ -101,7 +119,7 @@ TEST(Tiling, OneToTwoBranchIsOneClosedSurface) {
   expect_sound(r.mesh, 2, 1);
   int mid = 0;
   for (Index i = 0; i < r.mesh.num_vertices(); ++i) mid += r.mesh.slice_ids[i] == kNoId;
-  EXPECT_EQ(mid, 64);  // the two copies on the mid-plane
+  EXPECT_EQ(mid, 64 + 64 + 64);  // the two copies on the mid-plane, and the two end copies
 }
 
 TEST(Tiling, TwoToOneAndThreeWayBranches) {
@@ -158,8 +176,9 @@ TEST(Tiling, InternalCavityIsASecondSurface) {
   }
   const TilingResult r = tile_contours(s);
   expect_sound(r.mesh, 4, 2);
-  const double outer = 0.5 * 60 * 144 * std::sin(2 * std::numbers::pi / 60) * 18.0;
-  const double cavity = 0.5 * 30 * 25 * std::sin(2 * std::numbers::pi / 30) * 6.0;
+  // Ends extend half a spacing: the solid is 20 mm tall and the cavity 8 mm.
+  const double outer = 0.5 * 60 * 144 * std::sin(2 * std::numbers::pi / 60) * 20.0;
+  const double cavity = 0.5 * 30 * 25 * std::sin(2 * std::numbers::pi / 30) * 8.0;
   EXPECT_NEAR(enclosed_volume(r.mesh), outer - cavity, 1e-6 * outer);
 }
 

@@ -11,7 +11,19 @@
 
 namespace contourmesh {
 
+/// Where the ends of an object are closed.
+enum class EndCaps {
+  /// Half a slice spacing beyond the last contour: the ending contours are extended by a straight band
+  /// to a copy, and the copy is capped. A slice samples a slab of one spacing, so this is the unbiased
+  /// end position (the "slab" convention of radiotherapy structure volumes). Default.
+  HalfSpacing,
+  /// In the plane of the last contour: cap triangles use that slice's vertices only (SPEC 2). The
+  /// object then ends, on average, half a spacing short at each end.
+  AtEndSlice,
+};
+
 struct TilingOptions {
+  EndCaps end_caps = EndCaps::HalfSpacing;
   /// Two contours of adjacent slices correspond when the area of overlap of their regions exceeds this
   /// fraction of the smaller region (outer contours: the filled outline; holes: the hole). In (0, 1].
   double min_overlap_fraction = 0.05;
@@ -48,14 +60,15 @@ struct TilingResult {
 ///   mid-plane; thirds for many-to-many), joined into one composite contour by bridges between nearest
 ///   points, tiled one-to-one to the other side, each copy joined to its original by a straight band,
 ///   and the gap under each bridge closed by two triangles.
-/// - Ends: a contour with no partner on one side is capped in its own slice plane by ear clipping that
-///   respects its holes (cap triangles use that slice's vertices only); a hole that ends is closed by
-///   a cap facing into the cavity. Contours present in one slice only (no partner on either side)
-///   would make a zero-thickness sheet and are dropped (counted in the stats).
+/// - Ends: a contour with no partner on one side is capped by ear clipping that respects its holes,
+///   half a spacing beyond its slice (default) or in its own slice plane (EndCaps::AtEndSlice); a hole
+///   that ends inside a continuing outer is closed the same way by a cap facing into the cavity.
+///   Contours present in one slice only (no partner on either side) would make a zero-thickness sheet
+///   and are dropped (counted in the stats).
 ///
 /// Vertex ids: a vertex of contour c of slice s has slice id s and contour id c. Vertices of the
-/// intermediate copies made for branching lie between two slices and have slice id and contour id
-/// kNoId. Throws InvalidInputError for a stack whose slices are not ordered by increasing w, a contour
+/// copies made for branching and for half-spacing end caps lie off the slice planes and have slice id
+/// and contour id kNoId. Throws InvalidInputError for a stack whose slices are not ordered by increasing w, a contour
 /// with fewer than 3 points, or a hole whose parent is not an outer contour of its slice.
 [[nodiscard]] TilingResult tile_contours(const ContourStack& stack, const TilingOptions& options = {},
                                          const ProgressCallback& progress = {});
