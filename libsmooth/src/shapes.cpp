@@ -184,18 +184,35 @@ Mesh make_contour_stack(const ContourStackSpec& spec) {
     }
   }
   const auto caps = ear_clip(ring);
-  mesh.triangles.reserve(static_cast<std::size_t>(2) * (S - 1) * P + 2 * caps.size());
-  for (int k = 0; k + 1 < S; ++k) {
+  mesh.triangles.reserve(static_cast<std::size_t>(2) * (S + 1) * P + 2 * caps.size());
+  auto band = [&](Index lower, Index upper) {  // first vertex of each ring
     for (int i = 0; i < P; ++i) {
-      const Index a = k * P + i, b = k * P + (i + 1) % P, c = (k + 1) * P + (i + 1) % P, d = (k + 1) * P + i;
+      const Index a = lower + i, b = lower + (i + 1) % P, c = upper + (i + 1) % P, d = upper + i;
       mesh.triangles.push_back({a, b, c});
       mesh.triangles.push_back({a, c, d});
     }
+  };
+  for (int k = 0; k + 1 < S; ++k) band(k * P, (k + 1) * P);
+  Index bottom = 0;
+  Index top = (S - 1) * P;
+  if (spec.end_caps == EndCaps::HalfSpacing) {
+    // Copies half a spacing beyond both ends, joined by straight bands.
+    mesh.positions.conservativeResize(3, static_cast<Eigen::Index>(S + 2) * P);
+    mesh.slice_ids.resize(static_cast<std::size_t>(S + 2) * P, kNoId);
+    mesh.contour_ids.resize(static_cast<std::size_t>(S + 2) * P, kNoId);
+    bottom = S * P;
+    const Index above = (S + 1) * P;
+    for (int i = 0; i < P; ++i) {
+      mesh.positions.col(bottom + i) << ring[i].x(), ring[i].y(), spec.z0 - 0.5 * spec.slice_spacing;
+      mesh.positions.col(above + i) << ring[i].x(), ring[i].y(), spec.z0 + (S - 0.5) * spec.slice_spacing;
+    }
+    band(bottom, 0);
+    band(top, above);
+    top = above;
   }
-  const Index top = (S - 1) * P;
   for (const auto& t : caps) {
-    mesh.triangles.push_back({t[0], t[2], t[1]});                    // bottom: faces -z
-    mesh.triangles.push_back({top + t[0], top + t[1], top + t[2]});  // top: faces +z
+    mesh.triangles.push_back({bottom + t[0], bottom + t[2], bottom + t[1]});  // bottom: faces -z
+    mesh.triangles.push_back({top + t[0], top + t[1], top + t[2]});           // top: faces +z
   }
   return mesh;
 }
@@ -205,7 +222,8 @@ ScalarField contour_stack_sdf(const ContourStackSpec& spec, int curve_samples) {
   std::vector<Eigen::Vector2d> poly(static_cast<std::size_t>(std::max(curve_samples, 3)));
   for (std::size_t i = 0; i < poly.size(); ++i) poly[i] = spec.curve(static_cast<double>(i) / poly.size());
   const double zc = spec.z0 + 0.5 * (spec.slices - 1) * spec.slice_spacing;
-  const double half = 0.5 * (spec.slices - 1) * spec.slice_spacing;
+  const double extension = spec.end_caps == EndCaps::HalfSpacing ? 0.5 * spec.slice_spacing : 0.0;
+  const double half = 0.5 * (spec.slices - 1) * spec.slice_spacing + extension;
   return [poly = std::move(poly), zc, half](const Eigen::Vector3d& p) {
     const double d2 = polyline_sdf_2d(poly, p.head<2>());
     const double dz = std::abs(p.z() - zc) - half;

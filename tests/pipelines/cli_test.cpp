@@ -64,7 +64,7 @@ TEST_F(Cli, SmoothEveryMethodWithJson) {
     }
     EXPECT_EQ(j["method"], method);
     EXPECT_EQ(j["iterations"], 20);
-    EXPECT_EQ(j["vertices"], 600);
+    EXPECT_EQ(j["vertices"], 600 + 120);  // 10 contours of 60, and two end-cap copies
     const Mesh result = read_mesh(out);
     EXPECT_TRUE(result.has_contour_ids()) << "PLY output keeps the contour ids";
     if (method == "none") {

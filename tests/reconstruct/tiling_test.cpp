@@ -70,7 +70,9 @@ TEST(Tiling, CylinderIsClosedWithPrismVolumeAndIds) {
       }
       EXPECT_EQ(m->slice_ids[i], i / 60);
       for (Index j : adj.ring(i)) {
-        if (m->slice_ids[j] != kNoId) EXPECT_LE(std::abs(m->slice_ids[i] - m->slice_ids[j]), 1);
+        if (m->slice_ids[j] != kNoId) {
+          EXPECT_LE(std::abs(m->slice_ids[i] - m->slice_ids[j]), 1);
+        }
       }
     }
     EXPECT_EQ(copies, m == &r.mesh ? 120 : 0);

@@ -34,10 +34,12 @@ TEST(Shapes, ContourStackIsAClosedOutwardPrismWithIds) {
   spec.slices = 8;
   spec.points_per_contour = 200;
   spec.slice_spacing = 1.5;
+  spec.end_caps = EndCaps::AtEndSlice;
   const Mesh m = make_contour_stack(spec);
   EXPECT_TRUE(find_mesh_problems(m).empty());
   EXPECT_TRUE(build_adjacency(m).is_closed());
   ASSERT_TRUE(m.has_contour_ids());
+  EXPECT_EQ(m.num_vertices(), 8 * 200);
   for (Index i = 0; i < m.num_vertices(); ++i) {
     EXPECT_EQ(m.slice_ids[i], i / 200);
     EXPECT_DOUBLE_EQ(m.positions(2, i), 1.5 * (i / 200));
@@ -55,6 +57,14 @@ TEST(Shapes, ContourStackIsAClosedOutwardPrismWithIds) {
     area += 0.5 * (a.x() * b.y() - a.y() * b.x());
   }
   EXPECT_NEAR(enclosed_volume(m), area * 1.5 * 7, 1e-9 * area);
+  // Half-spacing ends (the default): two copies, kNoId, and half a spacing more at each end.
+  spec.end_caps = EndCaps::HalfSpacing;
+  const Mesh h = make_contour_stack(spec);
+  EXPECT_TRUE(find_mesh_problems(h).empty());
+  EXPECT_TRUE(build_adjacency(h).is_closed());
+  EXPECT_EQ(h.num_vertices(), 10 * 200);
+  for (Index i = 8 * 200; i < h.num_vertices(); ++i) EXPECT_EQ(h.slice_ids[i], kNoId);
+  EXPECT_NEAR(enclosed_volume(h), area * 1.5 * 8, 1e-9 * area);
 }
 
 TEST(Shapes, ContourStackSdfIsZeroOnTheSamplesAndSignedCorrectly) {
@@ -65,11 +75,14 @@ TEST(Shapes, ContourStackSdfIsZeroOnTheSamplesAndSignedCorrectly) {
   const Mesh m = make_contour_stack(spec);
   const ScalarField sdf = contour_stack_sdf(spec);
   for (Index i = 0; i < m.num_vertices(); ++i) EXPECT_NEAR(sdf(m.positions.col(i)), 0.0, 1e-3);
-  EXPECT_NEAR(sdf({0, 0, 4}), -4.0, 1e-9);       // closest: the end caps at z = 0 and 8
+  // Slices at z = 0 .. 8; the sampled prism extends half a spacing further: z = -1 .. 9.
+  EXPECT_NEAR(sdf({0, 0, 4}), -5.0, 1e-9);       // closest: the end caps
   EXPECT_NEAR(sdf({0, -10, 4}), 0.0, 1e-3);      // on the side
   EXPECT_NEAR(sdf({0, -12, 4}), 2.0, 1e-3);      // 2 outside the side
   EXPECT_NEAR(sdf({13, 0, 4}), 0.0, 1e-3);       // ridge tip
-  EXPECT_NEAR(sdf({0, -12, 11}), std::hypot(2.0, 3.0), 1e-3);  // beyond an edge of the top cap
+  EXPECT_NEAR(sdf({0, -12, 12}), std::hypot(2.0, 3.0), 1e-3);  // beyond an edge of the top cap
+  spec.end_caps = EndCaps::AtEndSlice;
+  EXPECT_NEAR(contour_stack_sdf(spec)({0, 0, 4}), -4.0, 1e-9);
 }
 
 TEST(Shapes, NoiseIsReproducibleAndInPlaneNoiseKeepsSlices) {

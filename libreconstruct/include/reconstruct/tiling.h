@@ -4,23 +4,13 @@
 
 #include "reconstruct/contours.h"
 
+#include <smooth/end_caps.h>
 #include <smooth/mesh.h>
 #include <smooth/progress.h>
 
 #include <cstddef>
 
 namespace contourmesh {
-
-/// Where the ends of an object are closed.
-enum class EndCaps {
-  /// Half a slice spacing beyond the last contour: the ending contours are extended by a straight band
-  /// to a copy, and the copy is capped. A slice samples a slab of one spacing, so this is the unbiased
-  /// end position (the "slab" convention of radiotherapy structure volumes). Default.
-  HalfSpacing,
-  /// In the plane of the last contour: cap triangles use that slice's vertices only (SPEC 2). The
-  /// object then ends, on average, half a spacing short at each end.
-  AtEndSlice,
-};
 
 struct TilingOptions {
   EndCaps end_caps = EndCaps::HalfSpacing;

@@ -3,6 +3,7 @@
 // their signed distance functions; plus reproducible noise.
 #pragma once
 
+#include "smooth/end_caps.h"
 #include "smooth/mesh.h"
 #include "smooth/metrics.h"
 
@@ -32,16 +33,20 @@ struct ContourStackSpec {
   int points_per_contour = 64;   ///< samples per contour, uniform in t, >= 3
   double z0 = 0.0;               ///< z of slice 0, input units (mm)
   double slice_spacing = 2.0;    ///< distance between slice planes, > 0
+  EndCaps end_caps = EndCaps::HalfSpacing;  ///< as the reconstruction's tiler does by default
 };
 
 /// Tiles contour k to contour k+1 vertex by vertex (each quad split into two triangles) and closes
-/// both ends with ear-clipped caps that use only the end contours' vertices (SPEC 2). Vertex ids:
-/// slice k for every vertex of contour k, contour index 0. Outward-oriented and closed.
+/// both ends with ear-clipped caps, half a spacing beyond the end slices (on copies of the end
+/// contours, ids kNoId, appended after the slice vertices) or in the end slices (caps then use only
+/// the end contours' vertices, SPEC 2). Vertex ids: slice k for every vertex of contour k, contour
+/// index 0. Outward-oriented and closed.
 /// Throws InvalidInputError for parameters out of range.
 [[nodiscard]] Mesh make_contour_stack(const ContourStackSpec& spec);
 
-/// Exact signed distance (negative inside) to the prism between the first and last slice planes,
-/// using the curve sampled at `curve_samples` points (error about R (2 pi / samples)^2 / 8).
+/// Exact signed distance (negative inside) to the prism the stack samples: between the first and last
+/// slice planes, extended by half a spacing at both ends for EndCaps::HalfSpacing; the curve is
+/// sampled at `curve_samples` points (error about R (2 pi / samples)^2 / 8).
 [[nodiscard]] ScalarField contour_stack_sdf(const ContourStackSpec& spec, int curve_samples = 2048);
 
 /// A circle of `radius` with one sharp triangular ridge of `height` centred at angle 0 and spanning
