@@ -1,0 +1,90 @@
+// Feature detection by contour continuity: the paper's Algorithm 2 (Xu et al. 2006, section 3.2;
+// SPEC 3.3). A vertex whose umbrella is large is an edge when the in-slice curvatures of its own contour
+// and of the two adjacent contours agree where the feature line crosses them, noise when they do not;
+// umbilic vertices vote with their neighbours (eq. 8) for corner or noise.
+#pragma once
+
+#include "smooth/adjacency.h"
+#include "smooth/curvature.h"
+#include "smooth/mesh.h"
+#include "smooth/progress.h"
+
+#include <Eigen/Core>
+
+#include <cstdint>
+#include <optional>
+#include <string_view>
+#include <vector>
+
+namespace contourmesh {
+
+enum class VertexLabel : std::uint8_t {
+  Smooth = 0,  ///< umbrella measure <= gamma: not examined, never subdivided
+  Edge = 1,    ///< on a feature line continuous across adjacent contours
+  Corner = 2,  ///< umbilic, with feature neighbours outweighing noise neighbours (Psi > 0)
+  Noise = 3,   ///< large umbrella without continuity across contours
+};
+
+/// "smooth", "edge", "corner", "noise".
+[[nodiscard]] std::string_view to_string(VertexLabel label);
+
+/// Which size of the umbrella U(v) decides whether a vertex is examined (SPEC 3.1).
+enum class UmbrellaMeasure {
+  Length,           ///< |U|, the paper's choice (default)
+  NormalComponent,  ///< |U . n|: ignores tangential irregularity of the tiling
+};
+
+struct DetectionOptions {
+  /// Threshold on the umbrella measure, in length units. Unset: gamma_factor * its mean over the
+  /// vertices that lie on contours (paper: 2 mean |U|; copies off the slices are left out).
+  std::optional<double> gamma;
+  double gamma_factor = 2.0;
+  UmbrellaMeasure measure = UmbrellaMeasure::Length;
+  /// Curvatures agree when |k0 - k| < delta. Unset: delta_factor * |k0| (scale-free).
+  std::optional<double> delta;
+  double delta_factor = 0.5;
+  /// Consecutive contour vertices in each curve fit (odd, >= 5; SPEC default 7).
+  int window = 7;
+  /// Taubin lambda|mu iterations applied to a copy used for detection only (paper section 5), >= 0.
+  int prefilter_iterations = 0;
+  CurvatureOptions curvature;
+  /// Stage "detect", called a few times; return false to cancel (CancelledError).
+  ProgressCallback progress;
+};
+
+/// The labels and the numbers behind them. Per-vertex values are NaN where not computed.
+struct FeatureDetection {
+  std::vector<VertexLabel> labels;
+  Eigen::VectorXd umbrella;  ///< the umbrella measure of every vertex (on the detection positions)
+  double gamma = 0.0;
+  double mean_umbrella = 0.0;
+  PrincipalCurvatures curvature;
+  Eigen::VectorXd k_below;  ///< signed curvature of contour c(i)-1 where the feature line crosses it
+  Eigen::VectorXd k0;       ///< signed curvature of contour c(i) at v_i
+  Eigen::VectorXd k_above;  ///< signed curvature of contour c(i)+1
+  Eigen::VectorXd psi;      ///< corner vote of umbilic candidates (eq. 8)
+  std::size_t candidates = 0, edges = 0, corners = 0, noise = 0;
+};
+
+/// Runs Algorithm 2 on a mesh with contour ids (throws InvalidInputError without them, or for options
+/// out of range).
+///
+/// Contour curvatures: the `window` consecutive vertices of a contour are projected into their slice
+/// plane and fitted, by least squares, with a parabola Y = a + b X + c X^2 in the frame of their
+/// principal axes (a conic with its axis across the contour: robust with 5-9 points, unlike a general
+/// conic). k0 is that curve's curvature at v_i on its own contour. For the contours c(i) -/+ 1 the
+/// window is centred on the neighbour of v_i in that slice, the curve is intersected with the line
+/// where the plane S (through v_i, containing the feature direction t = the principal direction with
+/// the smaller |kappa| and the normal; its normal is the other principal direction) cuts that slice,
+/// and k is the curvature at the intersection nearest to v_i. Curvatures are signed: positive where the
+/// contour is convex towards the outside (the side the mesh normals point to).
+/// Edge test: k0 k > 0 and |k0 - k| < delta for each adjacent contour that exists (one at the first
+/// and last slice, none for a vertex off the slices: noise). No intersection inside the window
+/// (S misses the contour there) is noise; so is S parallel to the slices (a feature line within a
+/// slice plane: the paper's blind spot, SPEC 3.3).
+/// Umbilic candidates are classified after all others, in index order, by Psi_i = sum_j w_j tau_j with
+/// w_j = exp(-d_ij / d_max) and tau_j = +1 for edge/corner, -1 for noise, 0 otherwise (eq. 8).
+[[nodiscard]] FeatureDetection detect_features(const Mesh& mesh, const MeshAdjacency& adjacency,
+                                               const DetectionOptions& options = {});
+
+}  // namespace contourmesh

@@ -1,0 +1,125 @@
+#include "smooth/adaptive_subdivision.h"
+
+#include "smooth/adjacency.h"
+#include "smooth/errors.h"
+#include "smooth/normals.h"
+#include "smooth/umbrella.h"
+
+#include <unordered_map>
+
+namespace contourmesh {
+
+namespace {
+
+std::uint64_t edge_key(Index a, Index b) {
+  if (a > b) std::swap(a, b);
+  return (static_cast<std::uint64_t>(static_cast<std::uint32_t>(a)) << 32) | static_cast<std::uint32_t>(b);
+}
+
+}  // namespace
+
+AdaptiveMesh subdivide_adaptively(const Mesh& input, std::span<const std::uint8_t> selected,
+                                  const SubdivisionOptions& options) {
+  if (selected.size() != static_cast<std::size_t>(input.num_vertices())) {
+    throw InvalidInputError("subdivision: the selection has " + std::to_string(selected.size()) + " flags for " +
+                            std::to_string(input.num_vertices()) + " vertices");
+  }
+  if (options.max_levels < 0) throw InvalidInputError("subdivision: max_levels must be >= 0");
+  if (!(options.gamma >= 0.0)) throw InvalidInputError("subdivision: gamma must be >= 0");
+
+  AdaptiveMesh out;
+  out.mesh = input;
+  out.original_vertices = input.num_vertices();
+  const bool ids = input.has_contour_ids();
+  std::vector<std::uint8_t> ever(selected.size(), 0);
+  Mesh& m = out.mesh;
+
+  for (int level = 0; level < options.max_levels; ++level) {
+    const MeshAdjacency adj = build_adjacency(m);
+    Eigen::VectorXd measure;
+    if (options.measure == UmbrellaMeasure::Length) {
+      measure = umbrella_norms(m.positions, adj);
+    } else {
+      measure = umbrella_normal_norms(m.positions, adj, vertex_normals(m.positions, m.triangles));
+    }
+    std::vector<Index> active;
+    for (Index i = 0; i < out.original_vertices; ++i) {
+      if (selected[i] && measure[i] > options.gamma && adj.valence(i) > 0) active.push_back(i);
+    }
+    if (active.empty()) break;
+    out.per_level.push_back(active.size());
+
+    // Midpoints of every edge incident to an active vertex.
+    std::unordered_map<std::uint64_t, Index> midpoint;
+    std::vector<Eigen::Vector3d> new_positions;
+    std::vector<std::int32_t> new_slices, new_contours;
+    const Index base = m.num_vertices();
+    for (Index v : active) {
+      ever[v] = 1;
+      for (Index j : adj.ring(v)) {
+        const auto [it, inserted] = midpoint.try_emplace(edge_key(v, j), base + static_cast<Index>(new_positions.size()));
+        if (!inserted) continue;
+        new_positions.push_back(0.5 * (m.positions.col(v) + m.positions.col(j)));
+        if (ids) {
+          const bool same = m.slice_ids[v] != kNoId && m.slice_ids[v] == m.slice_ids[j] &&
+                            m.contour_ids[v] == m.contour_ids[j];
+          new_slices.push_back(same ? m.slice_ids[v] : kNoId);
+          new_contours.push_back(same ? m.contour_ids[v] : kNoId);
+        }
+      }
+    }
+    const auto added = static_cast<Index>(new_positions.size());
+    m.positions.conservativeResize(3, base + added);
+    for (Index k = 0; k < added; ++k) m.positions.col(base + k) = new_positions[k];
+    if (ids) {
+      m.slice_ids.insert(m.slice_ids.end(), new_slices.begin(), new_slices.end());
+      m.contour_ids.insert(m.contour_ids.end(), new_contours.begin(), new_contours.end());
+    }
+
+    // Re-triangulate by the pattern of bisected edges, keeping orientation.
+    auto mid = [&](Index a, Index b) {
+      const auto it = midpoint.find(edge_key(a, b));
+      return it == midpoint.end() ? Index{-1} : it->second;
+    };
+    auto dist2 = [&](Index a, Index b) { return (m.positions.col(a) - m.positions.col(b)).squaredNorm(); };
+    std::vector<Triangle> next;
+    next.reserve(m.triangles.size() + 3 * midpoint.size());
+    for (const Triangle& t : m.triangles) {
+      const Index e[3] = {mid(t[0], t[1]), mid(t[1], t[2]), mid(t[2], t[0])};  // edge k: t[k] -> t[k+1]
+      const int marked = (e[0] >= 0) + (e[1] >= 0) + (e[2] >= 0);
+      if (marked == 0) {
+        next.push_back(t);
+      } else if (marked == 3) {
+        next.push_back({t[0], e[0], e[2]});
+        next.push_back({e[0], t[1], e[1]});
+        next.push_back({e[2], e[1], t[2]});
+        next.push_back({e[0], e[1], e[2]});
+      } else if (marked == 1) {
+        const int k = e[0] >= 0 ? 0 : e[1] >= 0 ? 1 : 2;  // bisected edge t[k] -> t[k+1]
+        const Index a = t[k], b = t[(k + 1) % 3], c = t[(k + 2) % 3], mk = e[k];
+        next.push_back({a, mk, c});
+        next.push_back({mk, b, c});
+      } else {
+        const int u = e[0] < 0 ? 0 : e[1] < 0 ? 1 : 2;  // the unbisected edge t[u] -> t[u+1]
+        const Index b = t[u], c = t[(u + 1) % 3], a = t[(u + 2) % 3];
+        const Index m_ab = e[(u + 2) % 3];  // edge a -> b
+        const Index m_ca = e[(u + 1) % 3];  // edge c -> a
+        next.push_back({a, m_ab, m_ca});
+        if (dist2(m_ab, c) <= dist2(b, m_ca)) {
+          next.push_back({m_ab, b, c});
+          next.push_back({m_ab, c, m_ca});
+        } else {
+          next.push_back({m_ab, b, m_ca});
+          next.push_back({b, c, m_ca});
+        }
+      }
+    }
+    m.triangles = std::move(next);
+  }
+  for (Index i = 0; i < out.original_vertices; ++i) {
+    if (ever[i]) out.subdivided.push_back(i);
+  }
+  return out;
+}
+
+}  // namespace contourmesh

@@ -1,0 +1,97 @@
+#include "smooth/contour_structure.h"
+
+#include "smooth/errors.h"
+
+#include <Eigen/Eigenvalues>
+
+#include <algorithm>
+#include <map>
+
+namespace contourmesh {
+
+std::vector<Index> ContourNeighbours::window(Index i, int size) const {
+  std::vector<Index> left, right;
+  const int half = std::max(0, (size - 1) / 2);
+  // Walk both ways from i.
+  for (int side = 0; side < 2; ++side) {
+    std::vector<Index>& out = side == 0 ? left : right;
+    Index prev = i;
+    Index cur = of[i][side];
+    while (cur >= 0 && static_cast<int>(out.size()) < half && cur != i) {
+      out.push_back(cur);
+      const auto& n = of[cur];
+      const Index next = n[0] == prev ? n[1] : n[0];
+      if (n[0] != prev && n[1] != prev) break;  // inconsistent links
+      prev = cur;
+      cur = next;
+    }
+  }
+  // Drop vertices seen from both sides (a contour shorter than the window).
+  std::vector<Index> result(left.rbegin(), left.rend());
+  result.push_back(i);
+  for (Index v : right) {
+    if (std::find(result.begin(), result.end(), v) == result.end()) result.push_back(v);
+  }
+  return result;
+}
+
+ContourNeighbours contour_neighbours(const Mesh& mesh, const MeshAdjacency& adj) {
+  if (!mesh.has_contour_ids()) throw InvalidInputError("contour_neighbours: the mesh has no contour ids");
+  const Index n = mesh.num_vertices();
+  ContourNeighbours out;
+  out.of.assign(static_cast<std::size_t>(n), {-1, -1});
+  const auto& slice = mesh.slice_ids;
+  const auto& contour = mesh.contour_ids;
+  for (Index i = 0; i < n; ++i) {
+    if (slice[i] == kNoId) continue;
+    std::array<Index, 2> found{-1, -1};
+    int count = 0;
+    for (Index j : adj.ring(i)) {
+      if (slice[j] != slice[i] || contour[j] != contour[i]) continue;
+      // A contour edge has a triangle reaching off the slice; a cap chord has none.
+      bool off_slice = false;
+      for (Index f : adj.incident_faces(i)) {
+        const Triangle& t = mesh.triangles[f];
+        if (std::find(t.begin(), t.end(), j) == t.end()) continue;
+        for (Index v : t) off_slice = off_slice || slice[v] != slice[i];
+      }
+      if (!off_slice) continue;
+      if (count < 2) found[count] = j;
+      ++count;
+    }
+    if (count == 2) out.of[i] = found;
+  }
+  return out;
+}
+
+Eigen::Vector3d estimate_slice_axis(const Mesh& mesh) {
+  if (!mesh.has_contour_ids()) throw InvalidInputError("estimate_slice_axis: the mesh has no contour ids");
+  std::map<std::int32_t, std::pair<Eigen::Vector3d, int>> centroid;
+  for (Index i = 0; i < mesh.num_vertices(); ++i) {
+    if (mesh.slice_ids[i] == kNoId) continue;
+    auto& c = centroid[mesh.slice_ids[i]];
+    if (c.second == 0) c.first.setZero();
+    c.first += mesh.positions.col(i);
+    ++c.second;
+  }
+  Eigen::Matrix3d scatter = Eigen::Matrix3d::Zero();
+  for (Index i = 0; i < mesh.num_vertices(); ++i) {
+    if (mesh.slice_ids[i] == kNoId) continue;
+    const auto& c = centroid[mesh.slice_ids[i]];
+    const Eigen::Vector3d d = mesh.positions.col(i) - c.first / c.second;
+    scatter += d * d.transpose();
+  }
+  const Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d> eig(scatter);
+  if (eig.info() != Eigen::Success || !(eig.eigenvalues()[1] > 0.0)) {
+    throw InvalidInputError("estimate_slice_axis: the slices do not span planes");
+  }
+  Eigen::Vector3d axis = eig.eigenvectors().col(0).normalized();  // smallest eigenvalue first
+  if (centroid.size() >= 2) {
+    const auto& lo = centroid.begin()->second;
+    const auto& hi = centroid.rbegin()->second;
+    if ((hi.first / hi.second - lo.first / lo.second).dot(axis) < 0.0) axis = -axis;
+  }
+  return axis;
+}
+
+}  // namespace contourmesh

@@ -1,0 +1,70 @@
+#include <smooth/adjacency.h>
+#include <smooth/errors.h>
+#include <smooth/feature_detection.h>
+#include <smooth/shapes.h>
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <numbers>
+
+namespace contourmesh {
+namespace {
+
+// A prism over a circle of radius 20 mm with a sharp ridge (6 mm high) at angle 0, sampled like CT:
+// 0.7 mm along the contours, 2 mm between slices. Contour point 0 of every slice is the ridge tip.
+ContourStackSpec ridge_spec() {
+  ContourStackSpec spec;
+  spec.curve = ridge_circle_curve(20.0, 6.0, 0.35);
+  spec.slices = 24;
+  spec.points_per_contour = 180;
+  spec.slice_spacing = 2.0;
+  return spec;
+}
+
+int count_label(const FeatureDetection& d, VertexLabel l) {
+  return static_cast<int>(std::count(d.labels.begin(), d.labels.end(), l));
+}
+
+TEST(FeatureDetection, RidgeAcrossSlicesIsEdgeAndSingleContourSpikesAreNoise) {
+  const ContourStackSpec spec = ridge_spec();
+  Mesh m = make_contour_stack(spec);
+  add_noise(m, {0.1, 3, NoiseDirection::InPlane});
+  const int P = spec.points_per_contour;
+  // Spikes: one vertex pushed 1 mm outwards on a single contour, far from the ridge and the ends.
+  std::vector<Index> spikes;
+  for (int k = 3; k <= 20; k += 3) {
+    for (int at : {50, 90, 130}) {
+      const Index v = k * P + at + (k % 2) * 5;
+      const Eigen::Vector2d r = m.positions.col(v).head<2>().normalized();
+      m.positions.col(v).head<2>() += 1.0 * r;
+      spikes.push_back(v);
+    }
+  }
+  const MeshAdjacency adj = build_adjacency(m);
+  const FeatureDetection d = detect_features(m, adj);
+  int ridge_edges = 0, ridge_total = 0;
+  for (int k = 2; k < spec.slices - 2; ++k) {
+    ++ridge_total;
+    ridge_edges += d.labels[k * P] == VertexLabel::Edge;
+  }
+  int spike_noise = 0;
+  for (Index v : spikes) spike_noise += d.labels[v] == VertexLabel::Noise;
+  EXPECT_GE(ridge_edges, 0.9 * ridge_total) << ridge_edges << " of " << ridge_total;
+  EXPECT_GE(spike_noise, 0.9 * spikes.size()) << spike_noise << " of " << spikes.size();
+  EXPECT_GT(d.gamma, 0.0);
+  EXPECT_EQ(static_cast<std::size_t>(count_label(d, VertexLabel::Edge)), d.edges);
+  // The numbers behind a ridge label: three curvatures of the same sign and similar size.
+  const Index tip = 10 * P;
+  EXPECT_GT(d.k0[tip], 0.0);
+  EXPECT_NEAR(d.k_below[tip] / d.k0[tip], 1.0, 0.5);
+  EXPECT_NEAR(d.k_above[tip] / d.k0[tip], 1.0, 0.5);
+}
+
+TEST(FeatureDetection, RequiresContourIds) {
+  const Mesh s = make_icosphere(2);
+  EXPECT_THROW((void)detect_features(s, build_adjacency(s)), InvalidInputError);
+}
+
+}  // namespace
+}  // namespace contourmesh
