@@ -332,12 +332,44 @@ TilingResult tile_contours(const ContourStack& stack, const TilingOptions& optio
     }
   }
 
+  // A hole with no partner on a side whose outer contour continues there either ends (the material on
+  // that side covers it: a cavity's roof, capped below) or opens (its region is background there: the
+  // cavity reaches the outside, as the inside of a skull through the orbits). An opening hole is tiled
+  // with its outer contour's group, which joins the boundaries of both into the next slice's contours.
+  std::vector<std::vector<bool>> opens_up(S), opens_down(S);
+  for (std::size_t s = 0; s < S; ++s) {
+    opens_up[s].assign(slices[s].size(), false);
+    opens_down[s].assign(slices[s].size(), false);
+  }
+  auto covered_fraction = [&](const Contour& hole, std::size_t other, const std::vector<int>& outers) {
+    double covered = 0.0;
+    for (int o : outers) {
+      covered += detail::overlap_area(hole.points, slices[other][o].points);
+      for (const Contour& h : slices[other]) {
+        if (h.is_hole && h.parent == o) covered -= detail::overlap_area(hole.points, h.points);
+      }
+    }
+    return covered / std::abs(signed_area(hole.points));
+  };
+  for (std::size_t s = 0; s < S; ++s) {
+    for (std::size_t c = 0; c < slices[s].size(); ++c) {
+      const Contour& h = slices[s][c];
+      if (!h.is_hole) continue;
+      if (s + 1 < S && up[s][c].empty() && !up[s][h.parent].empty()) {
+        opens_up[s][c] = covered_fraction(h, s + 1, up[s][h.parent]) < 0.5;
+      }
+      if (s > 0 && down[s][c].empty() && !down[s][h.parent].empty()) {
+        opens_down[s][c] = covered_fraction(h, s - 1, down[s][h.parent]) < 0.5;
+      }
+    }
+  }
+
   // Contours with no partner on either side would be zero-thickness sheets: drop them (their holes too).
   std::vector<std::vector<bool>> kept(S);
   for (std::size_t s = 0; s < S; ++s) {
     kept[s].assign(slices[s].size(), true);
     for (std::size_t c = 0; c < slices[s].size(); ++c) {
-      if (up[s][c].empty() && down[s][c].empty()) {
+      if (up[s][c].empty() && down[s][c].empty() && !opens_up[s][c] && !opens_down[s][c]) {
         kept[s][c] = false;
         ++result.stats.dropped_contours;
       }
@@ -392,10 +424,16 @@ TilingResult tile_contours(const ContourStack& stack, const TilingOptions& optio
     }
     std::vector<std::vector<int>> lower_of(na + nb), upper_of(na + nb);
     for (std::size_t i = 0; i < na; ++i) {
-      if (kept[s][i] && !up[s][i].empty()) lower_of[groups.find(i)].push_back(static_cast<int>(i));
+      if (!kept[s][i]) continue;
+      if (!up[s][i].empty()) lower_of[groups.find(i)].push_back(static_cast<int>(i));
+      if (opens_up[s][i]) lower_of[groups.find(static_cast<std::size_t>(slices[s][i].parent))].push_back(static_cast<int>(i));
     }
     for (std::size_t j = 0; j < nb; ++j) {
-      if (kept[s + 1][j] && !down[s + 1][j].empty()) upper_of[groups.find(na + j)].push_back(static_cast<int>(j));
+      if (!kept[s + 1][j]) continue;
+      if (!down[s + 1][j].empty()) upper_of[groups.find(na + j)].push_back(static_cast<int>(j));
+      if (opens_down[s + 1][j]) {
+        upper_of[groups.find(na + static_cast<std::size_t>(slices[s + 1][j].parent))].push_back(static_cast<int>(j));
+      }
     }
     const double w0 = stack.slices[s].w;
     const double w1 = stack.slices[s + 1].w;
@@ -488,7 +526,7 @@ TilingResult tile_contours(const ContourStack& stack, const TilingOptions& optio
         // inside is triangulated as a counter-clockwise polygon (the hole ring reversed).
         const int p = cs[c].parent;
         for (const bool upward : {true, false}) {
-          const bool hole_ends = (upward ? up[s][c] : down[s][c]).empty();
+          const bool hole_ends = (upward ? up[s][c] : down[s][c]).empty() && !(upward ? opens_up : opens_down)[s][c];
           const bool parent_continues = !(upward ? up[s][p] : down[s][p]).empty();
           if (!hole_ends || !parent_continues) continue;
           Ring r = extend(s, rings[s][c], upward);

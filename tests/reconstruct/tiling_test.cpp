@@ -200,6 +200,44 @@ TEST(Tiling, TwoObjectsAndAHoleThatSplits) {
   expect_sound(r.mesh, 6, 3);  // a cylinder, and a solid with a Y-shaped cavity (two surfaces)
 }
 
+// An annulus arc from angle a0 to a1 (counter-clockwise), radii r0 < r1.
+Contour arc(double a0, double a1, double r0, double r1, int n) {
+  Contour c;
+  for (int k = 0; k <= n; ++k) {
+    const double a = a0 + (a1 - a0) * k / n;
+    c.points.emplace_back(r1 * std::cos(a), r1 * std::sin(a));
+  }
+  for (int k = n; k >= 0; --k) {
+    const double a = a0 + (a1 - a0) * k / n;
+    c.points.emplace_back(r0 * std::cos(a), r0 * std::sin(a));
+  }
+  return c;
+}
+
+TEST(Tiling, HolesThatOpenToTheOutsideJoinTheOuterBoundary) {
+  // A thick tube (ring slices) whose wall is cut by two windows in the middle slices, like the orbits
+  // of a skull: the inside and outside surfaces join there.
+  ContourStack s = stack_of(9);
+  for (int k = 0; k < 9; ++k) {
+    if (k >= 3 && k <= 5) {
+      s.slices[k].contours.push_back(arc(0.3, std::numbers::pi - 0.3, 8, 12, 30));
+      s.slices[k].contours.push_back(arc(std::numbers::pi + 0.3, 2 * std::numbers::pi - 0.3, 8, 12, 30));
+    } else {
+      s.slices[k].contours.push_back(circle(0, 0, 12, 80));
+      s.slices[k].contours.push_back(circle(0, 0, 8, 60, true, 0));
+    }
+  }
+  const TilingResult r = tile_contours(s);
+  const test::Topology t = test::topology_of(r.mesh);
+  EXPECT_TRUE(t.closed);
+  EXPECT_TRUE(t.manifold) << t.problems;
+  EXPECT_EQ(t.components, 1);
+  // A lower ring and an upper ring (genus 1 each) joined by two pillars: genus 3, chi = 2 - 2 * 3.
+  EXPECT_EQ(t.euler, -4);
+  EXPECT_GT(enclosed_volume(r.mesh), 0.0);
+  EXPECT_EQ(r.stats.caps, 2u);  // only the two annulus ends: the holes open, they are not capped
+}
+
 TEST(Tiling, SingleSliceContoursAreDroppedAndLeftHandedFramesStayOutward) {
   ContourStack s = stack_of(5);
   for (auto& slice : s.slices) slice.contours.push_back(circle(0, 0, 5, 24));
