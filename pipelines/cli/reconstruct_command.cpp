@@ -1,10 +1,144 @@
-// contourmesh reconstruct: CT volume -> contours -> tiled mesh. (Being implemented.)
+// contourmesh reconstruct IN -o mesh.vtp: CT volume (file or DICOM directory) -> contours -> tiled mesh.
 #include "cli_common.h"
+
+#include <pipelines/mesh_io.h>
+#include <reconstruct/reconstruction.h>
+#include <reconstruct/volume.h>
+#include <smooth/errors.h>
+#include <smooth/metrics.h>
+#include <smooth/topology.h>
 
 #include <CLI/CLI.hpp>
 
+#include <iomanip>
+#include <iostream>
+#include <memory>
+
 namespace contourmesh::cli {
 
-void add_reconstruct_command(CLI::App& app) { (void)app; }
+namespace {
+
+struct ReconstructArgs {
+  std::string input;
+  std::string output;
+  double threshold = 300.0;
+  bool otsu = false;
+  double sampling = 0.0;
+  std::string smoothing = "none";
+  std::string keep = "all";
+  double min_area = 2.0;
+  bool fill_holes = false;
+  std::string end_caps = "half-spacing";
+  std::string format = "auto";
+  bool json = false;
+};
+
+ImageSmoothing parse_smoothing(const std::string& s) {
+  if (s == "none") return ImageSmoothing::None;
+  if (s == "median") return ImageSmoothing::Median;
+  if (s == "anisotropic") return ImageSmoothing::CurvatureAnisotropic;
+  throw InvalidInputError("--smoothing must be none, median or anisotropic, got '" + s + "'");
+}
+
+int run_reconstruct(const ReconstructArgs& a) {
+  const auto start = std::chrono::steady_clock::now();
+  ReconstructionOptions options;
+  auto& seg = options.segmentation;
+  seg.threshold = a.threshold;
+  seg.threshold_method = a.otsu ? ThresholdMethod::Otsu : ThresholdMethod::Fixed;
+  seg.sampling = a.sampling;
+  seg.smoothing = parse_smoothing(a.smoothing);
+  if (a.keep == "all") seg.components = ComponentSelection::KeepAll;
+  else if (a.keep == "largest") seg.components = ComponentSelection::KeepLargest;
+  else throw InvalidInputError("--keep must be all or largest, got '" + a.keep + "'");
+  seg.min_region_area = a.min_area;
+  seg.fill_holes = a.fill_holes;
+  if (a.end_caps == "half-spacing") options.tiling.end_caps = EndCaps::HalfSpacing;
+  else if (a.end_caps == "end-slice") options.tiling.end_caps = EndCaps::AtEndSlice;
+  else throw InvalidInputError("--end-caps must be half-spacing or end-slice, got '" + a.end_caps + "'");
+  MeshWriteOptions write_options;
+  write_options.format = parse_mesh_format(a.format);
+  if (write_options.format == MeshFormat::Auto) (void)format_from_extension(a.output);  // fail before the work
+
+  const CtImage::Pointer image = read_volume(a.input);
+  Reconstruction r;
+  try {
+    r = reconstruct(*image, options);
+  } catch (const InvalidInputError& e) {
+    throw InvalidInputError(a.input + ": " + e.what());
+  }
+  write_mesh(r.mesh, a.output, write_options);
+  const TopologySummary topo = summarize_topology(r.mesh);
+  const double volume = enclosed_volume(r.mesh);
+  const auto size = image->GetLargestPossibleRegion().GetSize();
+  const auto spacing = image->GetSpacing();
+  if (a.json) {
+    nlohmann::json j;
+    j["command"] = "reconstruct";
+    j["input"] = a.input;
+    j["output"] = a.output;
+    j["size"] = {size[0], size[1], size[2]};
+    j["spacing"] = {spacing[0], spacing[1], spacing[2]};
+    j["threshold"] = r.report.threshold;
+    j["slices"] = r.report.slices;
+    j["slices_with_contours"] = r.report.slices_with_contours;
+    j["contours"] = r.report.contours;
+    j["hole_contours"] = r.report.hole_contours;
+    j["branchings"] = r.report.tiling.branchings;
+    j["caps"] = r.report.tiling.caps;
+    j["dropped_contours"] = r.report.tiling.dropped_contours;
+    j["vertices"] = r.mesh.num_vertices();
+    j["faces"] = r.mesh.num_faces();
+    j["components"] = topo.components;
+    j["is_closed"] = topo.closed;
+    j["is_manifold"] = topo.manifold;
+    j["euler_characteristic"] = topo.euler_characteristic;
+    j["volume"] = volume;
+    j["seconds_segment"] = r.report.seconds_segment;
+    j["seconds_tile"] = r.report.seconds_tile;
+    j["seconds"] = seconds_since(start);
+    print_json(j);
+    return kOk;
+  }
+  std::cout << std::fixed << std::setprecision(2) << "reconstructed " << a.input << "\n"
+            << "  volume     " << size[0] << " x " << size[1] << " x " << size[2] << " voxels, " << spacing[0] << " x "
+            << spacing[1] << " x " << spacing[2] << " mm, threshold " << r.report.threshold << "\n"
+            << "  contours   " << r.report.contours << " (" << r.report.hole_contours << " holes) on "
+            << r.report.slices_with_contours << " slices, " << r.report.tiling.branchings << " branchings, "
+            << r.report.tiling.caps << " caps\n"
+            << "  mesh       " << r.mesh.num_vertices() << " vertices, " << r.mesh.num_faces() << " triangles, "
+            << topo.components << " component" << (topo.components == 1 ? "" : "s") << ", "
+            << (topo.closed ? "closed" : "OPEN") << ", " << (topo.manifold ? "manifold" : "NOT manifold")
+            << ", Euler characteristic " << topo.euler_characteristic << ", volume " << std::setprecision(1) << volume
+            << " mm^3\n"
+            << "  wrote      " << a.output << " in " << std::setprecision(2) << seconds_since(start) << " s\n";
+  return kOk;
+}
+
+}  // namespace
+
+void add_reconstruct_command(CLI::App& app) {
+  auto args = std::make_shared<ReconstructArgs>();
+  CLI::App* cmd = app.add_subcommand("reconstruct", "Segment a CT volume and tile its contours into a closed mesh");
+  cmd->add_option("input", args->input, "CT volume (.mha .mhd .nrrd .nii .nii.gz) or a DICOM series directory")
+      ->required();
+  cmd->add_option("-o,--output", args->output, "Output mesh (.vtp or .ply keep the contour ids)")->required();
+  cmd->add_option("--threshold", args->threshold, "Foreground threshold, HU (bone: 300)")->capture_default_str();
+  cmd->add_flag("--otsu", args->otsu, "Use Otsu's threshold instead of --threshold");
+  cmd->add_option("--sampling", args->sampling, "Distance between contour points, mm (0: the pixel spacing)")
+      ->capture_default_str();
+  cmd->add_option("--smoothing", args->smoothing, "Image denoising: none | median | anisotropic")->capture_default_str();
+  cmd->add_option("--keep", args->keep, "Components: all | largest (3-D)")->capture_default_str();
+  cmd->add_option("--min-area", args->min_area, "Drop regions and fill holes smaller than this, mm^2")
+      ->capture_default_str();
+  cmd->add_flag("--fill-holes", args->fill_holes, "Fill every hole in every slice");
+  cmd->add_option("--end-caps", args->end_caps,
+                  "Where objects end: half-spacing (half a slice beyond the last contour) | end-slice")
+      ->capture_default_str();
+  cmd->add_option("--format", args->format, "Output format: auto | stl | stl-ascii | ply | vtp | obj")
+      ->capture_default_str();
+  cmd->add_flag("--json", args->json, "Print one JSON object on stdout instead of the summary");
+  cmd->callback([args] { set_exit_code(run_guarded("reconstruct", [&] { return run_reconstruct(*args); })); });
+}
 
 }  // namespace contourmesh::cli
