@@ -125,6 +125,49 @@ TEST_F(Cli, UsageErrorsExitOne) {
   }
 }
 
+TEST_F(Cli, PhantomThenReconstructGivesAClosedMeshWithIds) {
+  const fs::path volume = dir_ / "branch.nrrd";
+  CliRun r = run_cli("phantom --shape branch -o " + volume.string() + " --spacing 0.8,0.8,2 --json", dir_);
+  ASSERT_EQ(r.code, 0) << r.err;
+  auto j = nlohmann::json::parse(r.out);
+  EXPECT_EQ(j["shape"], "branch");
+  const fs::path mesh = dir_ / "branch.vtp";
+  r = run_cli("reconstruct " + volume.string() + " -o " + mesh.string() + " --threshold 520 --json", dir_);
+  ASSERT_EQ(r.code, 0) << r.err;
+  j = nlohmann::json::parse(r.out);
+  for (const char* key : {"slices", "contours", "vertices", "faces", "components", "is_closed", "is_manifold",
+                          "euler_characteristic", "volume", "seconds"}) {
+    EXPECT_TRUE(j.contains(key)) << key;
+  }
+  EXPECT_TRUE(j["is_closed"].get<bool>());
+  EXPECT_TRUE(j["is_manifold"].get<bool>());
+  EXPECT_EQ(j["components"], 1);
+  EXPECT_EQ(j["euler_characteristic"], 2);
+  EXPECT_GE(j["branchings"].get<int>(), 1);
+  const Mesh m = read_mesh(mesh);
+  EXPECT_TRUE(m.has_contour_ids());
+  EXPECT_EQ(m.num_vertices(), j["vertices"].get<int>());
+}
+
+TEST_F(Cli, ReconstructRejectsBadVolumesWithExitTwo) {
+  std::ofstream(dir_ / "junk.mha") << "this is not an image";
+  const fs::path out = dir_ / "out.vtp";
+  CliRun r = run_cli("reconstruct " + (dir_ / "junk.mha").string() + " -o " + out.string(), dir_);
+  EXPECT_EQ(r.code, 2);
+  EXPECT_NE(r.err.find("junk.mha"), std::string::npos) << r.err;
+  EXPECT_FALSE(fs::exists(out));
+  // A volume with nothing above the threshold.
+  const fs::path air = dir_ / "cube.mha";
+  ASSERT_EQ(run_cli("phantom --shape ridge-box -o " + air.string() + " --spacing 2,2,4", dir_).code, 0);
+  r = run_cli("reconstruct " + air.string() + " -o " + out.string() + " --threshold 5000", dir_);
+  EXPECT_EQ(r.code, 2);
+  EXPECT_NE(r.err.find("no region at or above the threshold 5000"), std::string::npos) << r.err;
+  EXPECT_FALSE(fs::exists(out));
+  r = run_cli("phantom --shape banana -o " + air.string(), dir_);
+  EXPECT_EQ(r.code, 2);
+  EXPECT_NE(r.err.find("banana"), std::string::npos) << r.err;
+}
+
 TEST_F(Cli, DemoWritesAClosedStlAndReportsAccuracy) {
   const fs::path out = dir_ / "demo.stl";
   const CliRun r = run_cli("demo -o " + out.string() + " --json", dir_);
