@@ -6,6 +6,7 @@
 
 #include <algorithm>
 #include <map>
+#include <numeric>
 
 namespace contourmesh {
 
@@ -92,6 +93,60 @@ Eigen::Vector3d estimate_slice_axis(const Mesh& mesh) {
     if ((hi.first / hi.second - lo.first / lo.second).dot(axis) < 0.0) axis = -axis;
   }
   return axis;
+}
+
+bool assign_ids_by_slice_planes(Mesh& mesh, const MeshAdjacency& adj, const Eigen::Vector3d& axis_in,
+                                double tolerance) {
+  if (!(axis_in.norm() > 0.0)) throw InvalidInputError("slice axis must not be zero");
+  const Eigen::Vector3d axis = axis_in.normalized();
+  const Index n = mesh.num_vertices();
+  if (n == 0) return false;
+  std::vector<double> h(static_cast<std::size_t>(n));
+  for (Index i = 0; i < n; ++i) h[i] = mesh.positions.col(i).dot(axis);
+  std::vector<Index> order(static_cast<std::size_t>(n));
+  std::iota(order.begin(), order.end(), 0);
+  std::sort(order.begin(), order.end(), [&](Index a, Index b) { return h[a] < h[b]; });
+  const double extent = h[order.back()] - h[order.front()];
+  const double tol = tolerance > 0.0 ? tolerance : 1e-4 * extent;
+  std::vector<std::int32_t> slice(static_cast<std::size_t>(n));
+  std::int32_t current = 0;
+  for (std::size_t k = 0; k < order.size(); ++k) {
+    if (k > 0 && h[order[k]] - h[order[k - 1]] > tol) ++current;
+    slice[order[k]] = current;
+  }
+  // Contour-stack vertices lie on planes of many vertices; accept when 90% of them do (vertices of
+  // branching copies or a few stray ones may not).
+  {
+    std::vector<Index> per_plane(static_cast<std::size_t>(current) + 1, 0);
+    for (Index i = 0; i < n; ++i) ++per_plane[slice[i]];
+    Index on_planes = 0;
+    for (Index i = 0; i < n; ++i) on_planes += per_plane[slice[i]] >= 3 ? 1 : 0;
+    if (on_planes < 0.9 * n) return false;
+  }
+  // Contours: components of same-plane edges.
+  std::vector<Index> parent(static_cast<std::size_t>(n));
+  std::iota(parent.begin(), parent.end(), 0);
+  auto find = [&](Index x) {
+    while (parent[x] != x) x = parent[x] = parent[parent[x]];
+    return x;
+  };
+  for (Index i = 0; i < n; ++i) {
+    for (Index j : adj.ring(i)) {
+      if (slice[j] == slice[i]) parent[find(i)] = find(j);
+    }
+  }
+  std::map<std::pair<std::int32_t, Index>, std::int32_t> contour_of;  // (slice, root) -> index in slice
+  std::map<std::int32_t, std::int32_t> next_in_slice;
+  std::vector<std::int32_t> contour(static_cast<std::size_t>(n));
+  for (Index i : order) {
+    const auto key = std::make_pair(slice[i], find(i));
+    auto it = contour_of.find(key);
+    if (it == contour_of.end()) it = contour_of.emplace(key, next_in_slice[slice[i]]++).first;
+    contour[i] = it->second;
+  }
+  mesh.slice_ids = std::move(slice);
+  mesh.contour_ids = std::move(contour);
+  return true;
 }
 
 }  // namespace contourmesh

@@ -130,12 +130,40 @@ std::optional<double> intersect(const CurveFit& f, const Eigen::Vector2d& n, dou
   return best;
 }
 
+// Umbilic candidates vote with their neighbours, in index order (eq. 8); then the label counts.
+void vote_corners(const Eigen::Matrix3Xd& positions, const MeshAdjacency& adj, const std::vector<Index>& umbilic_candidates,
+                  FeatureDetection& out) {
+  for (Index i : umbilic_candidates) {
+    double dmax = 0.0;
+    for (Index j : adj.ring(i)) dmax = std::max(dmax, (positions.col(j) - positions.col(i)).norm());
+    double psi = 0.0;
+    for (Index j : adj.ring(i)) {
+      const VertexLabel l = out.labels[j];
+      const double tau = (l == VertexLabel::Edge || l == VertexLabel::Corner) ? 1.0 : l == VertexLabel::Noise ? -1.0 : 0.0;
+      if (tau == 0.0) continue;
+      // Unclassified umbilic neighbours (still Smooth-labelled but candidates) count as 0.
+      psi += std::exp(-(positions.col(j) - positions.col(i)).norm() / dmax) * tau;
+    }
+    out.psi[i] = psi;
+    out.labels[i] = psi > 0.0 ? VertexLabel::Corner : VertexLabel::Noise;
+  }
+  for (VertexLabel l : out.labels) {
+    out.edges += l == VertexLabel::Edge;
+    out.corners += l == VertexLabel::Corner;
+    out.noise += l == VertexLabel::Noise;
+  }
+}
+
 }  // namespace
 
 FeatureDetection detect_features(const Mesh& mesh, const MeshAdjacency& adj, const DetectionOptions& options) {
-  if (!mesh.has_contour_ids()) {
-    throw InvalidInputError("feature detection needs contour ids (slice and contour index per vertex)");
+  const bool continuity = options.mode == DetectionMode::ContourContinuity;
+  if (continuity && !mesh.has_contour_ids()) {
+    throw InvalidInputError(
+        "feature detection by contour continuity needs contour ids (slice and contour index per vertex); "
+        "recover them from the slice planes or use the curvature-only mode");
   }
+  if (!(options.anisotropy > 1.0)) throw InvalidInputError("anisotropy must be > 1");
   if (adj.num_vertices() != mesh.num_vertices()) throw InvalidInputError("feature detection: adjacency does not match");
   if (options.window < 5 || options.window % 2 == 0) throw InvalidInputError("detection window must be odd and >= 5");
   if (options.gamma && !(*options.gamma >= 0.0)) throw InvalidInputError("gamma must be >= 0");
@@ -168,7 +196,7 @@ FeatureDetection detect_features(const Mesh& mesh, const MeshAdjacency& adj, con
     double sum = 0.0;
     Index count = 0;
     for (Index i = 0; i < n; ++i) {
-      if (mesh.slice_ids[i] == kNoId) continue;
+      if (mesh.has_contour_ids() && mesh.slice_ids[i] == kNoId) continue;
       sum += out.umbrella[i];
       ++count;
     }
@@ -181,6 +209,23 @@ FeatureDetection detect_features(const Mesh& mesh, const MeshAdjacency& adj, con
   out.k_above = Eigen::VectorXd::Constant(n, kNaN);
   out.psi = Eigen::VectorXd::Constant(n, kNaN);
 
+  std::vector<Index> umbilic_candidates;
+  if (!continuity) {
+    for (Index i = 0; i < n; ++i) {
+      if (!(out.umbrella[i] > out.gamma)) continue;
+      ++out.candidates;
+      if (out.curvature.umbilic[i]) {
+        umbilic_candidates.push_back(i);
+        continue;
+      }
+      const double small = std::min(std::abs(out.curvature.kappa_min[i]), std::abs(out.curvature.kappa_max[i]));
+      const double large = std::max(std::abs(out.curvature.kappa_min[i]), std::abs(out.curvature.kappa_max[i]));
+      out.labels[i] = large >= options.anisotropy * small ? VertexLabel::Edge : VertexLabel::Noise;
+    }
+    vote_corners(positions, adj, umbilic_candidates, out);
+    report(1.0);
+    return out;
+  }
   const ContourNeighbours contour = contour_neighbours(mesh, adj);
   const Eigen::Vector3d axis = estimate_slice_axis(mesh);
   const Eigen::Vector3d helper = std::abs(axis.x()) < 0.9 ? Eigen::Vector3d::UnitX() : Eigen::Vector3d::UnitY();
@@ -211,7 +256,6 @@ FeatureDetection detect_features(const Mesh& mesh, const MeshAdjacency& adj, con
     return fit_curve(pts, plane.project_direction(normal_sum));
   };
 
-  std::vector<Index> umbilic_candidates;
   for (Index i = 0; i < n; ++i) {
     if (!(out.umbrella[i] > out.gamma)) continue;
     ++out.candidates;
@@ -270,26 +314,7 @@ FeatureDetection detect_features(const Mesh& mesh, const MeshAdjacency& adj, con
   }
   report(0.8);
 
-  // Umbilic candidates vote with their neighbours, in index order (eq. 8).
-  for (Index i : umbilic_candidates) {
-    double dmax = 0.0;
-    for (Index j : adj.ring(i)) dmax = std::max(dmax, (positions.col(j) - positions.col(i)).norm());
-    double psi = 0.0;
-    for (Index j : adj.ring(i)) {
-      const VertexLabel l = out.labels[j];
-      const double tau = (l == VertexLabel::Edge || l == VertexLabel::Corner) ? 1.0 : l == VertexLabel::Noise ? -1.0 : 0.0;
-      if (tau == 0.0) continue;
-      // Unclassified umbilic neighbours (still Smooth-labelled but candidates) count as 0.
-      psi += std::exp(-(positions.col(j) - positions.col(i)).norm() / dmax) * tau;
-    }
-    out.psi[i] = psi;
-    out.labels[i] = psi > 0.0 ? VertexLabel::Corner : VertexLabel::Noise;
-  }
-  for (VertexLabel l : out.labels) {
-    out.edges += l == VertexLabel::Edge;
-    out.corners += l == VertexLabel::Corner;
-    out.noise += l == VertexLabel::Noise;
-  }
+  vote_corners(positions, adj, umbilic_candidates, out);
   report(1.0);
   return out;
 }

@@ -158,17 +158,22 @@ Mesh read_mesh(const fs::path& path, const MeshReadOptions& options) {
 
 void write_mesh(const Mesh& mesh, const fs::path& path, const MeshWriteOptions& options) {
   const MeshFormat format = resolve(options.format, path);
+  if (!options.point_scalars.empty() && !format_keeps_contour_ids(format)) {
+    throw InvalidInputError(path.string() + ": " + std::string(to_string(format)) +
+                            " cannot carry per-vertex arrays such as '" + options.point_scalars.front().name +
+                            "': write .vtp or .ply");
+  }
   write_atomically(path, [&](const fs::path& tmp) {
     if (format == MeshFormat::Ply) {
       std::ofstream out(tmp, std::ios::binary);
       if (!out) throw InvalidInputError(path.string() + ": cannot open for writing");
-      write_ply(out, mesh, options.arrays);
+      write_ply(out, mesh, options.arrays, options.point_scalars);
       out.flush();
       if (!out) throw InvalidInputError(path.string() + ": write failed (disk full?)");
       return;
     }
     CapturedVtkMessages messages;
-    const vtkSmartPointer<vtkPolyData> poly = to_polydata(mesh, options.arrays);
+    const vtkSmartPointer<vtkPolyData> poly = to_polydata(mesh, options.arrays, options.point_scalars);
     int ok = 0;
     if (format == MeshFormat::StlBinary || format == MeshFormat::StlAscii) {
       vtkNew<vtkSTLWriter> writer;

@@ -247,12 +247,22 @@ void put(std::ostream& out, T value) {
 
 }  // namespace
 
-void write_ply(std::ostream& out, const Mesh& mesh, const ContourIdArrayNames& arrays) {
+void write_ply(std::ostream& out, const Mesh& mesh, const ContourIdArrayNames& arrays,
+               const std::vector<PointScalars>& extra) {
   const bool ids = mesh.has_contour_ids();
+  for (const PointScalars& scalars : extra) {
+    if (scalars.values.size() != static_cast<std::size_t>(mesh.num_vertices())) {
+      throw InvalidInputError("point array '" + scalars.name + "' has " + std::to_string(scalars.values.size()) +
+                              " values for " + std::to_string(mesh.num_vertices()) + " vertices");
+    }
+  }
   out << "ply\nformat binary_little_endian 1.0\ncomment written by ContourMesh\n";
   out << "element vertex " << mesh.num_vertices() << "\n";
   out << "property double x\nproperty double y\nproperty double z\n";
   if (ids) out << "property int " << arrays.slice << "\nproperty int " << arrays.contour << "\n";
+  for (const PointScalars& scalars : extra) {
+    out << "property " << (scalars.type == ScalarType::Int32 ? "int " : "double ") << scalars.name << "\n";
+  }
   out << "element face " << mesh.num_faces() << "\nproperty list uchar int vertex_indices\nend_header\n";
   for (Index i = 0; i < mesh.num_vertices(); ++i) {
     put(out, mesh.positions(0, i));
@@ -261,6 +271,10 @@ void write_ply(std::ostream& out, const Mesh& mesh, const ContourIdArrayNames& a
     if (ids) {
       put(out, mesh.slice_ids[i]);
       put(out, mesh.contour_ids[i]);
+    }
+    for (const PointScalars& scalars : extra) {
+      if (scalars.type == ScalarType::Int32) put(out, static_cast<std::int32_t>(scalars.values[i]));
+      else put(out, scalars.values[i]);
     }
   }
   for (const Triangle& t : mesh.triangles) {

@@ -4,6 +4,7 @@
 
 #include <vtkCellArray.h>
 #include <vtkDataArray.h>
+#include <vtkDoubleArray.h>
 #include <vtkIdTypeArray.h>
 #include <vtkIntArray.h>
 #include <vtkNew.h>
@@ -14,7 +15,8 @@
 
 namespace contourmesh {
 
-vtkSmartPointer<vtkPolyData> to_polydata(const Mesh& mesh, const ContourIdArrayNames& arrays) {
+vtkSmartPointer<vtkPolyData> to_polydata(const Mesh& mesh, const ContourIdArrayNames& arrays,
+                                         const std::vector<PointScalars>& extra) {
   const Index n = mesh.num_vertices();
   vtkNew<vtkPoints> points;
   points->SetDataTypeToDouble();
@@ -45,6 +47,19 @@ vtkSmartPointer<vtkPolyData> to_polydata(const Mesh& mesh, const ContourIdArrayN
       for (Index i = 0; i < n; ++i) array->SetValue(i, ids[i]);
       poly->GetPointData()->AddArray(array);
     }
+  }
+  for (const PointScalars& scalars : extra) {
+    if (scalars.values.size() != static_cast<std::size_t>(n)) {
+      throw InvalidInputError("point array '" + scalars.name + "' has " + std::to_string(scalars.values.size()) +
+                              " values for " + std::to_string(n) + " vertices");
+    }
+    vtkSmartPointer<vtkDataArray> array;
+    if (scalars.type == ScalarType::Int32) array = vtkSmartPointer<vtkIntArray>::New();
+    else array = vtkSmartPointer<vtkDoubleArray>::New();
+    array->SetName(scalars.name.c_str());
+    array->SetNumberOfTuples(n);
+    for (Index i = 0; i < n; ++i) array->SetComponent(i, 0, scalars.values[i]);
+    poly->GetPointData()->AddArray(array);
   }
   return poly;
 }

@@ -5,6 +5,13 @@
 
 #include <gtest/gtest.h>
 
+#include <vtkDataArray.h>
+#include <vtkType.h>
+#include <vtkNew.h>
+#include <vtkPointData.h>
+#include <vtkPolyData.h>
+#include <vtkXMLPolyDataReader.h>
+
 #include <filesystem>
 #include <fstream>
 #include <random>
@@ -78,7 +85,7 @@ TEST_F(MeshIo, RoundTripKeepsPositionsConnectivityAndIds) {
 TEST_F(MeshIo, AsciiStlAndExplicitFormat) {
   const Mesh m = make_icosphere(2);
   const fs::path p = dir_ / "ascii.stl";
-  write_mesh(m, p, {MeshFormat::StlAscii, {}});
+  write_mesh(m, p, {MeshFormat::StlAscii, {}, {}});
   std::ifstream in(p);
   std::string first;
   in >> first;
@@ -86,7 +93,7 @@ TEST_F(MeshIo, AsciiStlAndExplicitFormat) {
   EXPECT_EQ(read_mesh(p).num_faces(), m.num_faces());
   // A .dat file written as PLY by explicit format, read back the same way.
   const fs::path q = dir_ / "mesh.dat";
-  write_mesh(m, q, {MeshFormat::Ply, {}});
+  write_mesh(m, q, {MeshFormat::Ply, {}, {}});
   EXPECT_EQ(read_mesh(q, {MeshFormat::Ply, {}}).num_vertices(), m.num_vertices());
 }
 
@@ -94,10 +101,42 @@ TEST_F(MeshIo, CustomIdArrayNames) {
   const Mesh m = stack_with_ids();
   const ContourIdArrayNames names{"Slice", "Which"};
   for (const char* file : {"n.vtp", "n.ply"}) {
-    write_mesh(m, dir_ / file, {MeshFormat::Auto, names});
+    write_mesh(m, dir_ / file, {MeshFormat::Auto, names, {}});
     EXPECT_FALSE(read_mesh(dir_ / file).has_contour_ids()) << file;
     EXPECT_EQ(read_mesh(dir_ / file, {MeshFormat::Auto, names}).slice_ids, m.slice_ids) << file;
   }
+}
+
+TEST_F(MeshIo, ExtraPointArraysGoToVtpAndPlyOnly) {
+  const Mesh m = stack_with_ids();
+  MeshWriteOptions o;
+  PointScalars labels{"FeatureLabel", {}, ScalarType::Int32};
+  PointScalars curvature{"KappaMax", {}, ScalarType::Float64};
+  for (Index i = 0; i < m.num_vertices(); ++i) {
+    labels.values.push_back(i % 4);
+    curvature.values.push_back(0.5 * i);
+  }
+  o.point_scalars = {labels, curvature};
+  write_mesh(m, dir_ / "labels.vtp", o);
+  vtkNew<vtkXMLPolyDataReader> reader;
+  reader->SetFileName((dir_ / "labels.vtp").c_str());
+  reader->Update();
+  vtkDataArray* l = reader->GetOutput()->GetPointData()->GetArray("FeatureLabel");
+  vtkDataArray* k = reader->GetOutput()->GetPointData()->GetArray("KappaMax");
+  ASSERT_NE(l, nullptr);
+  ASSERT_NE(k, nullptr);
+  EXPECT_EQ(l->GetDataType(), VTK_INT);
+  EXPECT_EQ(l->GetComponent(7, 0), 3.0);
+  EXPECT_EQ(k->GetComponent(7, 0), 3.5);
+  write_mesh(m, dir_ / "labels.ply", o);
+  std::ifstream ply(dir_ / "labels.ply", std::ios::binary);
+  std::string header((std::istreambuf_iterator<char>(ply)), {});
+  EXPECT_NE(header.find("property int FeatureLabel"), std::string::npos);
+  EXPECT_EQ(read_mesh(dir_ / "labels.ply").slice_ids, m.slice_ids);  // extra properties are skipped
+  EXPECT_THROW(write_mesh(m, dir_ / "labels.stl", o), InvalidInputError);
+  o.point_scalars[0].values.pop_back();
+  EXPECT_THROW(write_mesh(m, dir_ / "short.vtp", o), InvalidInputError);
+  EXPECT_FALSE(fs::exists(dir_ / "short.vtp"));
 }
 
 TEST_F(MeshIo, AsciiPlyWithQuadsAndExtraElements) {

@@ -1,4 +1,5 @@
 #include <smooth/adjacency.h>
+#include <smooth/contour_structure.h>
 #include <smooth/errors.h>
 #include <smooth/feature_detection.h>
 #include <smooth/shapes.h>
@@ -64,6 +65,56 @@ TEST(FeatureDetection, RidgeAcrossSlicesIsEdgeAndSingleContourSpikesAreNoise) {
 TEST(FeatureDetection, RequiresContourIds) {
   const Mesh s = make_icosphere(2);
   EXPECT_THROW((void)detect_features(s, build_adjacency(s)), InvalidInputError);
+}
+
+}  // namespace
+}  // namespace contourmesh
+
+namespace contourmesh {
+namespace {
+
+TEST(ContourIdRecovery, BinningRecoversSlicesAndContours) {
+  ContourStackSpec spec = ridge_spec();
+  spec.end_caps = EndCaps::AtEndSlice;
+  const Mesh original = make_contour_stack(spec);
+  Mesh stripped = original;
+  stripped.slice_ids.clear();
+  stripped.contour_ids.clear();
+  const MeshAdjacency adj = build_adjacency(stripped);
+  ASSERT_TRUE(assign_ids_by_slice_planes(stripped, adj, Eigen::Vector3d::UnitZ()));
+  EXPECT_EQ(stripped.slice_ids, original.slice_ids);
+  EXPECT_EQ(stripped.contour_ids, original.contour_ids);
+  // A noisy sphere's vertices do not lie on planes.
+  Mesh sphere = make_icosphere(3);
+  add_noise(sphere, {0.01, 1, NoiseDirection::Isotropic});
+  EXPECT_FALSE(assign_ids_by_slice_planes(sphere, build_adjacency(sphere), Eigen::Vector3d::UnitZ()));
+  EXPECT_FALSE(sphere.has_contour_ids());
+  // With the default half-spacing end caps the two cap planes become slices of their own.
+  Mesh with_caps = make_contour_stack(ridge_spec());
+  const Index n = with_caps.num_vertices();
+  with_caps.slice_ids.clear();
+  with_caps.contour_ids.clear();
+  ASSERT_TRUE(assign_ids_by_slice_planes(with_caps, build_adjacency(with_caps), Eigen::Vector3d::UnitZ()));
+  EXPECT_EQ(*std::max_element(with_caps.slice_ids.begin(), with_caps.slice_ids.end()), ridge_spec().slices + 1);
+  EXPECT_EQ(with_caps.num_vertices(), n);
+}
+
+TEST(FeatureDetection, CurvatureOnlyFallbackFindsCubeEdgesWithoutIds) {
+  Mesh cube = make_cube(12, 10.0);
+  add_noise(cube, {0.05, 2, NoiseDirection::Normal});
+  DetectionOptions o;
+  o.mode = DetectionMode::CurvatureOnly;
+  const FeatureDetection d = detect_features(cube, build_adjacency(cube), o);
+  int on_edges = 0, edge_labels_on_edges = 0;
+  for (Index i = 0; i < cube.num_vertices(); ++i) {
+    const Eigen::Vector3d a = cube.positions.col(i).cwiseAbs();
+    const int near_faces = (a.array() > 9.5).count();
+    if (near_faces == 2) {
+      ++on_edges;
+      edge_labels_on_edges += d.labels[i] == VertexLabel::Edge;
+    }
+  }
+  EXPECT_GT(edge_labels_on_edges, 0.8 * on_edges) << edge_labels_on_edges << " of " << on_edges;
 }
 
 }  // namespace

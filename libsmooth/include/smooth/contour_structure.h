@@ -32,4 +32,13 @@ struct ContourNeighbours {
 /// non-collinear vertices (throws InvalidInputError otherwise).
 [[nodiscard]] Eigen::Vector3d estimate_slice_axis(const Mesh& mesh);
 
+/// Recovers slice and contour ids for a contour-stack mesh saved without them (SPEC 2): vertices are
+/// binned by their coordinate along `axis` (values closer than `tolerance`, default 1e-4 of the extent
+/// along the axis, share a slice plane; planes are numbered in increasing order), and within a plane
+/// the connected components of that plane's edges are the contours. Returns false and leaves the
+/// mesh untouched when the vertices do not lie on planes (less than 90% of them on planes holding at
+/// least three vertices, e.g. a marching-cubes mesh). Throws InvalidInputError for a zero axis.
+bool assign_ids_by_slice_planes(Mesh& mesh, const MeshAdjacency& adjacency, const Eigen::Vector3d& axis,
+                                double tolerance = 0.0);
+
 }  // namespace contourmesh

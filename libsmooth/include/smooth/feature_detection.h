@@ -34,7 +34,20 @@ enum class UmbrellaMeasure {
   NormalComponent,  ///< |U . n|: ignores tangential irregularity of the tiling
 };
 
+/// How features are told from noise.
+enum class DetectionMode {
+  /// The paper's Algorithm 2: curvature continuity across adjacent contours (needs contour ids).
+  ContourContinuity,
+  /// Fallback for meshes without contour ids: a candidate is an edge when its curvature is strongly
+  /// anisotropic (the larger |kappa| at least `anisotropy` times the smaller), a corner by the Psi vote
+  /// when umbilic, noise otherwise. Cannot tell a ridge from a scratch: use ids when you have them.
+  CurvatureOnly,
+};
+
 struct DetectionOptions {
+  DetectionMode mode = DetectionMode::ContourContinuity;
+  /// CurvatureOnly: minimum ratio |kappa_large| / |kappa_small| of an edge, > 1.
+  double anisotropy = 3.0;
   /// Threshold on the umbrella measure, in length units. Unset: gamma_factor * its mean over the
   /// vertices that lie on contours (paper: 2 mean |U|; copies off the slices are left out).
   std::optional<double> gamma;
@@ -66,8 +79,8 @@ struct FeatureDetection {
   std::size_t candidates = 0, edges = 0, corners = 0, noise = 0;
 };
 
-/// Runs Algorithm 2 on a mesh with contour ids (throws InvalidInputError without them, or for options
-/// out of range).
+/// Runs Algorithm 2 on a mesh with contour ids (DetectionMode::ContourContinuity; InvalidInputError
+/// without them) or the curvature-only fallback; throws InvalidInputError for options out of range.
 ///
 /// Contour curvatures: the `window` consecutive vertices of a contour are projected into their slice
 /// plane and fitted, by least squares, with a parabola Y = a + b X + c X^2 in the frame of their

@@ -57,8 +57,9 @@ struct FeatureSmoothingResult {
   StageTimings seconds;
 };
 
-/// Runs Algorithm 1. Requires contour ids (InvalidInputError otherwise; see SPEC 2 for meshes without
-/// them); throws InvalidInputError for options out of range and CancelledError on request.
+/// Runs Algorithm 1. The default detection needs contour ids (InvalidInputError otherwise): recover them
+/// with assign_ids_by_slice_planes, or set detection.mode = DetectionMode::CurvatureOnly. Throws
+/// InvalidInputError for options out of range and CancelledError on request.
 [[nodiscard]] FeatureSmoothingResult feature_preserving_smooth(const Mesh& mesh,
                                                                const FeatureSmoothingOptions& options = {});
 

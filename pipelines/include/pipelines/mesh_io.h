@@ -7,6 +7,7 @@
 #include <filesystem>
 #include <string>
 #include <string_view>
+#include <vector>
 
 namespace contourmesh {
 
@@ -40,9 +41,22 @@ struct MeshReadOptions {
   ContourIdArrayNames arrays;
 };
 
+/// Storage type of an extra per-vertex array.
+enum class ScalarType { Float64, Int32 };
+
+/// A named per-vertex scalar array written with the mesh (feature labels, curvatures, ...). Only VTP
+/// and PLY can carry it; NaN values are written as they are (VTP) or as NaN doubles (PLY).
+struct PointScalars {
+  std::string name;
+  std::vector<double> values;  ///< one per vertex
+  ScalarType type = ScalarType::Float64;
+};
+
 struct MeshWriteOptions {
   MeshFormat format = MeshFormat::Auto;
   ContourIdArrayNames arrays;
+  /// Extra point arrays; writing them to STL or OBJ is an InvalidInputError.
+  std::vector<PointScalars> point_scalars;
 };
 
 /// Reads a triangle mesh. Polygons with more than three corners are triangulated; lines and vertices
@@ -55,7 +69,8 @@ struct MeshWriteOptions {
 /// Writes a mesh atomically: to a temporary file in the same directory, renamed over `path` only once
 /// complete, so a failure never leaves a partial file nor truncates an existing one. Contour ids are
 /// written for PLY and VTP when the mesh has them. Throws InvalidInputError naming the file on failure
-/// (missing directory, no permission, disk full).
+/// (missing directory, no permission, disk full), or when an extra array has the wrong size or the
+/// format cannot carry it.
 void write_mesh(const Mesh& mesh, const std::filesystem::path& path, const MeshWriteOptions& options = {});
 
 }  // namespace contourmesh

@@ -18,7 +18,9 @@ namespace contourmesh {
 /// malformed header, unsupported type, truncated data or out-of-range face index.
 [[nodiscard]] Mesh read_ply(std::istream& in, const ContourIdArrayNames& arrays = {});
 
-/// Writes binary little-endian PLY: double x y z, int ids when present, uchar-count int-index faces.
-void write_ply(std::ostream& out, const Mesh& mesh, const ContourIdArrayNames& arrays = {});
+/// Writes binary little-endian PLY: double x y z, int ids when present, the extra arrays as double or
+/// int vertex properties, uchar-count int-index faces.
+void write_ply(std::ostream& out, const Mesh& mesh, const ContourIdArrayNames& arrays = {},
+               const std::vector<PointScalars>& extra = {});
 
 }  // namespace contourmesh

@@ -11,9 +11,10 @@ class vtkPolyData;
 
 namespace contourmesh {
 
-/// Points (double precision), triangles, and the two contour-id point arrays (vtkIntArray) when the
-/// mesh has ids.
-[[nodiscard]] vtkSmartPointer<vtkPolyData> to_polydata(const Mesh& mesh, const ContourIdArrayNames& arrays = {});
+/// Points (double precision), triangles, the two contour-id point arrays (vtkIntArray) when the mesh
+/// has ids, and the extra arrays (vtkDoubleArray or vtkIntArray; sizes must match, InvalidInputError).
+[[nodiscard]] vtkSmartPointer<vtkPolyData> to_polydata(const Mesh& mesh, const ContourIdArrayNames& arrays = {},
+                                                      const std::vector<PointScalars>& extra = {});
 
 /// Triangles of the polydata's polygons (larger polygons are triangulated, strips are converted) and
 /// contour ids from the named point arrays when both are present. Throws InvalidInputError when an id
