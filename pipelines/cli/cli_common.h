@@ -37,6 +37,7 @@ double seconds_since(std::chrono::steady_clock::time_point start);
 
 /// Registers the subcommands on `app`.
 void add_smooth_command(CLI::App& app);
+void add_detect_command(CLI::App& app);
 void add_demo_command(CLI::App& app);
 void add_phantom_command(CLI::App& app);
 void add_reconstruct_command(CLI::App& app);

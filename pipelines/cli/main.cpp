@@ -12,6 +12,7 @@ int main(int argc, char** argv) {
   app.fallthrough(false);
   contourmesh::cli::add_phantom_command(app);
   contourmesh::cli::add_reconstruct_command(app);
+  contourmesh::cli::add_detect_command(app);
   contourmesh::cli::add_smooth_command(app);
   contourmesh::cli::add_demo_command(app);
   try {

@@ -54,7 +54,7 @@ class Cli : public ::testing::Test {
 };
 
 TEST_F(Cli, SmoothEveryMethodWithJson) {
-  for (const std::string method : {"none", "laplacian", "taubin", "mcf", "mindist"}) {
+  for (const std::string method : {"none", "laplacian", "taubin", "mcf", "mindist", "paper"}) {
     const fs::path out = dir_ / ("out_" + method + ".ply");
     const CliRun r = run_cli("smooth " + input_.string() + " -o " + out.string() + " --method " + method + " --json", dir_);
     ASSERT_EQ(r.code, 0) << method << ": " << r.err;
@@ -63,7 +63,14 @@ TEST_F(Cli, SmoothEveryMethodWithJson) {
       EXPECT_TRUE(j.contains(key)) << key;
     }
     EXPECT_EQ(j["method"], method);
-    EXPECT_EQ(j["iterations"], 20);
+    EXPECT_EQ(j["iterations"], method == "paper" ? 40 : 20);
+    if (method == "paper") {
+      for (const char* key : {"edge_vertices", "corner_vertices", "noise_vertices", "subdivided_vertices",
+                              "adaptive_vertices", "seconds_detect", "seconds_subdivide", "seconds_smooth"}) {
+        EXPECT_TRUE(j.contains(key)) << key;
+      }
+      EXPECT_EQ(j["id_source"], "file");
+    }
     EXPECT_EQ(j["vertices"], 600 + 120);  // 10 contours of 60, and two end-cap copies
     const Mesh result = read_mesh(out);
     EXPECT_TRUE(result.has_contour_ids()) << "PLY output keeps the contour ids";
@@ -74,6 +81,38 @@ TEST_F(Cli, SmoothEveryMethodWithJson) {
       EXPECT_LT(j["volume_after"].get<double>(), 0.97 * j["volume_before"].get<double>());
     }
   }
+}
+
+TEST_F(Cli, PaperMethodWritesLabelsAndTheAdaptiveMesh) {
+  const fs::path out = dir_ / "adaptive.vtp";
+  const fs::path labels = dir_ / "labels.vtp";
+  CliRun r = run_cli("smooth " + input_.string() + " -o " + out.string() + " --method paper --keep-adaptive --labels-out " +
+                         labels.string() + " --max-levels 2 --json",
+                     dir_);
+  ASSERT_EQ(r.code, 0) << r.err;
+  const auto j = nlohmann::json::parse(r.out);
+  EXPECT_EQ(read_mesh(out).num_vertices(), j["adaptive_vertices"].get<int>());
+  EXPECT_EQ(read_mesh(labels).num_vertices(), j["vertices"].get<int>());
+  // detect gives the same labels as the paper method's detection.
+  const fs::path detected = dir_ / "detected.ply";
+  r = run_cli("detect " + input_.string() + " -o " + detected.string() + " --json", dir_);
+  ASSERT_EQ(r.code, 0) << r.err;
+  const auto d = nlohmann::json::parse(r.out);
+  EXPECT_EQ(d["edge_vertices"], j["edge_vertices"]);
+  EXPECT_EQ(d["noise_vertices"], j["noise_vertices"]);
+  EXPECT_EQ(d["mode"], "contour-continuity");
+  // Labels cannot go to STL; a mesh without ids falls back to curvature-only detection, with a warning.
+  EXPECT_EQ(run_cli("detect " + input_.string() + " -o " + (dir_ / "l.stl").string(), dir_).code, 2);
+  const fs::path stl = dir_ / "plain.stl";
+  ASSERT_EQ(run_cli("smooth " + input_.string() + " -o " + stl.string() + " --method none", dir_).code, 0);
+  r = run_cli("detect " + stl.string() + " -o " + (dir_ / "l.vtp").string() + " --json", dir_);
+  ASSERT_EQ(r.code, 0) << r.err;
+  EXPECT_EQ(nlohmann::json::parse(r.out)["mode"], "curvature-only");
+  EXPECT_NE(r.err.find("no contour ids"), std::string::npos) << r.err;
+  // ... or recovers the ids from the slice planes when told the axis.
+  r = run_cli("detect " + stl.string() + " -o " + (dir_ / "l.vtp").string() + " --slice-axis z --json", dir_);
+  ASSERT_EQ(r.code, 0) << r.err;
+  EXPECT_EQ(nlohmann::json::parse(r.out)["id_source"], "slice-planes");
 }
 
 TEST_F(Cli, SmoothHonoursParameters) {
@@ -120,7 +159,8 @@ TEST_F(Cli, UsageErrorsExitOne) {
   EXPECT_EQ(run_cli("smooth " + input_.string() + " -o x.stl --iterations many", dir_).code, 1);
   const CliRun help = run_cli("smooth --help", dir_);
   EXPECT_EQ(help.code, 0);
-  for (const char* option : {"--method", "--iterations", "--lambda", "--mu", "--beta", "--json", "--output"}) {
+  for (const char* option : {"--method", "--iterations", "--lambda", "--mu", "--beta", "--json", "--output", "--gamma",
+                             "--delta", "--max-levels", "--keep-adaptive", "--labels-out", "--slice-axis"}) {
     EXPECT_NE(help.out.find(option), std::string::npos) << option;
   }
 }

@@ -1,0 +1,50 @@
+// Options and helpers shared by `smooth --method paper` and `detect`.
+#pragma once
+
+#include <pipelines/mesh_io.h>
+#include <smooth/adjacency.h>
+#include <smooth/feature_detection.h>
+#include <smooth/mesh.h>
+
+#include <optional>
+#include <string>
+#include <vector>
+
+namespace CLI {
+class App;
+}
+
+namespace contourmesh::cli {
+
+struct FeatureArgs {
+  std::optional<double> gamma;
+  std::optional<double> delta;
+  std::string measure = "length";
+  int prefilter = 0;
+  int window = 7;
+  std::string slice_axis;  ///< "", "x", "y" or "z"
+};
+
+/// Registers --gamma, --delta, --measure, --prefilter, --window, --slice-axis.
+void add_feature_options(CLI::App* command, FeatureArgs& args);
+
+/// Detection options from the arguments (throws InvalidInputError for a bad --measure).
+[[nodiscard]] DetectionOptions detection_options(const FeatureArgs& args);
+
+/// Makes sure detection can run on `mesh`: keeps the ids it was read with ("file"), recovers them
+/// from the slice planes along --slice-axis ("slice-planes"), or switches `detection` to the
+/// curvature-only fallback ("none", with a warning on stderr). Throws InvalidInputError naming the file
+/// when --slice-axis was given but the vertices do not lie on planes normal to it.
+[[nodiscard]] std::string prepare_contour_ids(Mesh& mesh, const MeshAdjacency& adjacency, const FeatureArgs& args,
+                                              const std::string& path, const std::string& command,
+                                              DetectionOptions& detection);
+
+/// The per-vertex arrays of a detection, for --labels-out: FeatureLabel (0 smooth, 1 edge, 2 corner,
+/// 3 noise), Umbrella, KappaMin, KappaMax, KBelow, K0, KAbove, Psi.
+[[nodiscard]] std::vector<PointScalars> detection_arrays(const FeatureDetection& detection);
+
+/// Non-finite coordinates, bad indices and id mismatches throw InvalidInputError naming `path`;
+/// topology problems that smoothing tolerates are one warning line on stderr.
+void check_mesh(const Mesh& mesh, const std::string& path, const std::string& command);
+
+}  // namespace contourmesh::cli
