@@ -3,6 +3,8 @@
 #include <smooth/errors.h>
 
 #include <chrono>
+#include <numeric>
+#include <unordered_map>
 #include <sstream>
 
 namespace contourmesh {
@@ -11,6 +13,47 @@ namespace {
 
 double seconds_since(std::chrono::steady_clock::time_point t) {
   return std::chrono::duration<double>(std::chrono::steady_clock::now() - t).count();
+}
+
+// Removes the connected components enclosing less than `min_volume` (cavity surfaces, which enclose a
+// negative volume, are kept) and compacts the vertex array.
+Mesh drop_small_components(Mesh mesh, double min_volume, std::size_t& dropped) {
+  const Index n = mesh.num_vertices();
+  std::vector<Index> parent(static_cast<std::size_t>(n));
+  std::iota(parent.begin(), parent.end(), 0);
+  auto find = [&](Index x) {
+    while (parent[x] != x) x = parent[x] = parent[parent[x]];
+    return x;
+  };
+  for (const Triangle& t : mesh.triangles) {
+    parent[find(t[0])] = find(t[1]);
+    parent[find(t[1])] = find(t[2]);
+  }
+  std::unordered_map<Index, double> volume;
+  for (const Triangle& t : mesh.triangles) {
+    volume[find(t[0])] += mesh.positions.col(t[0]).dot(mesh.positions.col(t[1]).cross(mesh.positions.col(t[2]))) / 6.0;
+  }
+  std::vector<Index> remap(static_cast<std::size_t>(n), -1);
+  Mesh kept;
+  std::vector<Index> keep_vertices;
+  for (Index i = 0; i < n; ++i) {
+    const auto it = volume.find(find(i));
+    if (it == volume.end() || (it->second >= 0.0 && it->second < min_volume)) continue;
+    remap[i] = static_cast<Index>(keep_vertices.size());
+    keep_vertices.push_back(i);
+  }
+  for (const auto& [root, v] : volume) dropped += (v >= 0.0 && v < min_volume) ? 1 : 0;
+  kept.positions.resize(3, static_cast<Eigen::Index>(keep_vertices.size()));
+  for (std::size_t k = 0; k < keep_vertices.size(); ++k) {
+    const Index i = keep_vertices[k];
+    kept.positions.col(static_cast<Eigen::Index>(k)) = mesh.positions.col(i);
+    kept.slice_ids.push_back(mesh.slice_ids[i]);
+    kept.contour_ids.push_back(mesh.contour_ids[i]);
+  }
+  for (const Triangle& t : mesh.triangles) {
+    if (remap[t[0]] >= 0) kept.triangles.push_back({remap[t[0]], remap[t[1]], remap[t[2]]});
+  }
+  return kept;
 }
 
 }  // namespace
@@ -47,7 +90,13 @@ Reconstruction reconstruct(const CtImage& image, const ReconstructionOptions& op
   if (tiled.mesh.num_faces() == 0) {
     throw InvalidInputError("no contour continues into an adjacent slice: nothing to tile (slices too far apart?)");
   }
-  out.mesh = std::move(tiled.mesh);
+  const auto spacing = image.GetSpacing();
+  const double min_volume = options.min_component_voxels * spacing[0] * spacing[1] * spacing[2];
+  out.mesh = drop_small_components(std::move(tiled.mesh), min_volume, out.report.dropped_components);
+  if (out.mesh.num_faces() == 0) {
+    throw InvalidInputError("every reconstructed piece is smaller than " + std::to_string(options.min_component_voxels) +
+                            " voxels");
+  }
   out.contours = std::move(seg.stack);
   return out;
 }

@@ -1,6 +1,7 @@
 // Conventions shared by the contourmesh subcommands: exit codes, error reporting, JSON output.
 #pragma once
 
+#include <Eigen/Core>
 #include <nlohmann/json.hpp>
 
 #include <chrono>
@@ -32,13 +33,17 @@ int last_exit_code();
 /// Prints `json` as one line on stdout.
 void print_json(const nlohmann::json& json);
 
+/// Parses "sx,sy,sz": three comma-separated finite numbers > 0 (voxel spacing in mm); throws
+/// InvalidInputError quoting the text otherwise.
+[[nodiscard]] Eigen::Vector3d parse_spacing(const std::string& text);
+
 /// Seconds since `start`.
 double seconds_since(std::chrono::steady_clock::time_point start);
 
 /// Registers the subcommands on `app`.
 void add_smooth_command(CLI::App& app);
 void add_detect_command(CLI::App& app);
-void add_demo_command(CLI::App& app);
+void add_run_command(CLI::App& app);
 void add_phantom_command(CLI::App& app);
 void add_reconstruct_command(CLI::App& app);
 

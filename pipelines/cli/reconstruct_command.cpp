@@ -87,6 +87,7 @@ int run_reconstruct(const ReconstructArgs& a) {
     j["branchings"] = r.report.tiling.branchings;
     j["caps"] = r.report.tiling.caps;
     j["dropped_contours"] = r.report.tiling.dropped_contours;
+    j["dropped_components"] = r.report.dropped_components;
     j["vertices"] = r.mesh.num_vertices();
     j["faces"] = r.mesh.num_faces();
     j["components"] = topo.components;

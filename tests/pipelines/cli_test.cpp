@@ -208,19 +208,41 @@ TEST_F(Cli, ReconstructRejectsBadVolumesWithExitTwo) {
   EXPECT_NE(r.err.find("banana"), std::string::npos) << r.err;
 }
 
-TEST_F(Cli, DemoWritesAClosedStlAndReportsAccuracy) {
-  const fs::path out = dir_ / "demo.stl";
-  const CliRun r = run_cli("demo -o " + out.string() + " --json", dir_);
+TEST_F(Cli, RunWithNoInputIsTheWholePipelineOnAPhantom) {
+  const fs::path out = dir_ / "femur.stl";
+  const CliRun r = run_cli("run -o " + out.string() + " --json", dir_);
   ASSERT_EQ(r.code, 0) << r.err;
   const auto j = nlohmann::json::parse(r.out);
   EXPECT_TRUE(j["is_closed"].get<bool>());
-  EXPECT_LT(std::abs(j["volume_change_percent"].get<double>()), 1.0);  // Taubin by default
+  EXPECT_TRUE(j["is_manifold"].get<bool>());
+  EXPECT_EQ(j["components"], 1);
+  EXPECT_EQ(j["method"], "paper");
+  EXPECT_GT(j["edge_vertices"].get<int>(), 0);
+  EXPECT_LT(std::abs(j["volume_change_percent"].get<double>()), 3.0);
+  EXPECT_LT(j["rms_distance_after"].get<double>(), 0.5) << "mm from the analytic femur";
+  for (const char* key : {"seconds_segment", "seconds_tile", "seconds_detect", "seconds_subdivide", "seconds_smooth"}) {
+    EXPECT_TRUE(j.contains(key)) << key;
+  }
   const Mesh m = read_mesh(out);
   EXPECT_EQ(m.num_vertices(), j["vertices"].get<int>());
   EXPECT_TRUE(build_adjacency(m).is_closed());
-  const CliRun human = run_cli("demo -o " + out.string(), dir_);
-  EXPECT_EQ(human.code, 0);
+  const CliRun human = run_cli("run -o " + out.string() + " --shape ridge-box --method taubin", dir_);
+  EXPECT_EQ(human.code, 0) << human.err;
   EXPECT_NE(human.out.find("wrote"), std::string::npos);
+  EXPECT_NE(human.out.find("accuracy"), std::string::npos);
+}
+
+TEST_F(Cli, RunOnARealScan) {
+  const fs::path scan = fs::path(CONTOURMESH_SHARED_DATA) / "totalsegmentator_ct" / "example_ct_sm.nii.gz";
+  if (!fs::exists(scan)) GTEST_SKIP() << "no " << scan;
+  const fs::path out = dir_ / "pelvis.stl";
+  const CliRun r = run_cli("run " + scan.string() + " -o " + out.string() + " --json", dir_);
+  ASSERT_EQ(r.code, 0) << r.err;
+  const auto j = nlohmann::json::parse(r.out);
+  EXPECT_TRUE(j["is_closed"].get<bool>());
+  EXPECT_TRUE(j["is_manifold"].get<bool>());
+  EXPECT_FALSE(j.contains("rms_distance_after"));  // no truth for a real scan
+  EXPECT_TRUE(fs::exists(out));
 }
 
 }  // namespace

@@ -13,6 +13,10 @@ namespace contourmesh {
 struct ReconstructionOptions {
   SegmentationOptions segmentation;
   TilingOptions tiling;
+  /// Mesh components enclosing less than this many voxel volumes are dropped as specks (fragments of a
+  /// few voxels are noise, and smoothing collapses their few-vertex rings into degenerate triangles).
+  /// >= 0; 0 keeps everything.
+  double min_component_voxels = 4.0;
 };
 
 struct ReconstructionReport {
@@ -22,6 +26,7 @@ struct ReconstructionReport {
   std::size_t hole_contours = 0;
   double threshold = 0.0;          ///< the threshold used (HU or raw units)
   std::size_t dropped_regions = 0;
+  std::size_t dropped_components = 0;  ///< mesh components below min_component_voxels
   TilingStats tiling;
   double seconds_segment = 0.0;
   double seconds_tile = 0.0;
