@@ -1,10 +1,9 @@
 #include "reconstruct/reconstruction.h"
 
 #include <smooth/errors.h>
+#include <smooth/topology.h>
 
 #include <chrono>
-#include <numeric>
-#include <unordered_map>
 #include <sstream>
 
 namespace contourmesh {
@@ -19,30 +18,23 @@ double seconds_since(std::chrono::steady_clock::time_point t) {
 // negative volume, are kept) and compacts the vertex array.
 Mesh drop_small_components(Mesh mesh, double min_volume, std::size_t& dropped) {
   const Index n = mesh.num_vertices();
-  std::vector<Index> parent(static_cast<std::size_t>(n));
-  std::iota(parent.begin(), parent.end(), 0);
-  auto find = [&](Index x) {
-    while (parent[x] != x) x = parent[x] = parent[parent[x]];
-    return x;
-  };
+  const ComponentLabels components = component_labels(mesh);
+  std::vector<double> volume(static_cast<std::size_t>(components.count), 0.0);
   for (const Triangle& t : mesh.triangles) {
-    parent[find(t[0])] = find(t[1]);
-    parent[find(t[1])] = find(t[2]);
+    volume[components.of_vertex[t[0]]] +=
+        mesh.positions.col(t[0]).dot(mesh.positions.col(t[1]).cross(mesh.positions.col(t[2]))) / 6.0;
   }
-  std::unordered_map<Index, double> volume;
-  for (const Triangle& t : mesh.triangles) {
-    volume[find(t[0])] += mesh.positions.col(t[0]).dot(mesh.positions.col(t[1]).cross(mesh.positions.col(t[2]))) / 6.0;
-  }
+  auto too_small = [&](Index label) { return volume[label] >= 0.0 && volume[label] < min_volume; };
   std::vector<Index> remap(static_cast<std::size_t>(n), -1);
   Mesh kept;
   std::vector<Index> keep_vertices;
   for (Index i = 0; i < n; ++i) {
-    const auto it = volume.find(find(i));
-    if (it == volume.end() || (it->second >= 0.0 && it->second < min_volume)) continue;
+    const Index label = components.of_vertex[i];
+    if (label < 0 || too_small(label)) continue;
     remap[i] = static_cast<Index>(keep_vertices.size());
     keep_vertices.push_back(i);
   }
-  for (const auto& [root, v] : volume) dropped += (v >= 0.0 && v < min_volume) ? 1 : 0;
+  for (Index label = 0; label < components.count; ++label) dropped += too_small(label) ? 1 : 0;
   kept.positions.resize(3, static_cast<Eigen::Index>(keep_vertices.size()));
   for (std::size_t k = 0; k < keep_vertices.size(); ++k) {
     const Index i = keep_vertices[k];

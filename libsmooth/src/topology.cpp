@@ -4,10 +4,37 @@
 #include "smooth/validation.h"
 
 #include <algorithm>
+#include <cstdint>
 #include <numeric>
 #include <vector>
 
 namespace contourmesh {
+
+ComponentLabels component_labels(const Mesh& mesh) {
+  const Index n = mesh.num_vertices();
+  std::vector<Index> parent(static_cast<std::size_t>(n));
+  std::iota(parent.begin(), parent.end(), 0);
+  auto find = [&](Index x) {
+    while (parent[x] != x) x = parent[x] = parent[parent[x]];
+    return x;
+  };
+  std::vector<std::uint8_t> used(static_cast<std::size_t>(n), 0);
+  for (const Triangle& tri : mesh.triangles) {
+    parent[find(tri[0])] = find(tri[1]);
+    parent[find(tri[1])] = find(tri[2]);
+    used[tri[0]] = used[tri[1]] = used[tri[2]] = 1;
+  }
+  ComponentLabels labels;
+  labels.of_vertex.assign(static_cast<std::size_t>(n), -1);
+  std::vector<Index> label_of_root(static_cast<std::size_t>(n), -1);
+  for (Index i = 0; i < n; ++i) {
+    if (!used[i]) continue;
+    Index& l = label_of_root[find(i)];
+    if (l < 0) l = labels.count++;
+    labels.of_vertex[i] = l;
+  }
+  return labels;
+}
 
 TopologySummary summarize_topology(const Mesh& mesh) {
   TopologySummary t;
@@ -24,17 +51,7 @@ TopologySummary summarize_topology(const Mesh& mesh) {
   long used = 0;
   for (Index i = 0; i < mesh.num_vertices(); ++i) used += adj.valence(i) > 0 ? 1 : 0;
   t.euler_characteristic = used - static_cast<long>(adj.num_edges()) + mesh.num_faces();
-  std::vector<Index> parent(static_cast<std::size_t>(mesh.num_vertices()));
-  std::iota(parent.begin(), parent.end(), 0);
-  auto find = [&](Index x) {
-    while (parent[x] != x) x = parent[x] = parent[parent[x]];
-    return x;
-  };
-  for (const Triangle& tri : mesh.triangles) {
-    parent[find(tri[0])] = find(tri[1]);
-    parent[find(tri[1])] = find(tri[2]);
-  }
-  for (Index i = 0; i < mesh.num_vertices(); ++i) t.components += (adj.valence(i) > 0 && find(i) == i) ? 1 : 0;
+  t.components = component_labels(mesh).count;
   return t;
 }
 

@@ -4,6 +4,7 @@
 #include "smooth/mesh.h"
 
 #include <string>
+#include <vector>
 
 namespace contourmesh {
 
@@ -14,6 +15,14 @@ struct TopologySummary {
   int components = 0;             ///< connected components of the triangles
   std::string first_problems;     ///< up to five problems, "; "-separated, when not manifold
 };
+
+/// Connected components of the triangles: one label per vertex in [0, count), -1 for a vertex used
+/// by no triangle. Labels are numbered in order of their lowest vertex index.
+struct ComponentLabels {
+  std::vector<Index> of_vertex;
+  int count = 0;
+};
+[[nodiscard]] ComponentLabels component_labels(const Mesh& mesh);
 
 /// Computes the summary in O(V + F) plus validation. For a closed manifold mesh with c components of
 /// genus g_k, euler_characteristic = sum_k (2 - 2 g_k).
