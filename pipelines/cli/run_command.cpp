@@ -39,6 +39,7 @@ struct RunArgs {
   std::string method = "paper";
   std::optional<int> iterations;
   double feature_radius = 2.0;
+  std::string end_caps = "half-spacing";
   bool json = false;
 };
 
@@ -72,6 +73,8 @@ int run_run(const RunArgs& a) {
 
   // 2. Reconstruct.
   ReconstructionOptions ro;
+  if (a.end_caps == "end-slice") ro.tiling.end_caps = EndCaps::AtEndSlice;
+  else if (a.end_caps != "half-spacing") throw InvalidInputError("--end-caps must be half-spacing or end-slice");
   // A phantom is segmented at its partial-volume iso-level, real CT at the bone default.
   const PhantomVolumeOptions phantom_defaults;
   ro.segmentation.threshold =
@@ -206,6 +209,7 @@ void add_run_command(CLI::App& app) {
   cmd->add_option("--threshold", args->threshold,
                   "Bone threshold, HU (default: 300 for an input volume; 520 for a phantom, halfway between its "
                   "soft tissue and bone)");
+  cmd->add_option("--end-caps", args->end_caps, "Where objects end: half-spacing | end-slice")->capture_default_str();
   cmd->add_option("--method", args->method, "paper | none | laplacian | taubin | mcf | mindist")->capture_default_str();
   cmd->add_option("--iterations", args->iterations, "Smoothing iterations (default 40 for paper, 20 otherwise)");
   cmd->add_option("--feature-radius", args->feature_radius,
