@@ -1,5 +1,6 @@
 #include "reconstruct/tiling.h"
 
+#include "detail/cap_refinement.h"
 #include "detail/polygon.h"
 
 #include <smooth/errors.h>
@@ -497,10 +498,17 @@ TilingResult tile_contours(const ContourStack& stack, const TilingOptions& optio
   auto cap = [&](const Ring& outer, const std::vector<Ring>& holes, bool facing_up) {
     std::vector<Polygon> hole_polys;
     for (const Ring& h : holes) hole_polys.push_back(h.pts);
-    for (const auto& t : detail::triangulate_with_holes(outer.pts, hole_polys)) {
+    // Interior vertices about one contour spacing apart keep the cap's umbrella balanced.
+    const double spacing = options.cap_refinement == CapRefinement::Interior ? perimeter(outer.pts) / outer.pts.size() : 0.0;
+    const detail::RefinedCap refined = detail::triangulate_refined(outer.pts, hole_polys, spacing);
+    std::vector<Index> interior;
+    for (const auto& p : refined.interior) interior.push_back(builder.add_vertex(p, outer.w, kNoId, kNoId));
+    for (const auto& t : refined.triangles) {
       Index v[3];
       for (int k = 0; k < 3; ++k) {
-        v[k] = t[k].polygon == 0 ? outer.ids[t[k].vertex] : holes[t[k].polygon - 1].ids[t[k].vertex];
+        v[k] = t[k].polygon < 0    ? interior[t[k].vertex]
+               : t[k].polygon == 0 ? outer.ids[t[k].vertex]
+                                   : holes[t[k].polygon - 1].ids[t[k].vertex];
       }
       if (facing_up) builder.add_triangle(v[0], v[1], v[2]);
       else builder.add_triangle(v[0], v[2], v[1]);

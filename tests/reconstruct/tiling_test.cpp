@@ -51,9 +51,10 @@ TEST(Tiling, CylinderIsClosedWithPrismVolumeAndIds) {
   EXPECT_EQ(r.stats.one_to_one, 7u);
   EXPECT_EQ(r.stats.caps, 2u);
   EXPECT_NEAR(enclosed_volume(r.mesh), polygon_area * 16.0, 1e-6 * polygon_area);
-  // In the end-slice planes: 14 mm, and every vertex is on a slice.
+  // In the end-slice planes, ear-clipped: 14 mm, and every vertex is on a slice.
   TilingOptions flat;
   flat.end_caps = EndCaps::AtEndSlice;
+  flat.cap_refinement = CapRefinement::EarClipping;
   const TilingResult f = tile_contours(s, flat);
   expect_sound(f.mesh, 2, 1);
   EXPECT_NEAR(enclosed_volume(f.mesh), polygon_area * 14.0, 1e-6 * polygon_area);
@@ -75,8 +76,33 @@ TEST(Tiling, CylinderIsClosedWithPrismVolumeAndIds) {
         }
       }
     }
-    EXPECT_EQ(copies, m == &r.mesh ? 120 : 0);
+    EXPECT_EQ(copies, m == &r.mesh ? 120 + (r.mesh.num_vertices() - 8 * 60 - 120) : 0);  // end copies + cap interiors
   }
+}
+
+TEST(Tiling, RefinedCapsHaveWellShapedTrianglesOnTheirPlane) {
+  ContourStack s = stack_of(4);
+  for (auto& slice : s.slices) {
+    slice.contours.push_back(circle(0, 0, 20, 180));  // 0.7 mm spacing
+    slice.contours.push_back(circle(6, 0, 5, 45, true, 0));
+  }
+  const TilingResult r = tile_contours(s);
+  expect_sound(r.mesh, 0, 1);
+  const double top = 3 * 2.0 + 1.0;  // half a spacing above the last slice
+  int cap_triangles = 0;
+  double worst_edge = 0.0, worst_ratio = 0.0;
+  for (const Triangle& t : r.mesh.triangles) {
+    const Eigen::Vector3d a = r.mesh.positions.col(t[0]), b = r.mesh.positions.col(t[1]), c = r.mesh.positions.col(t[2]);
+    if (std::abs(a.z() - top) > 1e-9 || std::abs(b.z() - top) > 1e-9 || std::abs(c.z() - top) > 1e-9) continue;
+    ++cap_triangles;
+    const double e = std::max({(a - b).norm(), (b - c).norm(), (c - a).norm()});
+    const double area = 0.5 * (b - a).cross(c - a).norm();
+    worst_edge = std::max(worst_edge, e);
+    worst_ratio = std::max(worst_ratio, e * e / area);  // 2.31 for an equilateral triangle
+  }
+  EXPECT_GT(cap_triangles, 1000);
+  EXPECT_LT(worst_edge, 2.0) << "no long triangles across the cap";
+  EXPECT_LT(worst_ratio, 20.0) << "no slivers";
 }
 
 TEST(Tiling, DifferentCountsAndShiftedContours) {
@@ -116,9 +142,12 @@ TEST(Tiling, OneToTwoBranchIsOneClosedSurface) {
       s.slices[k].contours.push_back(circle(6, 0, 5, 32));
     }
   }
-  const TilingResult r = tile_contours(s);
+  TilingOptions ear;
+  ear.cap_refinement = CapRefinement::EarClipping;
+  const TilingResult r = tile_contours(s, ear);
   EXPECT_EQ(r.stats.branchings, 1u);
   expect_sound(r.mesh, 2, 1);
+  expect_sound(tile_contours(s).mesh, 2, 1);
   int mid = 0;
   for (Index i = 0; i < r.mesh.num_vertices(); ++i) mid += r.mesh.slice_ids[i] == kNoId;
   EXPECT_EQ(mid, 64 + 64 + 64);  // the two copies on the mid-plane, and the two end copies
@@ -267,6 +296,7 @@ TEST(Tiling, LargeContoursUseTheBandedProgramme) {
   for (auto& slice : s.slices) slice.contours.push_back(circle(0, 0, 100, 2500));
   TilingOptions o;
   o.full_dp_limit = 1000;  // force the band
+  o.cap_refinement = CapRefinement::EarClipping;  // the bands are under test, not the 31000 mm^2 caps
   expect_sound(tile_contours(s, o).mesh, 2, 1);
 }
 

@@ -12,8 +12,19 @@
 
 namespace contourmesh {
 
+/// How caps are triangulated.
+enum class CapRefinement {
+  /// Ear clipping refined to a constrained Delaunay triangulation with interior vertices about one
+  /// contour spacing apart (ids kNoId): well-shaped triangles, so umbrella-based smoothing does not drag
+  /// the cap's rim inwards. Default.
+  Interior,
+  /// Ear clipping only: the fewest triangles, long and thin across the cap.
+  EarClipping,
+};
+
 struct TilingOptions {
   EndCaps end_caps = EndCaps::HalfSpacing;
+  CapRefinement cap_refinement = CapRefinement::Interior;
   /// Two contours of adjacent slices correspond when the area of overlap of their regions exceeds this
   /// fraction of the smaller region (outer contours: the filled outline; holes: the hole). In (0, 1].
   double min_overlap_fraction = 0.05;
