@@ -1,4 +1,4 @@
-// Meshes with a known analytic surface, for tests, benchmarks and the demo job: icosphere, cube, and
+// Meshes with a known analytic surface, for tests and benchmarks: icosphere, cube, and
 // contour stacks (prisms over a closed planar curve, tiled slice by slice, with contour ids) with
 // their signed distance functions; plus reproducible noise.
 #pragma once
@@ -51,7 +51,7 @@ struct ContourStackSpec {
 
 /// A circle of `radius` with one sharp triangular ridge of `height` centred at angle 0 and spanning
 /// +/- `half_width` radians: r(theta) = radius + height * max(0, 1 - |theta| / half_width).
-/// Its prism is the demo's "cylinder with a ridge": a sharp ridge running across the slices.
+/// Its prism is a "cylinder with a ridge": a sharp ridge running across the slices.
 [[nodiscard]] PlanarCurve ridge_circle_curve(double radius, double height, double half_width);
 
 enum class NoiseDirection {
