@@ -130,6 +130,62 @@ std::optional<double> intersect(const CurveFit& f, const Eigen::Vector2d& n, dou
   return best;
 }
 
+// Walks along a contour from `start` towards the zero of `signed_distance` (the plane S), at most
+// kMaxWalk vertices; returns the vertex nearest to the crossing, or `start` if the contour moves away.
+template <typename F>
+Index walk_to_plane(const ContourNeighbours& contour, Index start, F&& signed_distance) {
+  constexpr int kMaxWalk = 32;
+  Index cur = start, prev = -1;
+  double dc = signed_distance(cur);
+  for (int step = 0; step < kMaxWalk; ++step) {
+    Index next = -1;
+    double dn = 0.0;
+    for (Index nb : contour.of[cur]) {
+      if (nb < 0 || nb == prev) continue;
+      const double dv = signed_distance(nb);
+      if (dv * dc <= 0.0) return std::abs(dv) < std::abs(dc) ? nb : cur;  // crossed S
+      if (std::abs(dv) < std::abs(dc) && (next < 0 || std::abs(dv) < std::abs(dn))) {
+        next = nb;
+        dn = dv;
+      }
+    }
+    if (next < 0) break;
+    prev = cur;
+    cur = next;
+    dc = dn;
+  }
+  return cur;
+}
+
+// The extension for feature lines within a slice plane: the curvature across the feature at the
+// neighbours of i nearest to +t and -t agrees with i's in sign and within delta.
+bool continuous_along_line(const Eigen::Matrix3Xd& positions, const MeshAdjacency& adj, const PrincipalCurvatures& c,
+                           Index i, const DetectionOptions& options) {
+  const bool min_is_t = std::abs(c.kappa_min[i]) <= std::abs(c.kappa_max[i]);
+  const Eigen::Vector3d t = min_is_t ? c.direction_min.col(i) : c.direction_max.col(i);
+  const double ki = min_is_t ? c.kappa_max[i] : c.kappa_min[i];
+  if (!(t.squaredNorm() > 0.5) || !std::isfinite(ki) || ki == 0.0) return false;
+  const double delta = options.delta.value_or(options.delta_factor * std::abs(ki));
+  for (const double side : {-1.0, 1.0}) {
+    Index best = -1;
+    double best_cos = 0.8;  // within about 37 degrees of the feature direction
+    for (Index j : adj.ring(i)) {
+      const Eigen::Vector3d e = positions.col(j) - positions.col(i);
+      const double len = e.norm();
+      if (!(len > 0.0)) continue;
+      const double cosine = side * e.dot(t) / len;
+      if (cosine > best_cos) {
+        best_cos = cosine;
+        best = j;
+      }
+    }
+    if (best < 0 || c.umbilic[best]) return false;
+    const double kj = std::abs(c.kappa_min[best]) <= std::abs(c.kappa_max[best]) ? c.kappa_max[best] : c.kappa_min[best];
+    if (!(ki * kj > 0.0 && std::abs(ki - kj) < delta)) return false;
+  }
+  return true;
+}
+
 // Umbilic candidates vote with their neighbours, in index order (eq. 8); then the label counts.
 void vote_corners(const Eigen::Matrix3Xd& positions, const MeshAdjacency& adj, const std::vector<Index>& umbilic_candidates,
                   FeatureDetection& out) {
@@ -260,12 +316,19 @@ FeatureDetection detect_features(const Mesh& mesh, const MeshAdjacency& adj, con
     if (!(out.umbrella[i] > out.gamma)) continue;
     ++out.candidates;
     const std::int32_t s = mesh.slice_ids[i];
-    if (s == kNoId) {
-      out.labels[i] = VertexLabel::Noise;  // off the slices: no contour to be continuous with
-      continue;
-    }
     if (out.curvature.umbilic[i]) {
       umbilic_candidates.push_back(i);
+      continue;
+    }
+    const bool min_is_t_here = std::abs(out.curvature.kappa_min[i]) <= std::abs(out.curvature.kappa_max[i]);
+    const Eigen::Vector3d across_here =
+        min_is_t_here ? out.curvature.direction_max.col(i) : out.curvature.direction_min.col(i);
+    if (s == kNoId || Eigen::Vector2d(across_here.dot(e1), across_here.dot(e2)).norm() <= 0.1) {
+      // Off the slices, or a feature line within a slice plane: the paper's blind spot.
+      out.labels[i] = options.in_slice == InSliceFeatures::AlongFeatureLine &&
+                              continuous_along_line(positions, adj, out.curvature, i, options)
+                          ? VertexLabel::Edge
+                          : VertexLabel::Noise;
       continue;
     }
     const PlaneFrame& own_plane = planes[s];
@@ -298,13 +361,19 @@ FeatureDetection detect_features(const Mesh& mesh, const MeshAdjacency& adj, con
       }
       if (anchor < 0) continue;  // no adjacent contour on this side (end slice, or a branching copy)
       const PlaneFrame& plane = planes[target];
+      const Eigen::Vector2d n2 = plane.project_direction(across);
+      const bool crosses = n2.norm() > 0.1;  // S crosses the slice plane (is not parallel to it)
+      // S = {p : across . (p - v_i) = 0}; within this slice plane (p = origin + X e1 + Y e2) that is
+      // the line n2 . (X, Y) = across . (v_i - origin), which includes the offset along the slice axis.
+      const double d = across.dot(positions.col(i) - plane.origin);
+      // A feature line that runs obliquely to the slices meets the adjacent contour away from v_i's
+      // nearest neighbour there: centre the window where that contour crosses S.
+      if (crosses) anchor = walk_to_plane(contour, anchor, [&](Index v) { return n2.dot(plane.project(positions.col(v))) - d; });
       const CurveFit curve = curve_around(anchor, plane);
       if (!curve.ok) continue;
       ++sides;
-      const Eigen::Vector2d n2 = plane.project_direction(across);
       double k = kNaN;
-      if (n2.norm() > 0.1) {  // S crosses the slice plane (not parallel to it)
-        const double d = n2.dot(plane.project(positions.col(i)));
+      if (crosses) {
         if (const auto X = intersect(curve, n2, d, plane.project(positions.col(i)))) k = curve.curvature(*X);
       }
       (side < 0 ? out.k_below : out.k_above)[i] = k;

@@ -10,14 +10,22 @@
 
 namespace contourmesh::cli {
 
-void add_feature_options(CLI::App* cmd, FeatureArgs& args) {
+void add_detection_options(CLI::App* cmd, FeatureArgs& args) {
   cmd->add_option("--gamma", args.gamma, "Umbrella threshold in mm (default: 2 x mean over contour vertices)");
   cmd->add_option("--delta", args.delta, "Curvature agreement threshold, 1/mm (default: 0.5 x |k0|)");
   cmd->add_option("--measure", args.measure, "Umbrella measure: length (|U|, the paper) | normal (|U.n|)")
       ->capture_default_str();
   cmd->add_option("--prefilter", args.prefilter, "Taubin iterations on a copy used for detection only (>= 0)")
       ->capture_default_str();
+  cmd->add_option("--in-slice", args.in_slice,
+                  "Feature lines within a slice plane (cap rims): noise (the paper's rule) | along-line "
+                  "(continuity along the line itself)")
+      ->capture_default_str();
   cmd->add_option("--window", args.window, "Contour vertices per curve fit (odd, >= 5)")->capture_default_str();
+}
+
+void add_feature_options(CLI::App* cmd, FeatureArgs& args) {
+  add_detection_options(cmd, args);
   cmd->add_option("--slice-axis", args.slice_axis,
                   "x | y | z: recover missing contour ids by binning vertices along this axis");
 }
@@ -29,6 +37,9 @@ DetectionOptions detection_options(const FeatureArgs& a) {
   if (a.measure == "length") o.measure = UmbrellaMeasure::Length;
   else if (a.measure == "normal") o.measure = UmbrellaMeasure::NormalComponent;
   else throw InvalidInputError("--measure must be length or normal, got '" + a.measure + "'");
+  if (a.in_slice == "noise") o.in_slice = InSliceFeatures::Noise;
+  else if (a.in_slice == "along-line") o.in_slice = InSliceFeatures::AlongFeatureLine;
+  else throw InvalidInputError("--in-slice must be noise or along-line, got '" + a.in_slice + "'");
   o.prefilter_iterations = a.prefilter;
   o.window = a.window;
   return o;

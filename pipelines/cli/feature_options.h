@@ -20,12 +20,15 @@ struct FeatureArgs {
   std::optional<double> gamma;
   std::optional<double> delta;
   std::string measure = "length";
+  std::string in_slice = "noise";
   int prefilter = 0;
   int window = 7;
   std::string slice_axis;  ///< "", "x", "y" or "z"
 };
 
-/// Registers --gamma, --delta, --measure, --prefilter, --window, --slice-axis.
+/// Registers --gamma, --delta, --measure, --in-slice, --prefilter, --window.
+void add_detection_options(CLI::App* cmd, FeatureArgs& args);
+/// The detection options and --slice-axis.
 void add_feature_options(CLI::App* command, FeatureArgs& args);
 
 /// Detection options from the arguments (throws InvalidInputError for a bad --measure).

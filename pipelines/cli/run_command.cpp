@@ -2,6 +2,7 @@
 // smooth -> export. With no input it runs on a built-in phantom with noise, and reports accuracy
 // against the phantom's analytic surface.
 #include "cli_common.h"
+#include "feature_options.h"
 
 #include <pipelines/mesh_io.h>
 #include <reconstruct/phantom.h>
@@ -41,6 +42,7 @@ struct RunArgs {
   double feature_radius = 2.0;
   std::string end_caps = "half-spacing";
   bool json = false;
+  FeatureArgs detection;
 };
 
 int run_run(const RunArgs& a) {
@@ -93,6 +95,7 @@ int run_run(const RunArgs& a) {
   std::optional<FeatureSmoothingResult> paper;
   if (a.method == "paper") {
     FeatureSmoothingOptions o;
+    o.detection = detection_options(a.detection);
     if (a.iterations) o.iterations = *a.iterations;
     paper = feature_preserving_smooth(mesh, o);
     result = paper->mesh;
@@ -215,6 +218,7 @@ void add_run_command(CLI::App& app) {
   cmd->add_option("--feature-radius", args->feature_radius,
                   "Phantom: vertices this close to a sharp edge form the feature region, mm")
       ->capture_default_str();
+  add_detection_options(cmd, args->detection);
   cmd->add_flag("--json", args->json, "Print one JSON object on stdout instead of the summary");
   cmd->callback([args] { set_exit_code(run_guarded("run", [&] { return run_run(*args); })); });
 }

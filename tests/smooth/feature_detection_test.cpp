@@ -6,6 +6,8 @@
 
 #include <gtest/gtest.h>
 
+#include <Eigen/Geometry>
+
 #include <cmath>
 #include <numbers>
 
@@ -60,6 +62,63 @@ TEST(FeatureDetection, RidgeAcrossSlicesIsEdgeAndSingleContourSpikesAreNoise) {
   EXPECT_GT(d.k0[tip], 0.0);
   EXPECT_NEAR(d.k_below[tip] / d.k0[tip], 1.0, 0.5);
   EXPECT_NEAR(d.k_above[tip] / d.k0[tip], 1.0, 0.5);
+}
+
+// A ridge that winds around the prism (each slice turned by 7 degrees, so the ridge crosses the slices
+// at about 40 degrees) meets the adjacent contours 2.5 mm from v_i's neighbours there: the curve
+// fits must be centred where those contours cross S, not on the neighbours.
+TEST(FeatureDetection, RidgeObliqueToTheSlicesIsEdge) {
+  const ContourStackSpec spec = ridge_spec();
+  Mesh m = make_contour_stack(spec);
+  const double turn_per_mm = 0.125 / spec.slice_spacing;  // radians per mm along z
+  for (Index i = 0; i < m.num_vertices(); ++i) {
+    const double a = turn_per_mm * m.positions(2, i);
+    const Eigen::Vector2d p = m.positions.col(i).head<2>();
+    m.positions.col(i).head<2>() = Eigen::Rotation2Dd(a) * p;
+  }
+  const MeshAdjacency adj = build_adjacency(m);
+  const FeatureDetection d = detect_features(m, adj);
+  const int P = spec.points_per_contour;
+  int ridge_edges = 0, ridge_total = 0;
+  for (int k = 2; k < spec.slices - 2; ++k) {
+    ++ridge_total;
+    ridge_edges += d.labels[k * P] == VertexLabel::Edge;
+  }
+  EXPECT_GE(ridge_edges, 0.9 * ridge_total) << ridge_edges << " of " << ridge_total;
+}
+
+// The rims of the end caps are sharp feature lines within slice planes: the paper's rule calls them
+// noise (its blind spot) unless an umbilic neighbour's vote makes them corners; the along-the-line
+// extension finds them as edges, and still calls spikes noise.
+TEST(FeatureDetection, InSliceExtensionFindsCapRimsAndKeepsSpikesNoise) {
+  const ContourStackSpec spec = ridge_spec();
+  Mesh m = make_contour_stack(spec);
+  const int P = spec.points_per_contour;
+  std::vector<Index> spikes;
+  for (int k = 4; k <= 19; k += 5) {
+    const Index v = k * P + 90;
+    m.positions.col(v).head<2>() += 1.0 * m.positions.col(v).head<2>().normalized();
+    spikes.push_back(v);
+  }
+  const MeshAdjacency adj = build_adjacency(m);
+  const Index rim_begin = static_cast<Index>(spec.slices) * P;  // the end-cap copies follow the slices
+  // Rim vertices next to the ear-clipped caps' long chords often fit as umbilic; they then join the
+  // feature by the Psi vote (corner), which subdivides them just the same.
+  auto rim_features = [&](const FeatureDetection& d) {
+    int features = 0;
+    for (Index v = rim_begin; v < m.num_vertices(); ++v) {
+      features += d.labels[v] == VertexLabel::Edge || d.labels[v] == VertexLabel::Corner;
+    }
+    return features;
+  };
+  const FeatureDetection paper = detect_features(m, adj);
+  const int rim = static_cast<int>(m.num_vertices() - rim_begin);
+  DetectionOptions o;
+  o.in_slice = InSliceFeatures::AlongFeatureLine;
+  const FeatureDetection extended = detect_features(m, adj, o);
+  EXPECT_GE(rim_features(extended), 0.8 * rim) << rim_features(extended) << " of " << rim;
+  EXPECT_GT(rim_features(extended), rim_features(paper) + rim / 10);
+  for (Index v : spikes) EXPECT_EQ(extended.labels[v], VertexLabel::Noise) << "spike " << v;
 }
 
 TEST(FeatureDetection, RequiresContourIds) {

@@ -44,6 +44,20 @@ enum class DetectionMode {
   CurvatureOnly,
 };
 
+/// What happens to a candidate whose feature line runs within a slice plane (S parallel to the
+/// slices), or that lies off the slices (end-cap rims, branching copies): the paper's blind spot
+/// (SPEC 3.3).
+enum class InSliceFeatures {
+  /// The paper's rule (default): no continuity across contours can be shown, so the vertex is noise.
+  Noise,
+  /// Extension: continuity along the feature line itself. The vertex is an edge when the curvature
+  /// across the feature (the principal curvature with the larger |kappa|) of its two neighbours
+  /// nearest to the feature direction, one on each side, agrees with its own in sign and within delta.
+  /// Finds cap rims and ridges parallel to the slices, but cannot tell them from a whole contour
+  /// segmented too large or too small (that also looks continuous along the contour).
+  AlongFeatureLine,
+};
+
 struct DetectionOptions {
   DetectionMode mode = DetectionMode::ContourContinuity;
   /// CurvatureOnly: minimum ratio |kappa_large| / |kappa_small| of an edge, > 1.
@@ -56,6 +70,7 @@ struct DetectionOptions {
   /// Curvatures agree when |k0 - k| < delta. Unset: delta_factor * |k0| (scale-free).
   std::optional<double> delta;
   double delta_factor = 0.5;
+  InSliceFeatures in_slice = InSliceFeatures::Noise;
   /// Consecutive contour vertices in each curve fit (odd, >= 5; SPEC default 7).
   int window = 7;
   /// Taubin lambda|mu iterations applied to a copy used for detection only (paper section 5), >= 0.
