@@ -1,5 +1,6 @@
 // contourmesh detect IN -o labels.vtp: the paper's feature detection alone (Algorithm 2).
 #include "cli_common.h"
+#include "progress_display.h"
 #include "feature_options.h"
 
 #include <pipelines/mesh_io.h>
@@ -24,9 +25,11 @@ struct DetectArgs {
   std::string slice_array = "ContourId";
   std::string contour_array = "ContourIndex";
   bool json = false;
+  CommonArgs common;
 };
 
 int run_detect(const DetectArgs& a) {
+  apply_common_options(a.common);
   const auto start = std::chrono::steady_clock::now();
   if (!format_keeps_contour_ids(format_from_extension(a.output))) {
     throw InvalidInputError(a.output + ": labels need a .vtp or .ply file");
@@ -64,6 +67,7 @@ int run_detect(const DetectArgs& a) {
     print_json(j);
     return kOk;
   }
+  if (a.common.quiet) return kOk;
   std::cout << std::setprecision(4) << "detected features on " << a.input << " (" << mesh.num_vertices()
             << " vertices, ids: " << id_source << ")\n"
             << "  " << d.candidates << " candidates above gamma " << d.gamma << " mm: " << d.edges << " edge, "
@@ -86,6 +90,7 @@ void add_detect_command(CLI::App& app) {
   cmd->add_option("--contour-array", args->contour_array, "Point array holding the contour index within a slice")
       ->capture_default_str();
   cmd->add_flag("--json", args->json, "Print one JSON object on stdout instead of the summary");
+  add_common_options(cmd, args->common);
   cmd->callback([args] { set_exit_code(run_guarded("detect", [&] { return run_detect(*args); })); });
 }
 

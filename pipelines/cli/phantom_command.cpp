@@ -1,6 +1,7 @@
 // contourmesh phantom --shape NAME -o vol.mha: writes a synthetic CT volume of a built-in phantom
 // (SPEC 4) with partial-volume effect, blur and noise.
 #include "cli_common.h"
+#include "progress_display.h"
 
 #include <reconstruct/phantom.h>
 #include <reconstruct/volume.h>
@@ -36,6 +37,7 @@ struct PhantomArgs {
   std::uint64_t seed = 1;
   double margin = PhantomVolumeOptions{}.margin;
   bool json = false;
+  CommonArgs common;
 };
 
 // Fails before the rendering work when the output cannot be written: the formats write_volume knows
@@ -57,6 +59,7 @@ void check_output(const std::string& output) {
 nlohmann::json to_json(const Eigen::Vector3d& v) { return nlohmann::json::array({v.x(), v.y(), v.z()}); }
 
 int run_phantom(const PhantomArgs& a) {
+  apply_common_options(a.common);
   const auto start = std::chrono::steady_clock::now();
   const PhantomShape shape = parse_phantom_shape(a.shape);
   PhantomVolumeOptions options;
@@ -99,6 +102,7 @@ int run_phantom(const PhantomArgs& a) {
     j["seconds"] = seconds_since(start);
     print_json(j);
   } else {
+    if (a.common.quiet) return kOk;
     std::cout << std::setprecision(6) << "phantom " << to_string(shape) << ": " << size[0] << " x " << size[1] << " x "
               << size[2] << " voxels of " << options.spacing.x() << " x " << options.spacing.y() << " x "
               << options.spacing.z() << " mm, noise " << options.noise << " HU, blur " << options.blur << " mm, seed "
@@ -136,6 +140,7 @@ void add_phantom_command(CLI::App& app) {
   cmd->add_option("--margin", args->margin, "Soft tissue around the solid's bounding box, in mm (>= 0)")
       ->capture_default_str();
   cmd->add_flag("--json", args->json, "Print one JSON object on stdout instead of the summary");
+  add_common_options(cmd, args->common);
   cmd->callback([args] { set_exit_code(run_guarded("phantom", [&] { return run_phantom(*args); })); });
 }
 

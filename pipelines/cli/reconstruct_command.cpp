@@ -1,5 +1,6 @@
 // contourmesh reconstruct IN -o mesh.vtp: CT volume (file or DICOM directory) -> contours -> tiled mesh.
 #include "cli_common.h"
+#include "progress_display.h"
 
 #include <pipelines/mesh_io.h>
 #include <reconstruct/reconstruction.h>
@@ -31,6 +32,7 @@ struct ReconstructArgs {
   std::string end_caps = "half-spacing";
   std::string format = "auto";
   bool json = false;
+  CommonArgs common;
 };
 
 ImageSmoothing parse_smoothing(const std::string& s) {
@@ -60,14 +62,19 @@ int run_reconstruct(const ReconstructArgs& a) {
   write_options.format = parse_mesh_format(a.format);
   if (write_options.format == MeshFormat::Auto) (void)format_from_extension(a.output);  // fail before the work
 
+  apply_common_options(a.common);
+  ProgressDisplay progress("reconstruct", a.common.quiet);
+  progress.stage("read");
   const CtImage::Pointer image = read_volume(a.input);
   Reconstruction r;
   try {
-    r = reconstruct(*image, options);
+    r = reconstruct(*image, options, progress.callback());
   } catch (const InvalidInputError& e) {
     throw InvalidInputError(a.input + ": " + e.what());
   }
+  progress.stage("write");
   write_mesh(r.mesh, a.output, write_options);
+  progress.finish();
   const TopologySummary topo = summarize_topology(r.mesh);
   const double volume = enclosed_volume(r.mesh);
   const auto size = image->GetLargestPossibleRegion().GetSize();
@@ -101,6 +108,7 @@ int run_reconstruct(const ReconstructArgs& a) {
     print_json(j);
     return kOk;
   }
+  if (a.common.quiet) return kOk;
   std::cout << std::fixed << std::setprecision(2) << "reconstructed " << a.input << "\n"
             << "  volume     " << size[0] << " x " << size[1] << " x " << size[2] << " voxels, " << spacing[0] << " x "
             << spacing[1] << " x " << spacing[2] << " mm, threshold " << r.report.threshold << "\n"
@@ -139,6 +147,7 @@ void add_reconstruct_command(CLI::App& app) {
   cmd->add_option("--format", args->format, "Output format: auto | stl | stl-ascii | ply | vtp | obj")
       ->capture_default_str();
   cmd->add_flag("--json", args->json, "Print one JSON object on stdout instead of the summary");
+  add_common_options(cmd, args->common);
   cmd->callback([args] { set_exit_code(run_guarded("reconstruct", [&] { return run_reconstruct(*args); })); });
 }
 

@@ -3,6 +3,7 @@
 // against the phantom's analytic surface.
 #include "cli_common.h"
 #include "feature_options.h"
+#include "progress_display.h"
 
 #include <pipelines/mesh_io.h>
 #include <reconstruct/phantom.h>
@@ -43,6 +44,7 @@ struct RunArgs {
   std::string end_caps = "half-spacing";
   bool json = false;
   FeatureArgs detection;
+  CommonArgs common;
 };
 
 int run_run(const RunArgs& a) {
@@ -50,12 +52,15 @@ int run_run(const RunArgs& a) {
   const SmoothingMethod baseline = a.method == "paper" ? SmoothingMethod::None : parse_smoothing_method(a.method);
   (void)format_from_extension(a.output);  // fail before the work
   if (!(a.feature_radius > 0.0)) throw InvalidInputError("--feature-radius must be > 0 mm");
+  apply_common_options(a.common);
+  ProgressDisplay progress("run", a.common.quiet);
 
   // 1. Read or generate the volume.
   auto t = std::chrono::steady_clock::now();
   std::optional<Phantom> phantom;
   CtImage::Pointer image;
   std::string source;
+  progress.stage(a.input.empty() ? "phantom" : "read");
   if (a.input.empty()) {
     phantom = make_phantom(parse_phantom_shape(a.shape));
     PhantomVolumeOptions vo;
@@ -83,7 +88,7 @@ int run_run(const RunArgs& a) {
       a.threshold.value_or(phantom ? 0.5 * (phantom_defaults.bone_hu + phantom_defaults.tissue_hu) : 300.0);
   Reconstruction rec;
   try {
-    rec = reconstruct(*image, ro);
+    rec = reconstruct(*image, ro, progress.callback());
   } catch (const InvalidInputError& e) {
     throw InvalidInputError(source + ": " + e.what());
   }
@@ -96,12 +101,14 @@ int run_run(const RunArgs& a) {
   if (a.method == "paper") {
     FeatureSmoothingOptions o;
     o.detection = detection_options(a.detection);
+    o.progress = progress.callback();
     if (a.iterations) o.iterations = *a.iterations;
     paper = feature_preserving_smooth(mesh, o);
     result = paper->mesh;
   } else {
     SmoothingOptions o;
     o.method = baseline;
+    o.progress = progress.callback();
     if (a.iterations) o.iterations = *a.iterations;
     result.positions = smooth(mesh, o);
   }
@@ -111,7 +118,9 @@ int run_run(const RunArgs& a) {
   t = std::chrono::steady_clock::now();
   const std::filesystem::path out(a.output);
   if (!out.parent_path().empty()) std::filesystem::create_directories(out.parent_path());
+  progress.stage("write");
   write_mesh(result, out);
+  progress.finish();
   const double seconds_write = seconds_since(t);
 
   const TopologySummary topo = summarize_topology(result);
@@ -168,6 +177,7 @@ int run_run(const RunArgs& a) {
     print_json(j);
     return kOk;
   }
+  if (a.common.quiet) return kOk;
   std::cout << std::fixed << std::setprecision(3) << "ContourMesh: " << source << "\n"
             << "  volume      " << image->GetLargestPossibleRegion().GetSize() << " voxels, threshold "
             << rec.report.threshold << " HU\n"
@@ -219,6 +229,7 @@ void add_run_command(CLI::App& app) {
                   "Phantom: vertices this close to a sharp edge form the feature region, mm")
       ->capture_default_str();
   add_detection_options(cmd, args->detection);
+  add_common_options(cmd, args->common);
   cmd->add_flag("--json", args->json, "Print one JSON object on stdout instead of the summary");
   cmd->callback([args] { set_exit_code(run_guarded("run", [&] { return run_run(*args); })); });
 }

@@ -1,5 +1,6 @@
 // contourmesh smooth IN -o OUT --method ...: the paper's method or a baseline smoother on a mesh file.
 #include "cli_common.h"
+#include "progress_display.h"
 #include "feature_options.h"
 
 #include <pipelines/mesh_io.h>
@@ -40,6 +41,7 @@ struct SmoothArgs {
   bool keep_adaptive = false;
   std::string labels_out;
   bool json = false;
+  CommonArgs common;
 };
 
 int run_smooth(const SmoothArgs& a) {
@@ -62,6 +64,10 @@ int run_smooth(const SmoothArgs& a) {
     }
   }
   if (a.keep_adaptive && !paper) throw InvalidInputError("--keep-adaptive needs --method paper");
+  apply_common_options(a.common);
+  ProgressDisplay progress("smooth", a.common.quiet);
+
+  progress.stage("read");
 
   Mesh mesh = read_mesh(a.input, read_options);
   check_mesh(mesh, a.input, "smooth");
@@ -87,6 +93,7 @@ int run_smooth(const SmoothArgs& a) {
     o.mu = a.mu;
     o.boundary = boundary;
     o.output = a.keep_adaptive ? OutputResolution::Adaptive : OutputResolution::Original;
+    o.progress = progress.callback();
     const FeatureSmoothingResult r = feature_preserving_smooth(mesh, o);
     result = r.mesh;
     iterations = o.iterations;
@@ -128,6 +135,7 @@ int run_smooth(const SmoothArgs& a) {
     options.mu = a.mu;
     options.beta = a.beta;
     options.boundary = boundary;
+    options.progress = progress.callback();
     const auto t = std::chrono::steady_clock::now();
     result = mesh;
     result.positions = smooth(mesh, adjacency, options);
@@ -136,7 +144,9 @@ int run_smooth(const SmoothArgs& a) {
     lambda = options.lambda.value_or(default_lambda(options.method));
     j["seconds_smooth"] = smooth_seconds;
   }
+  progress.stage("write");
   write_mesh(result, a.output, write_options);
+  progress.finish();
 
   const double volume_after = enclosed_volume(result);
   if (a.json) {
@@ -160,6 +170,7 @@ int run_smooth(const SmoothArgs& a) {
     print_json(j);
     return kOk;
   }
+  if (a.common.quiet) return kOk;
   std::cout << std::setprecision(6) << "smoothed " << a.input << " (" << mesh.num_vertices() << " vertices, "
             << mesh.num_faces() << " triangles" << (mesh.has_contour_ids() ? ", with contour ids" : "") << ")\n"
             << "  method    " << a.method << ", " << iterations << " iterations, lambda " << lambda << " in "
@@ -206,6 +217,7 @@ void add_smooth_command(CLI::App& app) {
   cmd->add_option("--contour-array", args->contour_array, "Point array holding the contour index within a slice")
       ->capture_default_str();
   cmd->add_flag("--json", args->json, "Print one JSON object on stdout instead of the summary");
+  add_common_options(cmd, args->common);
   cmd->callback([args] { set_exit_code(run_guarded("smooth", [&] { return run_smooth(*args); })); });
 }
 

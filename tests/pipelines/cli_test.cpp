@@ -9,6 +9,8 @@
 #include <sys/wait.h>
 
 #include <array>
+#include <map>
+#include <vector>
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
@@ -243,6 +245,51 @@ TEST_F(Cli, RunOnARealScan) {
   EXPECT_TRUE(j["is_manifold"].get<bool>());
   EXPECT_FALSE(j.contains("rms_distance_after"));  // no truth for a real scan
   EXPECT_TRUE(fs::exists(out));
+}
+
+// Off a terminal (here stderr is a file) progress is one line per finished stage; --quiet silences it
+// and the summary; --threads is validated.
+TEST_F(Cli, ProgressIsOneLinePerStageOffATerminalAndQuietSilencesIt) {
+  const fs::path out = dir_ / "femur.stl";
+  const std::string coarse = " --spacing 1.4,1.4,3 -o " + out.string();
+  const CliRun r = run_cli("run" + coarse, dir_);
+  ASSERT_EQ(r.code, 0) << r.err;
+  for (const char* stage : {"phantom", "segment", "tile", "detect", "subdivide", "smooth", "write"}) {
+    EXPECT_NE(r.err.find(std::string("contourmesh run: ") + stage), std::string::npos) << stage << " in\n" << r.err;
+  }
+  EXPECT_EQ(r.err.find('\r'), std::string::npos) << "no bar redraws off a terminal";
+  EXPECT_NE(r.out.find("wrote"), std::string::npos);
+
+  const CliRun quiet = run_cli("run --quiet --threads 1" + coarse, dir_);
+  ASSERT_EQ(quiet.code, 0) << quiet.err;
+  EXPECT_EQ(quiet.err, "");
+  EXPECT_EQ(quiet.out, "");
+  EXPECT_TRUE(fs::exists(out));
+
+  const CliRun bad = run_cli("run --threads -2" + coarse, dir_);
+  EXPECT_EQ(bad.code, 2);
+  EXPECT_NE(bad.err.find("--threads"), std::string::npos) << bad.err;
+}
+
+// Every subcommand's --help lists each of its options, and --version names the program.
+TEST_F(Cli, HelpListsEveryOptionOfEverySubcommand) {
+  const std::map<std::string, std::vector<std::string>> options = {
+      {"phantom", {"--shape", "--spacing", "--noise", "--blur", "--seed", "--json"}},
+      {"reconstruct", {"--threshold", "--otsu", "--end-caps", "--keep", "--fill-holes", "--json", "--quiet", "--threads"}},
+      {"detect", {"--gamma", "--delta", "--measure", "--in-slice", "--prefilter", "--window", "--slice-axis", "--json"}},
+      {"smooth", {"--method", "--iterations", "--gamma", "--delta", "--max-levels", "--keep-adaptive", "--labels-out",
+                  "--in-slice", "--json", "--quiet", "--threads"}},
+      {"run", {"--shape", "--noise", "--method", "--iterations", "--threshold", "--end-caps", "--in-slice", "--measure",
+               "--json", "--quiet", "--threads"}},
+  };
+  for (const auto& [command, names] : options) {
+    const CliRun r = run_cli(command + " --help", dir_);
+    EXPECT_EQ(r.code, 0) << command;
+    for (const std::string& name : names) EXPECT_NE(r.out.find(name), std::string::npos) << command << " " << name;
+  }
+  const CliRun v = run_cli("--version", dir_);
+  EXPECT_EQ(v.code, 0);
+  EXPECT_NE(v.out.find("contourmesh "), std::string::npos) << v.out;
 }
 
 }  // namespace

@@ -1,0 +1,83 @@
+#include "progress_display.h"
+
+#include <smooth/errors.h>
+
+#include <CLI/CLI.hpp>
+#include <itkMultiThreaderBase.h>
+
+#include <unistd.h>
+
+#include <algorithm>
+#include <cstdio>
+#include <iostream>
+
+namespace contourmesh::cli {
+
+void add_common_options(CLI::App* command, CommonArgs& args) {
+  command->add_flag("-q,--quiet", args.quiet, "No progress and no summary; errors are still printed");
+  command->add_option("--threads", args.threads, "Worker threads for the ITK stages (read, segment; 0: every core)")
+      ->capture_default_str();
+}
+
+void apply_common_options(const CommonArgs& args) {
+  if (args.threads < 0) throw InvalidInputError("--threads must be >= 0, got " + std::to_string(args.threads));
+  if (args.threads > 0) {
+    itk::MultiThreaderBase::SetGlobalDefaultNumberOfThreads(static_cast<itk::ThreadIdType>(args.threads));
+  }
+}
+
+ProgressDisplay::ProgressDisplay(std::string command, bool quiet)
+    : command_(std::move(command)), quiet_(quiet), terminal_(isatty(fileno(stderr)) != 0) {}
+
+ProgressDisplay::~ProgressDisplay() {
+  // A stage interrupted by an error is left without its "done" line; the error message follows.
+  if (terminal_ && !quiet_ && !stage_.empty()) std::cerr << "\n";
+}
+
+void ProgressDisplay::stage(std::string_view name) {
+  finish();
+  stage_ = name;
+  stage_start_ = std::chrono::steady_clock::now();
+  last_draw_ = {};
+  draw(0.0, true);
+}
+
+ProgressCallback ProgressDisplay::callback() {
+  return [this](std::string_view name, double fraction) {
+    if (name != stage_) stage(name);
+    draw(fraction, false);
+    return true;
+  };
+}
+
+void ProgressDisplay::finish() {
+  if (stage_.empty()) return;
+  const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - stage_start_).count();
+  if (!quiet_) {
+    char line[160];
+    std::snprintf(line, sizeof line, "%-12s done in %.2f s", stage_.c_str(), seconds);
+    if (terminal_) {
+      std::cerr << "\r" << line << "\x1b[K\n";
+    } else {
+      std::cerr << "contourmesh " << command_ << ": " << line << "\n";
+    }
+  }
+  stage_.clear();
+}
+
+void ProgressDisplay::draw(double fraction, bool force) {
+  if (quiet_ || !terminal_) return;
+  const auto now = std::chrono::steady_clock::now();
+  if (!force && now - last_draw_ < std::chrono::milliseconds(100)) return;
+  last_draw_ = now;
+  constexpr int kWidth = 30;
+  const double f = std::clamp(fraction, 0.0, 1.0);
+  const int filled = static_cast<int>(f * kWidth + 0.5);
+  const double seconds = std::chrono::duration<double>(now - stage_start_).count();
+  char line[200];
+  std::snprintf(line, sizeof line, "%-12s [%s%s] %3d%%  %.1f s", stage_.c_str(), std::string(filled, '#').c_str(),
+                std::string(kWidth - filled, '.').c_str(), static_cast<int>(100 * f + 0.5), seconds);
+  std::cerr << "\r" << line << "\x1b[K" << std::flush;
+}
+
+}  // namespace contourmesh::cli

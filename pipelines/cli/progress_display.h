@@ -1,0 +1,57 @@
+// Options every subcommand shares (--quiet, --threads) and the progress display on stderr.
+#pragma once
+
+#include <smooth/progress.h>
+
+#include <chrono>
+#include <string>
+#include <string_view>
+
+namespace CLI {
+class App;
+}
+
+namespace contourmesh::cli {
+
+struct CommonArgs {
+  bool quiet = false;
+  int threads = 0;  ///< 0: every core
+};
+
+/// Registers --quiet / -q and --threads on a subcommand.
+void add_common_options(CLI::App* command, CommonArgs& args);
+
+/// Validates --threads (>= 0; InvalidInputError otherwise) and gives ITK that many worker
+/// threads. libsmooth itself is single-threaded.
+void apply_common_options(const CommonArgs& args);
+
+/// Stage-by-stage progress on stderr. On a terminal: one line redrawn in place with the stage name, a
+/// bar and the elapsed time. Otherwise (a pipe, a log file): one line per finished stage. Nothing with
+/// --quiet. Stages come from stage() or from the library's progress callback.
+class ProgressDisplay {
+ public:
+  ProgressDisplay(std::string command, bool quiet);
+  ~ProgressDisplay();
+  ProgressDisplay(const ProgressDisplay&) = delete;
+  ProgressDisplay& operator=(const ProgressDisplay&) = delete;
+
+  /// Ends the current stage (if any) and starts `name`.
+  void stage(std::string_view name);
+  /// A callback for library calls: switches stage when the name changes, draws the fraction. Never
+  /// cancels.
+  [[nodiscard]] ProgressCallback callback();
+  /// Ends the current stage.
+  void finish();
+
+ private:
+  void draw(double fraction, bool force);
+
+  std::string command_;
+  bool quiet_;
+  bool terminal_;
+  std::string stage_;
+  std::chrono::steady_clock::time_point stage_start_{};
+  std::chrono::steady_clock::time_point last_draw_{};
+};
+
+}  // namespace contourmesh::cli
