@@ -4,8 +4,10 @@
 #
 # Inputs (-D): BUILD_DIR, SOURCE_DIR, WORK_DIR, GENERATOR, MAKE_PROGRAM, C_COMPILER, CXX_COMPILER, CONFIG,
 # and the build tree's BINDIR, LIBDIR, INCLUDEDIR (GNUInstallDirs, relative to the prefix).
-# WORK_DIR is wiped first. Sanitizer builds need nothing extra here: the installed package config adds
-# the sanitizer runtimes to the link interface of its libraries (cmake/ContourMeshConfig.cmake.in).
+# WORK_DIR is wiped first. Sanitizer builds (asan preset) need nothing extra here: the installed package
+# config puts -fsanitize=<list> in the compile and link interface of its targets, so the downstream
+# program is instrumented like the libraries it links (cmake/ContourMeshConfig.cmake.in says why that
+# is required), and it runs under the ASAN_OPTIONS / UBSAN_OPTIONS of the test environment.
 cmake_minimum_required(VERSION 3.25)
 
 foreach(var IN ITEMS BUILD_DIR SOURCE_DIR WORK_DIR GENERATOR CXX_COMPILER C_COMPILER BINDIR LIBDIR INCLUDEDIR)
