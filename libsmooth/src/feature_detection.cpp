@@ -157,13 +157,28 @@ Index walk_to_plane(const ContourNeighbours& contour, Index start, F&& signed_di
   return cur;
 }
 
+// At a non-umbilic vertex: t, the principal direction with the smaller |kappa| (the way a feature line
+// runs), the other principal direction (across the feature; the normal of the plane S), and the
+// curvature across the feature.
+struct FeatureDirections {
+  Eigen::Vector3d along, across;
+  double curvature_across;
+};
+
+FeatureDirections feature_directions(const PrincipalCurvatures& c, Index i) {
+  if (std::abs(c.kappa_min[i]) <= std::abs(c.kappa_max[i])) {
+    return {c.direction_min.col(i), c.direction_max.col(i), c.kappa_max[i]};
+  }
+  return {c.direction_max.col(i), c.direction_min.col(i), c.kappa_min[i]};
+}
+
 // The extension for feature lines within a slice plane: the curvature across the feature at the
 // neighbours of i nearest to +t and -t agrees with i's in sign and within delta.
 bool continuous_along_line(const Eigen::Matrix3Xd& positions, const MeshAdjacency& adj, const PrincipalCurvatures& c,
                            Index i, const DetectionOptions& options) {
-  const bool min_is_t = std::abs(c.kappa_min[i]) <= std::abs(c.kappa_max[i]);
-  const Eigen::Vector3d t = min_is_t ? c.direction_min.col(i) : c.direction_max.col(i);
-  const double ki = min_is_t ? c.kappa_max[i] : c.kappa_min[i];
+  const FeatureDirections f = feature_directions(c, i);
+  const Eigen::Vector3d& t = f.along;
+  const double ki = f.curvature_across;
   if (!(t.squaredNorm() > 0.5) || !std::isfinite(ki) || ki == 0.0) return false;
   const double delta = options.delta.value_or(options.delta_factor * std::abs(ki));
   for (const double side : {-1.0, 1.0}) {
@@ -180,7 +195,7 @@ bool continuous_along_line(const Eigen::Matrix3Xd& positions, const MeshAdjacenc
       }
     }
     if (best < 0 || c.umbilic[best]) return false;
-    const double kj = std::abs(c.kappa_min[best]) <= std::abs(c.kappa_max[best]) ? c.kappa_max[best] : c.kappa_min[best];
+    const double kj = feature_directions(c, best).curvature_across;
     if (!(ki * kj > 0.0 && std::abs(ki - kj) < delta)) return false;
   }
   return true;
@@ -320,10 +335,12 @@ FeatureDetection detect_features(const Mesh& mesh, const MeshAdjacency& adj, con
       umbilic_candidates.push_back(i);
       continue;
     }
-    const bool min_is_t_here = std::abs(out.curvature.kappa_min[i]) <= std::abs(out.curvature.kappa_max[i]);
-    const Eigen::Vector3d across_here =
-        min_is_t_here ? out.curvature.direction_max.col(i) : out.curvature.direction_min.col(i);
-    if (s == kNoId || Eigen::Vector2d(across_here.dot(e1), across_here.dot(e2)).norm() <= 0.1) {
+    // S contains t and n; its normal `across` is the other principal direction. Every slice plane
+    // shares the in-plane axes e1, e2, so n2, the normal of the line S cuts from a slice, is the same
+    // in all of them.
+    const Eigen::Vector3d across = feature_directions(out.curvature, i).across;
+    const Eigen::Vector2d n2(across.dot(e1), across.dot(e2));
+    if (s == kNoId || n2.norm() <= 0.1) {
       // Off the slices, or a feature line within a slice plane: the paper's blind spot.
       out.labels[i] = options.in_slice == InSliceFeatures::AlongFeatureLine &&
                               continuous_along_line(positions, adj, out.curvature, i, options)
@@ -340,9 +357,6 @@ FeatureDetection detect_features(const Mesh& mesh, const MeshAdjacency& adj, con
     const Eigen::Vector2d qi = own_plane.project(positions.col(i));
     const double k0 = own.curvature(own.x_of(qi));
     out.k0[i] = k0;
-    // S contains t (smaller |kappa|) and n; its normal is the other principal direction.
-    const bool min_is_t = std::abs(out.curvature.kappa_min[i]) <= std::abs(out.curvature.kappa_max[i]);
-    const Eigen::Vector3d across = min_is_t ? out.curvature.direction_max.col(i) : out.curvature.direction_min.col(i);
     const double delta = options.delta.value_or(options.delta_factor * std::abs(k0));
     bool edge = true;
     int sides = 0;
@@ -361,21 +375,17 @@ FeatureDetection detect_features(const Mesh& mesh, const MeshAdjacency& adj, con
       }
       if (anchor < 0) continue;  // no adjacent contour on this side (end slice, or a branching copy)
       const PlaneFrame& plane = planes[target];
-      const Eigen::Vector2d n2 = plane.project_direction(across);
-      const bool crosses = n2.norm() > 0.1;  // S crosses the slice plane (is not parallel to it)
       // S = {p : across . (p - v_i) = 0}; within this slice plane (p = origin + X e1 + Y e2) that is
       // the line n2 . (X, Y) = across . (v_i - origin), which includes the offset along the slice axis.
       const double d = across.dot(positions.col(i) - plane.origin);
       // A feature line that runs obliquely to the slices meets the adjacent contour away from v_i's
       // nearest neighbour there: centre the window where that contour crosses S.
-      if (crosses) anchor = walk_to_plane(contour, anchor, [&](Index v) { return n2.dot(plane.project(positions.col(v))) - d; });
+      anchor = walk_to_plane(contour, anchor, [&](Index v) { return n2.dot(plane.project(positions.col(v))) - d; });
       const CurveFit curve = curve_around(anchor, plane);
       if (!curve.ok) continue;
       ++sides;
       double k = kNaN;
-      if (crosses) {
-        if (const auto X = intersect(curve, n2, d, plane.project(positions.col(i)))) k = curve.curvature(*X);
-      }
+      if (const auto X = intersect(curve, n2, d, plane.project(positions.col(i)))) k = curve.curvature(*X);
       (side < 0 ? out.k_below : out.k_above)[i] = k;
       if (!(std::isfinite(k) && k0 * k > 0.0 && std::abs(k0 - k) < delta)) edge = false;
     }
