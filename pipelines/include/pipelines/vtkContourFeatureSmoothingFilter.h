@@ -1,0 +1,292 @@
+// vtkContourFeatureSmoothingFilter: the paper's feature-preserving smoothing (Xu et al. 2006,
+// libsmooth's feature_preserving_smooth) and the baseline smoothers (libsmooth's smooth) as a VTK filter,
+// for use inside larger VTK applications. Gives the same result as the library call and as
+// `contourmesh smooth` with the same options.
+#pragma once
+
+#include <vtkPolyDataAlgorithm.h>
+
+/// Smooths a triangle mesh whose points carry contour ids (SPEC 2): the slice index c(i) in the point
+/// array ContourIdArrayName (default "ContourId") and the contour within that slice in
+/// ContourIndexArrayName (default "ContourIndex"; absent means one contour per slice), the arrays
+/// vtkContourStackToSurfaceFilter and the contourmesh CLI write.
+///
+/// Input: vtkPolyData; polygons are triangulated, strips converted, vertices and lines dropped.
+/// Output: the smoothed triangles, with double-precision points, the id arrays (as vtkIntArray, kNoId =
+/// -1 off the slices), and with GenerateLabels the per-vertex vtkIntArray "FeatureLabel" (0 smooth,
+/// 1 edge, 2 corner, 3 noise; -1 for vertices that the adaptive mesh adds, see KeepAdaptiveMesh). At the
+/// original resolution the other point arrays of the input are passed through, except the normals
+/// attribute (stale after smoothing); cell data is not passed (triangulation may renumber cells).
+///
+/// Option values that "mean automatic" (NumberOfIterations -1, Lambda 0, Gamma and Delta < 0) take the
+/// paper's value, as the library's unset std::optional does. Setters clamp to the valid closed range;
+/// values at an open end of a range (Mu 0, GammaFactor 0, DeltaFactor 0, Anisotropy 1, Delta 0, an even
+/// Window) are rejected when the filter runs, like every other error: vtkErrorMacro naming the problem,
+/// an empty output, RequestData returns 0.
+///
+/// Contour ids are needed by the paper's detection (Method Paper, or GenerateLabels with any method).
+/// When ContourIdArrayName is missing: with SliceAxis set the ids are recovered by binning the vertices
+/// along that axis (libsmooth's assign_ids_by_slice_planes, an error when they do not lie on planes);
+/// otherwise DetectionMode decides: ContourContinuity (default) is an error, Automatic falls back to
+/// the curvature-only detection with a warning (what the CLI does), CurvatureOnly never needs ids.
+///
+/// Progress: UpdateProgress with detection in [0, 0.3], subdivision in [0.3, 0.4] and smoothing in
+/// [0.4, 1] for the paper's method (smoothing alone spans [0, 1] for a baseline), at most once per
+/// iteration. Cancellation: setting AbortExecute (for example from a vtkCommand::ProgressEvent observer)
+/// makes the library stop at its next progress report (vtkAlgorithm::CheckAbort on VTK >= 9.3). An
+/// aborted run is not an error: the output is left empty and RequestData returns 1, as VTK filters do
+/// when they abort. The pipeline then considers the (empty) output up to date: call Modified() before
+/// the next Update() to run again.
+class vtkContourFeatureSmoothingFilter : public vtkPolyDataAlgorithm {
+ public:
+  static vtkContourFeatureSmoothingFilter* New();
+  vtkTypeMacro(vtkContourFeatureSmoothingFilter, vtkPolyDataAlgorithm)  // no ";": the macro ends with "public:" (-Wpedantic)
+  void PrintSelf(ostream& os, vtkIndent indent) override;
+
+  enum MethodType {
+    METHOD_NONE = 0,                 ///< positions unchanged (with GenerateLabels: detection only)
+    METHOD_LAPLACIAN = 1,            ///< paper eq. 5
+    METHOD_TAUBIN = 2,               ///< Taubin lambda|mu, paper eq. 6
+    METHOD_MEAN_CURVATURE_FLOW = 3,  ///< explicit cotangent flow (Desbrun et al. 1999)
+    METHOD_MIN_DIST_FLOW = 4,        ///< Zhang & Fiume 2002
+    METHOD_PAPER = 5,                ///< Xu et al. 2006, Algorithm 1 (default)
+  };
+  enum DetectionModeType {
+    DETECTION_CONTOUR_CONTINUITY = 0,  ///< the paper's Algorithm 2; needs contour ids (default)
+    DETECTION_CURVATURE_ONLY = 1,      ///< anisotropy of the principal curvatures; needs no ids
+    DETECTION_AUTOMATIC = 2,           ///< contour continuity when ids are available, else curvature-only
+  };
+  enum UmbrellaMeasureType {
+    UMBRELLA_LENGTH = 0,            ///< |U|, the paper's choice (default)
+    UMBRELLA_NORMAL_COMPONENT = 1,  ///< |U . n|
+  };
+  enum TimeStepType {
+    TIME_STEP_RELATIVE_TO_MEAN_EDGE = 0,  ///< mean curvature flow: dt = lambda h^2 / 4 (default)
+    TIME_STEP_ABSOLUTE = 1,               ///< dt = lambda in squared length units
+  };
+  enum SliceAxisType {
+    SLICE_AXIS_NONE = -1,  ///< never recover missing ids (default)
+    SLICE_AXIS_X = 0,
+    SLICE_AXIS_Y = 1,
+    SLICE_AXIS_Z = 2,
+  };
+
+  ///@{
+  /// The smoother. Default METHOD_PAPER.
+  vtkSetClampMacro(Method, int, METHOD_NONE, METHOD_PAPER);
+  vtkGetMacro(Method, int);
+  void SetMethodToNone() { this->SetMethod(METHOD_NONE); }
+  void SetMethodToLaplacian() { this->SetMethod(METHOD_LAPLACIAN); }
+  void SetMethodToTaubin() { this->SetMethod(METHOD_TAUBIN); }
+  void SetMethodToMeanCurvatureFlow() { this->SetMethod(METHOD_MEAN_CURVATURE_FLOW); }
+  void SetMethodToMinDistFlow() { this->SetMethod(METHOD_MIN_DIST_FLOW); }
+  void SetMethodToPaper() { this->SetMethod(METHOD_PAPER); }
+  const char* GetMethodAsString();
+  ///@}
+
+  ///@{
+  /// Iterations, >= 0; -1 (default) = automatic: 40 for the paper's method, 20 for a baseline.
+  vtkSetClampMacro(NumberOfIterations, int, -1, VTK_INT_MAX);
+  vtkGetMacro(NumberOfIterations, int);
+  ///@}
+
+  ///@{
+  /// Step factor in (0, 1]; 0 (default) = the paper's value for the method (paper and Taubin 0.6307,
+  /// Laplacian 0.3, mean curvature flow 0.3, MIN-DIST 0.5; the paper's method with Laplacian diffusion
+  /// 0.3).
+  vtkSetClampMacro(Lambda, double, 0.0, 1.0);
+  vtkGetMacro(Lambda, double);
+  ///@}
+
+  ///@{
+  /// Taubin's shrink-compensating factor in [-1, 0) (default -0.6732; 0 is rejected when run). Used by
+  /// METHOD_TAUBIN and by the paper's method with Taubin diffusion.
+  vtkSetClampMacro(Mu, double, -1.0, 0.0);
+  vtkGetMacro(Mu, double);
+  ///@}
+
+  ///@{
+  /// MIN-DIST flow crease threshold on 1 - cos(dihedral angle), in [0, 2] (default 0.03).
+  vtkSetClampMacro(Beta, double, 0.0, 2.0);
+  vtkGetMacro(Beta, double);
+  ///@}
+
+  ///@{
+  /// Whether boundary vertices of an open mesh move (default Off: they stay fixed).
+  vtkSetMacro(BoundarySmoothing, vtkTypeBool);
+  vtkGetMacro(BoundarySmoothing, vtkTypeBool);
+  vtkBooleanMacro(BoundarySmoothing, vtkTypeBool);
+  ///@}
+
+  ///@{
+  /// How mean curvature flow turns Lambda into a time step (default relative to the mean edge).
+  vtkSetClampMacro(TimeStepMode, int, TIME_STEP_RELATIVE_TO_MEAN_EDGE, TIME_STEP_ABSOLUTE);
+  vtkGetMacro(TimeStepMode, int);
+  void SetTimeStepModeToRelativeToMeanEdge() { this->SetTimeStepMode(TIME_STEP_RELATIVE_TO_MEAN_EDGE); }
+  void SetTimeStepModeToAbsolute() { this->SetTimeStepMode(TIME_STEP_ABSOLUTE); }
+  ///@}
+
+  ///@{
+  /// Feature detection mode (see the class comment). Default DETECTION_CONTOUR_CONTINUITY.
+  vtkSetClampMacro(DetectionMode, int, DETECTION_CONTOUR_CONTINUITY, DETECTION_AUTOMATIC);
+  vtkGetMacro(DetectionMode, int);
+  void SetDetectionModeToContourContinuity() { this->SetDetectionMode(DETECTION_CONTOUR_CONTINUITY); }
+  void SetDetectionModeToCurvatureOnly() { this->SetDetectionMode(DETECTION_CURVATURE_ONLY); }
+  void SetDetectionModeToAutomatic() { this->SetDetectionMode(DETECTION_AUTOMATIC); }
+  const char* GetDetectionModeAsString();
+  ///@}
+
+  ///@{
+  /// Curvature-only detection: minimum ratio |kappa_large| / |kappa_small| of an edge, > 1 (default 3).
+  vtkSetClampMacro(Anisotropy, double, 1.0, VTK_DOUBLE_MAX);
+  vtkGetMacro(Anisotropy, double);
+  ///@}
+
+  ///@{
+  /// Threshold on the umbrella measure, length units, >= 0. Negative (default -1) = automatic:
+  /// GammaFactor times its mean over the contour vertices.
+  vtkSetClampMacro(Gamma, double, -1.0, VTK_DOUBLE_MAX);
+  vtkGetMacro(Gamma, double);
+  void SetGammaToAutomatic() { this->SetGamma(-1.0); }
+  vtkSetClampMacro(GammaFactor, double, 0.0, VTK_DOUBLE_MAX);
+  vtkGetMacro(GammaFactor, double);
+  ///@}
+
+  ///@{
+  /// Which size of the umbrella U(v) is compared with Gamma (default UMBRELLA_LENGTH).
+  vtkSetClampMacro(UmbrellaMeasure, int, UMBRELLA_LENGTH, UMBRELLA_NORMAL_COMPONENT);
+  vtkGetMacro(UmbrellaMeasure, int);
+  void SetUmbrellaMeasureToLength() { this->SetUmbrellaMeasure(UMBRELLA_LENGTH); }
+  void SetUmbrellaMeasureToNormalComponent() { this->SetUmbrellaMeasure(UMBRELLA_NORMAL_COMPONENT); }
+  ///@}
+
+  ///@{
+  /// Contour curvatures agree when |k0 - k| < Delta (1 / length, > 0). Negative (default -1) =
+  /// automatic: DeltaFactor times |k0|.
+  vtkSetClampMacro(Delta, double, -1.0, VTK_DOUBLE_MAX);
+  vtkGetMacro(Delta, double);
+  void SetDeltaToAutomatic() { this->SetDelta(-1.0); }
+  vtkSetClampMacro(DeltaFactor, double, 0.0, VTK_DOUBLE_MAX);
+  vtkGetMacro(DeltaFactor, double);
+  ///@}
+
+  ///@{
+  /// Consecutive contour vertices per curve fit: odd, >= 5 (default 7).
+  vtkSetClampMacro(Window, int, 5, VTK_INT_MAX);
+  vtkGetMacro(Window, int);
+  ///@}
+
+  ///@{
+  /// Taubin iterations on a copy used for detection only, >= 0 (default 0).
+  vtkSetClampMacro(PrefilterIterations, int, 0, VTK_INT_MAX);
+  vtkGetMacro(PrefilterIterations, int);
+  ///@}
+
+  ///@{
+  /// Principal curvature fit: umbilic tolerance (>= 0, default 0.05) and the reciprocal condition
+  /// number below which a fit widens to the 2-ring (in [0, 1), default 1e-6).
+  vtkSetClampMacro(UmbilicTolerance, double, 0.0, VTK_DOUBLE_MAX);
+  vtkGetMacro(UmbilicTolerance, double);
+  vtkSetClampMacro(MinReciprocalCondition, double, 0.0, 1.0);
+  vtkGetMacro(MinReciprocalCondition, double);
+  ///@}
+
+  ///@{
+  /// Paper: at most this many subdivision levels around a feature vertex, >= 0 (default 3).
+  vtkSetClampMacro(MaxLevels, int, 0, VTK_INT_MAX);
+  vtkGetMacro(MaxLevels, int);
+  ///@}
+
+  ///@{
+  /// Paper: the isotropic scheme on the adaptive mesh, METHOD_TAUBIN (default) or METHOD_LAPLACIAN.
+  vtkSetClampMacro(DiffusionMethod, int, METHOD_LAPLACIAN, METHOD_TAUBIN);
+  vtkGetMacro(DiffusionMethod, int);
+  void SetDiffusionMethodToTaubin() { this->SetDiffusionMethod(METHOD_TAUBIN); }
+  void SetDiffusionMethodToLaplacian() { this->SetDiffusionMethod(METHOD_LAPLACIAN); }
+  ///@}
+
+  ///@{
+  /// Paper: output the smoothed adaptive mesh (denser around features) instead of the input's
+  /// connectivity (default Off).
+  vtkSetMacro(KeepAdaptiveMesh, vtkTypeBool);
+  vtkGetMacro(KeepAdaptiveMesh, vtkTypeBool);
+  vtkBooleanMacro(KeepAdaptiveMesh, vtkTypeBool);
+  ///@}
+
+  ///@{
+  /// Add the per-vertex "FeatureLabel" array (default Off). With a baseline method the detection is
+  /// run on the input just for the labels.
+  vtkSetMacro(GenerateLabels, vtkTypeBool);
+  vtkGetMacro(GenerateLabels, vtkTypeBool);
+  vtkBooleanMacro(GenerateLabels, vtkTypeBool);
+  ///@}
+
+  ///@{
+  /// Recover missing contour ids by binning the vertices along this axis (default SLICE_AXIS_NONE).
+  /// SliceTolerance: coordinates closer than this share a slice plane; 0 (default) = 1e-4 of the extent.
+  vtkSetClampMacro(SliceAxis, int, SLICE_AXIS_NONE, SLICE_AXIS_Z);
+  vtkGetMacro(SliceAxis, int);
+  void SetSliceAxisToNone() { this->SetSliceAxis(SLICE_AXIS_NONE); }
+  void SetSliceAxisToX() { this->SetSliceAxis(SLICE_AXIS_X); }
+  void SetSliceAxisToY() { this->SetSliceAxis(SLICE_AXIS_Y); }
+  void SetSliceAxisToZ() { this->SetSliceAxis(SLICE_AXIS_Z); }
+  vtkSetClampMacro(SliceTolerance, double, 0.0, VTK_DOUBLE_MAX);
+  vtkGetMacro(SliceTolerance, double);
+  ///@}
+
+  ///@{
+  /// Names of the id point arrays, read from the input and written to the output.
+  vtkSetStringMacro(ContourIdArrayName);
+  vtkGetStringMacro(ContourIdArrayName);
+  vtkSetStringMacro(ContourIndexArrayName);
+  vtkGetStringMacro(ContourIndexArrayName);
+  ///@}
+
+  ///@{
+  /// Optional point array (one component) whose non-zero values lock vertices in place. Default none.
+  vtkSetStringMacro(LockedArrayName);
+  vtkGetStringMacro(LockedArrayName);
+  ///@}
+
+ protected:
+  vtkContourFeatureSmoothingFilter();
+  ~vtkContourFeatureSmoothingFilter() override;
+
+  int RequestData(vtkInformation* request, vtkInformationVector** inputVector,
+                  vtkInformationVector* outputVector) override;
+
+  int Method = METHOD_PAPER;
+  int NumberOfIterations = -1;
+  double Lambda = 0.0;
+  double Mu = -0.6732;
+  double Beta = 0.03;
+  vtkTypeBool BoundarySmoothing = 0;
+  int TimeStepMode = TIME_STEP_RELATIVE_TO_MEAN_EDGE;
+  int DetectionMode = DETECTION_CONTOUR_CONTINUITY;
+  double Anisotropy = 3.0;
+  double Gamma = -1.0;
+  double GammaFactor = 2.0;
+  int UmbrellaMeasure = UMBRELLA_LENGTH;
+  double Delta = -1.0;
+  double DeltaFactor = 0.5;
+  int Window = 7;
+  int PrefilterIterations = 0;
+  double UmbilicTolerance = 0.05;
+  double MinReciprocalCondition = 1e-6;
+  int MaxLevels = 3;
+  int DiffusionMethod = METHOD_TAUBIN;
+  vtkTypeBool KeepAdaptiveMesh = 0;
+  vtkTypeBool GenerateLabels = 0;
+  int SliceAxis = SLICE_AXIS_NONE;
+  double SliceTolerance = 0.0;
+  char* ContourIdArrayName = nullptr;
+  char* ContourIndexArrayName = nullptr;
+  char* LockedArrayName = nullptr;
+
+ private:
+  vtkContourFeatureSmoothingFilter(const vtkContourFeatureSmoothingFilter&) = delete;
+  void operator=(const vtkContourFeatureSmoothingFilter&) = delete;
+
+  int Execute(vtkPolyData* input, vtkPolyData* output);
+  bool AbortRequested();
+};
