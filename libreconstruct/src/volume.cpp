@@ -196,8 +196,11 @@ void write_volume(const CtImage* image, const fs::path& path) {
   if (size[0] == 0 || size[1] == 0 || size[2] == 0) throw InvalidInputError(name + ": cannot write an empty volume");
   const fs::path dir = path.parent_path().empty() ? fs::path(".") : path.parent_path();
   std::error_code ec;
-  if (!fs::is_directory(dir, ec)) {
+  if (!fs::exists(dir, ec)) {
     throw InvalidInputError(name + ": cannot write: directory '" + dir.string() + "' does not exist");
+  }
+  if (!fs::is_directory(dir, ec)) {
+    throw InvalidInputError(name + ": cannot write: '" + dir.string() + "' is not a directory");
   }
   if (fs::is_directory(path, ec)) throw InvalidInputError(name + ": cannot write: it is a directory");
 

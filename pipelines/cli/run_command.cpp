@@ -3,6 +3,7 @@
 // against the phantom's analytic surface.
 #include "cli_common.h"
 
+#include <pipelines/atomic_file.h>
 #include <pipelines/mesh_io.h>
 #include <reconstruct/phantom.h>
 #include <reconstruct/reconstruction.h>
@@ -10,6 +11,7 @@
 #include <smooth/adjacency.h>
 #include <smooth/errors.h>
 #include <smooth/feature_smoothing.h>
+#include <smooth/limits.h>
 #include <smooth/metrics.h>
 #include <smooth/smoothing.h>
 #include <smooth/topology.h>
@@ -40,6 +42,7 @@ struct RunArgs {
   std::optional<int> iterations;
   double feature_radius = 2.0;
   std::string end_caps = "half-spacing";
+  Index max_vertices = kDefaultMaxVertices;
   bool json = false;
 };
 
@@ -48,6 +51,17 @@ int run_run(const RunArgs& a) {
   const SmoothingMethod baseline = a.method == "paper" ? SmoothingMethod::None : parse_smoothing_method(a.method);
   (void)format_from_extension(a.output);  // fail before the work
   if (!(a.feature_radius > 0.0)) throw InvalidInputError("--feature-radius must be > 0 mm");
+  // The default output goes to out/: create the directory, then check it can take the file.
+  const std::filesystem::path out(a.output);
+  if (!out.parent_path().empty() && !std::filesystem::exists(out.parent_path())) {
+    std::error_code ec;
+    std::filesystem::create_directories(out.parent_path(), ec);
+    if (ec) {
+      throw InvalidInputError(a.output + ": cannot create the directory '" + out.parent_path().string() +
+                              "': " + ec.message());
+    }
+  }
+  check_output_path(out);
 
   // 1. Read or generate the volume.
   auto t = std::chrono::steady_clock::now();
@@ -79,9 +93,12 @@ int run_run(const RunArgs& a) {
   const PhantomVolumeOptions phantom_defaults;
   ro.segmentation.threshold =
       a.threshold.value_or(phantom ? 0.5 * (phantom_defaults.bone_hu + phantom_defaults.tissue_hu) : 300.0);
+  ro.tiling.limits.max_vertices = a.max_vertices;
   Reconstruction rec;
   try {
     rec = reconstruct(*image, ro);
+  } catch (const LimitError& e) {
+    throw LimitError(source + ": " + e.what());
   } catch (const InvalidInputError& e) {
     throw InvalidInputError(source + ": " + e.what());
   }
@@ -94,6 +111,7 @@ int run_run(const RunArgs& a) {
   if (a.method == "paper") {
     FeatureSmoothingOptions o;
     if (a.iterations) o.iterations = *a.iterations;
+    o.limits.max_vertices = a.max_vertices;
     paper = feature_preserving_smooth(mesh, o);
     result = paper->mesh;
   } else {
@@ -106,8 +124,6 @@ int run_run(const RunArgs& a) {
 
   // 4. Export.
   t = std::chrono::steady_clock::now();
-  const std::filesystem::path out(a.output);
-  if (!out.parent_path().empty()) std::filesystem::create_directories(out.parent_path());
   write_mesh(result, out);
   const double seconds_write = seconds_since(t);
 
@@ -215,6 +231,7 @@ void add_run_command(CLI::App& app) {
   cmd->add_option("--feature-radius", args->feature_radius,
                   "Phantom: vertices this close to a sharp edge form the feature region, mm")
       ->capture_default_str();
+  add_max_vertices_option(cmd, args->max_vertices);
   cmd->add_flag("--json", args->json, "Print one JSON object on stdout instead of the summary");
   cmd->callback([args] { set_exit_code(run_guarded("run", [&] { return run_run(*args); })); });
 }

@@ -2,10 +2,12 @@
 #include "cli_common.h"
 #include "feature_options.h"
 
+#include <pipelines/atomic_file.h>
 #include <pipelines/mesh_io.h>
 #include <smooth/adjacency.h>
 #include <smooth/errors.h>
 #include <smooth/feature_smoothing.h>
+#include <smooth/limits.h>
 #include <smooth/metrics.h>
 #include <smooth/smoothing.h>
 
@@ -39,6 +41,7 @@ struct SmoothArgs {
   std::string diffusion = "taubin";
   bool keep_adaptive = false;
   std::string labels_out;
+  Index max_vertices = kDefaultMaxVertices;
   bool json = false;
 };
 
@@ -47,6 +50,7 @@ int run_smooth(const SmoothArgs& a) {
   const bool paper = a.method == "paper";
   MeshReadOptions read_options;
   read_options.arrays = {a.slice_array, a.contour_array};
+  read_options.max_vertices = a.max_vertices;
   MeshWriteOptions write_options;
   write_options.format = parse_mesh_format(a.format);
   write_options.arrays = read_options.arrays;
@@ -62,6 +66,8 @@ int run_smooth(const SmoothArgs& a) {
     }
   }
   if (a.keep_adaptive && !paper) throw InvalidInputError("--keep-adaptive needs --method paper");
+  check_output_path(a.output);
+  if (!a.labels_out.empty()) check_output_path(a.labels_out);
 
   Mesh mesh = read_mesh(a.input, read_options);
   check_mesh(mesh, a.input, "smooth");
@@ -87,6 +93,7 @@ int run_smooth(const SmoothArgs& a) {
     o.mu = a.mu;
     o.boundary = boundary;
     o.output = a.keep_adaptive ? OutputResolution::Adaptive : OutputResolution::Original;
+    o.limits.max_vertices = a.max_vertices;
     const FeatureSmoothingResult r = feature_preserving_smooth(mesh, o);
     result = r.mesh;
     iterations = o.iterations;
@@ -205,6 +212,7 @@ void add_smooth_command(CLI::App& app) {
   cmd->add_option("--slice-array", args->slice_array, "Point array holding the slice index c(i)")->capture_default_str();
   cmd->add_option("--contour-array", args->contour_array, "Point array holding the contour index within a slice")
       ->capture_default_str();
+  add_max_vertices_option(cmd, args->max_vertices);
   cmd->add_flag("--json", args->json, "Print one JSON object on stdout instead of the summary");
   cmd->callback([args] { set_exit_code(run_guarded("smooth", [&] { return run_smooth(*args); })); });
 }
