@@ -28,7 +28,7 @@ std::string quote(std::string_view text) {
 }
 
 std::string vertex_limit_message(Index max_vertices) {
-  return "more than " + std::to_string(max_vertices) + " vertices (the limit)";
+  return "more than the limit of " + std::to_string(max_vertices) + " vertices";
 }
 
 // Merges bit-identical float corners (with -0 == +0) into shared vertices.
