@@ -177,11 +177,18 @@ bool repair_contour_ids(Mesh& mesh, const MeshAdjacency& adjacency, const Eigen:
   // Each recovered plane takes the file's most common slice id among its vertices.
   std::map<std::int32_t, std::map<std::int32_t, Index>> votes;  // plane -> file id -> count
   for (Index i = 0; i < mesh.num_vertices(); ++i) ++votes[recovered.slice_ids[i]][mesh.slice_ids[i]];
+  // A plane of the slices has a clear majority, and no two planes claim the same slice; otherwise the
+  // planes along `axis` are not the file's slices.
   std::map<std::int32_t, std::int32_t> file_id;
+  std::map<std::int32_t, int> claims;
   for (const auto& [plane, counts] : votes) {
     const auto best = std::max_element(counts.begin(), counts.end(),
                                        [](const auto& a, const auto& b) { return a.second < b.second; });
+    Index total = 0;
+    for (const auto& [id, count] : counts) total += count;
+    if (2 * best->second <= total) return false;
     file_id[plane] = best->first < 0 ? kNoId : best->first;
+    if (file_id[plane] != kNoId && ++claims[file_id[plane]] > 1) return false;
   }
   for (Index i = 0; i < mesh.num_vertices(); ++i) {
     const std::int32_t id = file_id[recovered.slice_ids[i]];

@@ -137,6 +137,7 @@ class BadInput : public ::testing::Test {
       itk::EncapsulateMetaData<std::string>(dict, "0020|0032", "0\\0\\" + std::to_string(2.0 * s));
       itk::EncapsulateMetaData<std::string>(dict, "0020|0037", "1\\0\\0\\0\\1\\0");
       itk::EncapsulateMetaData<std::string>(dict, "0028|0030", "1\\1");
+      itk::EncapsulateMetaData<std::string>(dict, "0028|0004", "MONOCHROME2");
       auto writer = itk::ImageFileWriter<Slice>::New();
       writer->SetImageIO(io);
       writer->SetInput(slice);

@@ -62,7 +62,8 @@ std::size_t compact_slice_ids(Mesh& mesh);
 /// (assign_ids_by_slice_planes), then gives each recovered plane the slice id most of its vertices had
 /// in `mesh` (kNoId for planes of copies off the slices), so that only the wrong ids change; contour
 /// ids are the recovered ones. Returns false and leaves the mesh untouched when the mesh has no ids,
-/// its vertices do not lie on planes normal to `axis`, or the result is still inconsistent.
+/// its vertices do not lie on planes normal to `axis`, a plane has no majority id or two planes claim
+/// the same slice (planes that are not the file's slices), or the result is still inconsistent.
 bool repair_contour_ids(Mesh& mesh, const MeshAdjacency& adjacency, const Eigen::Vector3d& axis);
 
 }  // namespace contourmesh
