@@ -16,6 +16,9 @@
 #include <itkNrrdImageIO.h>
 #include <itkNrrdImageIOFactory.h>
 
+// After ITK: its IO headers bring ITK's own Eigen, which must come before the system one.
+#include <smooth/limits.h>
+
 #include <unistd.h>
 
 #include <algorithm>
@@ -93,6 +96,17 @@ CtImage::Pointer read_image_file(const fs::path& path) {
   if (io->GetDimensions(2) == 1) {
     throw InvalidInputError(name + ": a single 2-D slice (" + std::to_string(io->GetDimensions(0)) + " x " +
                             std::to_string(io->GetDimensions(1)) + "), not a 3-D volume");
+  }
+  {
+    const double voxels = static_cast<double>(io->GetDimensions(0)) * static_cast<double>(io->GetDimensions(1)) *
+                          static_cast<double>(io->GetDimensions(2));
+    try {
+      check_allocation(std::to_string(io->GetDimensions(0)) + " x " + std::to_string(io->GetDimensions(1)) + " x " +
+                           std::to_string(io->GetDimensions(2)) + " voxels",
+                       0.0, voxels * kVolumeBytesPerVoxel, ResourceLimits{});
+    } catch (const LimitError& e) {
+      throw LimitError(name + ": " + e.what());
+    }
   }
   auto reader = itk::ImageFileReader<CtImage>::New();
   reader->SetImageIO(io);

@@ -112,7 +112,11 @@ int run_run(const RunArgs& a) {
     FeatureSmoothingOptions o;
     if (a.iterations) o.iterations = *a.iterations;
     o.limits.max_vertices = a.max_vertices;
-    paper = feature_preserving_smooth(mesh, o);
+    try {
+      paper = feature_preserving_smooth(mesh, o);
+    } catch (const LimitError& e) {
+      throw LimitError(source + ": " + e.what());
+    }
     result = paper->mesh;
   } else {
     SmoothingOptions o;

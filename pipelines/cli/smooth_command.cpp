@@ -94,7 +94,12 @@ int run_smooth(const SmoothArgs& a) {
     o.boundary = boundary;
     o.output = a.keep_adaptive ? OutputResolution::Adaptive : OutputResolution::Original;
     o.limits.max_vertices = a.max_vertices;
-    const FeatureSmoothingResult r = feature_preserving_smooth(mesh, o);
+    FeatureSmoothingResult r;
+    try {
+      r = feature_preserving_smooth(mesh, o);
+    } catch (const LimitError& e) {
+      throw LimitError(a.input + ": " + e.what());
+    }
     result = r.mesh;
     iterations = o.iterations;
     lambda = o.lambda.value_or(default_lambda(o.diffusion));

@@ -626,7 +626,7 @@ TEST_F(BadInput, MaxVerticesRefusesOversizedMeshesBeforeAllocating) {
                   {"more than the limit of 100 vertices", "raise it with --max-vertices"});
   // Producing: the adaptive mesh of the paper's method, then tiling.
   expect_rejected(run("smooth " + in + " -o " + out.string() + " --max-vertices " + n),
-                  {"adaptive subdivision level 1", "exceed the limit of " + n + " vertices"});
+                  {in + ": adaptive subdivision level 1", "exceed the limit of " + n + " vertices"});
   EXPECT_EQ(run("smooth " + in + " -o " + out.string() + " --method taubin --max-vertices " + n).code, 0)
       << "the baselines produce no vertices";
   fs::remove(out);
@@ -637,6 +637,12 @@ TEST_F(BadInput, MaxVerticesRefusesOversizedMeshesBeforeAllocating) {
                   {volume.string(), "tiling", "exceed the limit of 50 vertices"});
   expect_rejected(run("run " + volume.string() + " -o " + out.string() + " --max-vertices 50"), {"tiling"});
   expect_nothing_written(out);
+  // A volume header promising 170 TB of working memory: refused from the header, before any reading.
+  const fs::path huge = write_text("huge.mha", "ObjectType = Image\nNDims = 3\nDimSize = 100000 100000 1000\n"
+                                               "ElementType = MET_FLOAT\nElementDataFile = LOCAL\n");
+  expect_rejected(run("reconstruct " + huge.string() + " -o " + out.string()),
+                  {huge.string(), "100000 x 100000 x 1000 voxels: needs about 170000.0 GB of memory, more than the",
+                   "available"});
   EXPECT_EQ(run("smooth " + in + " -o " + out.string() + " --max-vertices 0").code, 1) << "usage error";
   for (const std::string command : {"smooth", "detect", "reconstruct", "run"}) {
     EXPECT_NE(run(command + " --help").out.find("--max-vertices"), std::string::npos) << command;
