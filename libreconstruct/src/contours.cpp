@@ -3,8 +3,10 @@
 #include <smooth/errors.h>
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <string>
+#include <vector>
 
 namespace contourmesh {
 
@@ -33,6 +35,93 @@ bool point_in_polygon(const std::vector<Eigen::Vector2d>& poly, const Eigen::Vec
     }
   }
   return in;
+}
+
+namespace {
+
+double orient(const Eigen::Vector2d& a, const Eigen::Vector2d& b, const Eigen::Vector2d& c) {
+  return (b.x() - a.x()) * (c.y() - a.y()) - (b.y() - a.y()) * (c.x() - a.x());
+}
+
+// p lies in the bounding box of segment ab (used once p is known to be collinear with it).
+bool within(const Eigen::Vector2d& a, const Eigen::Vector2d& b, const Eigen::Vector2d& p) {
+  return p.x() >= std::min(a.x(), b.x()) && p.x() <= std::max(a.x(), b.x()) && p.y() >= std::min(a.y(), b.y()) &&
+         p.y() <= std::max(a.y(), b.y());
+}
+
+// Segments ab and cd share a point; returns it.
+std::optional<Eigen::Vector2d> segments_meet(const Eigen::Vector2d& a, const Eigen::Vector2d& b,
+                                             const Eigen::Vector2d& c, const Eigen::Vector2d& d) {
+  const double o1 = orient(a, b, c), o2 = orient(a, b, d), o3 = orient(c, d, a), o4 = orient(c, d, b);
+  if (((o1 > 0 && o2 < 0) || (o1 < 0 && o2 > 0)) && ((o3 > 0 && o4 < 0) || (o3 < 0 && o4 > 0))) {
+    const double t = o3 / (o3 - o4);
+    return a + t * (b - a);
+  }
+  if (o1 == 0.0 && within(a, b, c)) return c;
+  if (o2 == 0.0 && within(a, b, d)) return d;
+  if (o3 == 0.0 && within(c, d, a)) return a;
+  if (o4 == 0.0 && within(c, d, b)) return b;
+  return std::nullopt;
+}
+
+}  // namespace
+
+std::optional<SelfIntersection> find_self_intersection(const std::vector<Eigen::Vector2d>& p) {
+  const std::size_t n = p.size();
+  if (n < 4) return std::nullopt;  // a triangle's edges are all neighbours
+  Eigen::Vector2d lo = p[0], hi = p[0];
+  double total = 0.0;
+  for (std::size_t i = 0; i < n; ++i) {
+    if (!p[i].allFinite()) return SelfIntersection{i, i, p[i]};
+    lo = lo.cwiseMin(p[i]);
+    hi = hi.cwiseMax(p[i]);
+    total += (p[(i + 1) % n] - p[i]).norm();
+  }
+  // Cells about one mean edge long, at most ~4n of them.
+  const Eigen::Vector2d extent = hi - lo;
+  double cell = std::max(total / static_cast<double>(n), 1e-300);
+  const double max_cells = 4.0 * static_cast<double>(n) + 16.0;
+  while ((std::floor(extent.x() / cell) + 1.0) * (std::floor(extent.y() / cell) + 1.0) > max_cells) cell *= 2.0;
+  const auto nx = static_cast<std::size_t>(std::floor(extent.x() / cell)) + 1;
+  const auto ny = static_cast<std::size_t>(std::floor(extent.y() / cell)) + 1;
+  auto cell_of = [&](double v, double origin, std::size_t count) {
+    return std::min(count - 1, static_cast<std::size_t>(std::max(0.0, std::floor((v - origin) / cell))));
+  };
+  // Edges per cell (counting sort into CSR).
+  std::vector<std::size_t> start(nx * ny + 1, 0);
+  std::vector<std::array<std::size_t, 4>> boxes(n);
+  for (std::size_t k = 0; k < n; ++k) {
+    const Eigen::Vector2d& a = p[k];
+    const Eigen::Vector2d& b = p[(k + 1) % n];
+    boxes[k] = {cell_of(std::min(a.x(), b.x()), lo.x(), nx), cell_of(std::max(a.x(), b.x()), lo.x(), nx),
+                cell_of(std::min(a.y(), b.y()), lo.y(), ny), cell_of(std::max(a.y(), b.y()), lo.y(), ny)};
+    for (std::size_t y = boxes[k][2]; y <= boxes[k][3]; ++y) {
+      for (std::size_t x = boxes[k][0]; x <= boxes[k][1]; ++x) ++start[y * nx + x + 1];
+    }
+  }
+  for (std::size_t c = 0; c < nx * ny; ++c) start[c + 1] += start[c];
+  std::vector<std::size_t> edges(start.back());
+  {
+    std::vector<std::size_t> fill(start.begin(), start.end() - 1);
+    for (std::size_t k = 0; k < n; ++k) {
+      for (std::size_t y = boxes[k][2]; y <= boxes[k][3]; ++y) {
+        for (std::size_t x = boxes[k][0]; x <= boxes[k][1]; ++x) edges[fill[y * nx + x]++] = k;
+      }
+    }
+  }
+  std::optional<SelfIntersection> best;
+  for (std::size_t c = 0; c < nx * ny; ++c) {
+    for (std::size_t u = start[c]; u < start[c + 1]; ++u) {
+      for (std::size_t v = u + 1; v < start[c + 1]; ++v) {
+        const std::size_t i = std::min(edges[u], edges[v]);
+        const std::size_t j = std::max(edges[u], edges[v]);
+        if (j == i + 1 || (i == 0 && j == n - 1)) continue;  // neighbours share a point by construction
+        if (best && std::make_pair(i, j) >= std::make_pair(best->first, best->second)) continue;
+        if (const auto at = segments_meet(p[i], p[(i + 1) % n], p[j], p[(j + 1) % n])) best = SelfIntersection{i, j, *at};
+      }
+    }
+  }
+  return best;
 }
 
 std::vector<Eigen::Vector2d> resample_closed(const std::vector<Eigen::Vector2d>& poly, double spacing) {

@@ -1,6 +1,9 @@
 #include "reconstruct/phantom.h"
 
+#include "reconstruct/volume.h"
+
 #include <smooth/errors.h>
+#include <smooth/limits.h>
 
 #include <itkDiscreteGaussianImageFilter.h>
 
@@ -905,6 +908,10 @@ CtImage::Pointer render_phantom(const Phantom& phantom, const PhantomVolumeOptio
     check_option(voxels <= 2147483648.0, "the volume would have over 2^31 voxels; use a coarser spacing");
     size[static_cast<std::size_t>(a)] = static_cast<std::int64_t>(n);
   }
+  // The image, the blur's output and the segmentation's copies of it (values, mask, labels).
+  check_allocation("render_phantom: a volume of " + std::to_string(size[0]) + " x " + std::to_string(size[1]) + " x " +
+                       std::to_string(size[2]) + " voxels",
+                   0.0, voxels * kVolumeBytesPerVoxel, ResourceLimits{});
   // Voxel centres symmetric about the centre of the box.
   Vec3 origin;
   for (int a = 0; a < 3; ++a) {

@@ -65,10 +65,22 @@ Reconstruction reconstruct(const CtImage& image, const ReconstructionOptions& op
       out.report.hole_contours += c.is_hole ? 1 : 0;
     }
   }
+  if (seg.voxels > 0 && seg.foreground_voxels == seg.voxels) {
+    std::ostringstream msg;
+    msg << "every voxel is at or above the threshold " << seg.threshold
+        << " (all bone, or a threshold below the data?): the surface would be the volume's bounding box";
+    throw InvalidInputError(msg.str());
+  }
   if (out.report.contours == 0) {
     std::ostringstream msg;
-    msg << "no region at or above the threshold " << seg.threshold << " in any of the " << out.report.slices
-        << " slices (all air, or a threshold above the data?)";
+    if (seg.foreground_voxels == 0) {
+      msg << "no region at or above the threshold " << seg.threshold << " in any of the " << out.report.slices
+          << " slices (all air, or a threshold above the data?)";
+    } else {
+      msg << "no region at or above the threshold " << seg.threshold << " is large enough: " << seg.dropped_regions
+          << " region" << (seg.dropped_regions == 1 ? " was" : "s were")
+          << " smaller than the minimum area or contour length (lower them, or check the voxel spacing)";
+    }
     throw InvalidInputError(msg.str());
   }
   if (out.report.slices_with_contours < 2) {

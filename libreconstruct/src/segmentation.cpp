@@ -141,6 +141,16 @@ struct Box {
   }
 };
 
+// Resampling can cut across a narrow part of a small loop and make the contour cross itself (the
+// extractor's loops never do): resample more finely until it does not, or keep the loop as extracted.
+std::vector<Eigen::Vector2d> resample_simple(const std::vector<Eigen::Vector2d>& loop, double sampling) {
+  for (int halving = 0; halving < 4; ++halving) {
+    std::vector<Eigen::Vector2d> pts = resample_closed(loop, sampling / static_cast<double>(1 << halving));
+    if (!find_self_intersection(pts)) return pts;
+  }
+  return loop;
+}
+
 void check_options(const SegmentationOptions& o) {
   if (!std::isfinite(o.threshold)) throw InvalidInputError("segmentation: threshold must be finite");
   if (!(o.min_region_area >= 0.0)) throw InvalidInputError("segmentation: min_region_area must be >= 0");
@@ -176,6 +186,8 @@ SegmentationResult segment_contours(const CtImage& input, const SegmentationOpti
   }
   std::vector<std::uint8_t> mask(values.size());
   for (std::size_t v = 0; v < values.size(); ++v) mask[v] = values[v] >= thr;
+  result.voxels = mask.size();
+  result.foreground_voxels = static_cast<std::size_t>(std::count(mask.begin(), mask.end(), std::uint8_t{1}));
   if (options.components == ComponentSelection::KeepLargest) keep_largest_component(mask, size);
 
   // The slice frame.
@@ -296,7 +308,7 @@ SegmentationResult segment_contours(const CtImage& input, const SegmentationOpti
         continue;
       }
       Contour o;
-      o.points = resample_closed(loops[outer], sampling);
+      o.points = resample_simple(loops[outer], sampling);
       if (signed_area(o.points) < 0.0) std::reverse(o.points.begin(), o.points.end());
       const int parent = static_cast<int>(out.contours.size());
       out.contours.push_back(std::move(o));
@@ -307,7 +319,7 @@ SegmentationResult segment_contours(const CtImage& input, const SegmentationOpti
           continue;
         }
         Contour hole;
-        hole.points = resample_closed(loops[k], sampling);
+        hole.points = resample_simple(loops[k], sampling);
         if (signed_area(hole.points) > 0.0) std::reverse(hole.points.begin(), hole.points.end());
         hole.is_hole = true;
         hole.parent = parent;

@@ -9,6 +9,7 @@
 #include <cmath>
 #include <limits>
 #include <numeric>
+#include <sstream>
 #include <string>
 
 namespace contourmesh {
@@ -16,6 +17,10 @@ namespace contourmesh {
 namespace {
 
 using detail::Polygon;
+
+// Memory per vertex of a tiled mesh while it is built and checked: positions, ids, about two triangles
+// and the builder's vectors.
+constexpr double kBytesPerTiledVertex = 120.0;
 
 // A closed loop of mesh vertices lying in one plane w.
 struct Ring {
@@ -26,9 +31,12 @@ struct Ring {
 
 class MeshBuilder {
  public:
-  explicit MeshBuilder(const ContourStack& stack) : stack_(stack) {}
+  MeshBuilder(const ContourStack& stack, Index max_vertices) : stack_(stack), max_vertices_(max_vertices) {}
 
   Index add_vertex(const Eigen::Vector2d& uv, double w, std::int32_t slice, std::int32_t contour) {
+    if (positions_.size() >= static_cast<std::size_t>(max_vertices_)) {
+      throw LimitError("tiling: the mesh would have more than " + std::to_string(max_vertices_) + " vertices");
+    }
     positions_.push_back(stack_.to_physical(uv, w));
     slices_.push_back(slice);
     contours_.push_back(contour);
@@ -51,6 +59,7 @@ class MeshBuilder {
 
  private:
   const ContourStack& stack_;
+  Index max_vertices_;
   std::vector<Eigen::Vector3d> positions_;
   std::vector<std::int32_t> slices_, contours_;
   std::vector<Triangle> triangles_;
@@ -93,6 +102,8 @@ void tile_band(const Ring& lower, const Ring& upper, const TilingOptions& option
   hi[m] = n;
   std::vector<std::size_t> row_start(m + 2, 0);
   for (int i = 0; i <= m; ++i) row_start[i + 1] = row_start[i] + static_cast<std::size_t>(hi[i] - lo[i] + 1);
+  check_allocation("tiling: contours of " + std::to_string(m) + " and " + std::to_string(n) + " points",
+                   0.0, static_cast<double>(row_start[m + 1]) * (sizeof(double) + sizeof(std::uint8_t)), options.limits);
   const double inf = std::numeric_limits<double>::infinity();
   std::vector<double> cost(row_start[m + 1], inf);
   std::vector<std::uint8_t> from_lower(row_start[m + 1], 0);  // 1: came by advancing i
@@ -249,9 +260,23 @@ PreparedStack prepare(const ContourStack& stack) {
     auto& contours = out.slices[s] = stack.slices[s].contours;
     for (std::size_t c = 0; c < contours.size(); ++c) {
       Contour& k = contours[c];
-      if (k.points.size() < 3) {
-        throw InvalidInputError("tiling: contour " + std::to_string(c) + " of slice " + std::to_string(s) + " has " +
-                                std::to_string(k.points.size()) + " points (at least 3 needed)");
+      const std::string name = "tiling: contour " + std::to_string(c) + " of slice " + std::to_string(s);
+      for (std::size_t i = 0; i < k.points.size(); ++i) {
+        if (!k.points[i].allFinite()) throw InvalidInputError(name + ": point " + std::to_string(i) + " is not finite");
+      }
+      // Repeated points (a closing point equal to the first, or a stutter) add nothing.
+      auto& pts = k.points;
+      pts.erase(std::unique(pts.begin(), pts.end()), pts.end());
+      while (pts.size() > 1 && pts.back() == pts.front()) pts.pop_back();
+      if (pts.size() < 3) {
+        throw InvalidInputError(name + " has " + std::to_string(pts.size()) + " distinct point" +
+                                (pts.size() == 1 ? "" : "s") + " (at least 3 needed)");
+      }
+      if (const auto x = find_self_intersection(pts)) {
+        std::ostringstream msg;
+        msg << name << " intersects itself: its edges " << x->first << " and " << x->second << " meet at ("
+            << x->where.x() << ", " << x->where.y() << ") mm";
+        throw InvalidInputError(msg.str());
       }
       const double a = signed_area(k.points);
       if ((k.is_hole && a > 0.0) || (!k.is_hole && a < 0.0)) std::reverse(k.points.begin(), k.points.end());
@@ -377,8 +402,17 @@ TilingResult tile_contours(const ContourStack& stack, const TilingOptions& optio
     }
   }
 
+  // Vertices of every kept contour, slice by slice; with the copies of branching groups and end caps,
+  // and cap interiors, the mesh has roughly twice as many.
+  {
+    double points = 0.0;
+    for (std::size_t s = 0; s < S; ++s) {
+      for (std::size_t c = 0; c < slices[s].size(); ++c) points += kept[s][c] ? slices[s][c].points.size() : 0.0;
+    }
+    check_allocation("tiling", points, 2.0 * points * kBytesPerTiledVertex, options.limits);
+  }
   // Vertices of every kept contour, slice by slice.
-  MeshBuilder builder(stack);
+  MeshBuilder builder(stack, options.limits.max_vertices);
   std::vector<std::vector<Ring>> rings(S);
   for (std::size_t s = 0; s < S; ++s) {
     rings[s].resize(slices[s].size());

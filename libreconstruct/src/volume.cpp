@@ -16,6 +16,9 @@
 #include <itkNrrdImageIO.h>
 #include <itkNrrdImageIOFactory.h>
 
+// After ITK: its IO headers bring ITK's own Eigen, which must come before the system one.
+#include <smooth/limits.h>
+
 #include <unistd.h>
 
 #include <algorithm>
@@ -93,6 +96,17 @@ CtImage::Pointer read_image_file(const fs::path& path) {
   if (io->GetDimensions(2) == 1) {
     throw InvalidInputError(name + ": a single 2-D slice (" + std::to_string(io->GetDimensions(0)) + " x " +
                             std::to_string(io->GetDimensions(1)) + "), not a 3-D volume");
+  }
+  {
+    const double voxels = static_cast<double>(io->GetDimensions(0)) * static_cast<double>(io->GetDimensions(1)) *
+                          static_cast<double>(io->GetDimensions(2));
+    try {
+      check_allocation(std::to_string(io->GetDimensions(0)) + " x " + std::to_string(io->GetDimensions(1)) + " x " +
+                           std::to_string(io->GetDimensions(2)) + " voxels",
+                       0.0, voxels * kVolumeBytesPerVoxel, ResourceLimits{});
+    } catch (const LimitError& e) {
+      throw LimitError(name + ": " + e.what());
+    }
   }
   auto reader = itk::ImageFileReader<CtImage>::New();
   reader->SetImageIO(io);
@@ -196,8 +210,11 @@ void write_volume(const CtImage* image, const fs::path& path) {
   if (size[0] == 0 || size[1] == 0 || size[2] == 0) throw InvalidInputError(name + ": cannot write an empty volume");
   const fs::path dir = path.parent_path().empty() ? fs::path(".") : path.parent_path();
   std::error_code ec;
-  if (!fs::is_directory(dir, ec)) {
+  if (!fs::exists(dir, ec)) {
     throw InvalidInputError(name + ": cannot write: directory '" + dir.string() + "' does not exist");
+  }
+  if (!fs::is_directory(dir, ec)) {
+    throw InvalidInputError(name + ": cannot write: '" + dir.string() + "' is not a directory");
   }
   if (fs::is_directory(path, ec)) throw InvalidInputError(name + ": cannot write: it is a directory");
 

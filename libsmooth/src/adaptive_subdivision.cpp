@@ -5,11 +5,16 @@
 #include "smooth/normals.h"
 #include "smooth/umbrella.h"
 
+#include <string>
 #include <unordered_map>
 
 namespace contourmesh {
 
 namespace {
+
+// Working memory per vertex of the adaptive mesh: positions and ids, about two triangles, the CSR
+// adjacency, the midpoint table and the smoothing buffers.
+constexpr double kBytesPerAdaptiveVertex = 320.0;
 
 std::uint64_t edge_key(Index a, Index b) {
   if (a > b) std::swap(a, b);
@@ -48,6 +53,14 @@ AdaptiveMesh subdivide_adaptively(const Mesh& input, std::span<const std::uint8_
     }
     if (active.empty()) break;
     out.per_level.push_back(active.size());
+    {
+      // At most one midpoint per edge at an active vertex; each splits at most two triangles into
+      // four. The bytes cover this level's mesh and what the smoothing of it will allocate.
+      double reach = m.num_vertices();
+      for (Index v : active) reach += adj.valence(v);
+      check_allocation("adaptive subdivision level " + std::to_string(level + 1), reach,
+                       reach * kBytesPerAdaptiveVertex, options.limits);
+    }
 
     // Midpoints of every edge incident to an active vertex.
     std::unordered_map<std::uint64_t, Index> midpoint;

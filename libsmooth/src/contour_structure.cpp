@@ -5,8 +5,12 @@
 #include <Eigen/Eigenvalues>
 
 #include <algorithm>
+#include <cmath>
+#include <limits>
 #include <map>
 #include <numeric>
+#include <sstream>
+#include <string>
 
 namespace contourmesh {
 
@@ -147,6 +151,125 @@ bool assign_ids_by_slice_planes(Mesh& mesh, const MeshAdjacency& adj, const Eige
   mesh.slice_ids = std::move(slice);
   mesh.contour_ids = std::move(contour);
   return true;
+}
+
+std::size_t compact_slice_ids(Mesh& mesh) {
+  if (!mesh.has_contour_ids()) return 0;
+  std::vector<std::int32_t> used;
+  for (std::int32_t s : mesh.slice_ids) {
+    if (s >= 0) used.push_back(s);
+  }
+  std::sort(used.begin(), used.end());
+  used.erase(std::unique(used.begin(), used.end()), used.end());
+  if (used.empty()) return 0;
+  const auto span = static_cast<std::size_t>(used.back() - used.front()) + 1;
+  if (span == used.size()) return 0;
+  for (std::int32_t& s : mesh.slice_ids) {
+    if (s >= 0) s = used.front() + static_cast<std::int32_t>(std::lower_bound(used.begin(), used.end(), s) - used.begin());
+  }
+  return span - used.size();
+}
+
+bool repair_contour_ids(Mesh& mesh, const MeshAdjacency& adjacency, const Eigen::Vector3d& axis) {
+  if (!mesh.has_contour_ids()) return false;
+  Mesh recovered = mesh;
+  if (!assign_ids_by_slice_planes(recovered, adjacency, axis)) return false;
+  // Each recovered plane takes the file's most common slice id among its vertices.
+  std::map<std::int32_t, std::map<std::int32_t, Index>> votes;  // plane -> file id -> count
+  for (Index i = 0; i < mesh.num_vertices(); ++i) ++votes[recovered.slice_ids[i]][mesh.slice_ids[i]];
+  // A plane of the slices has a clear majority, and no two planes claim the same slice; otherwise the
+  // planes along `axis` are not the file's slices.
+  std::map<std::int32_t, std::int32_t> file_id;
+  std::map<std::int32_t, int> claims;
+  for (const auto& [plane, counts] : votes) {
+    const auto best = std::max_element(counts.begin(), counts.end(),
+                                       [](const auto& a, const auto& b) { return a.second < b.second; });
+    Index total = 0;
+    for (const auto& [id, count] : counts) total += count;
+    if (2 * best->second <= total) return false;
+    file_id[plane] = best->first < 0 ? kNoId : best->first;
+    if (file_id[plane] != kNoId && ++claims[file_id[plane]] > 1) return false;
+  }
+  for (Index i = 0; i < mesh.num_vertices(); ++i) {
+    const std::int32_t id = file_id[recovered.slice_ids[i]];
+    recovered.slice_ids[i] = id;
+    if (id == kNoId) recovered.contour_ids[i] = kNoId;
+  }
+  compact_slice_ids(recovered);
+  if (!find_contour_id_problem(recovered, adjacency).empty()) return false;
+  mesh = std::move(recovered);
+  return true;
+}
+
+std::string find_contour_id_problem(const Mesh& mesh, const MeshAdjacency& adj) {
+  if (!mesh.has_contour_ids()) return {};
+  const Index n = mesh.num_vertices();
+  const auto& slice = mesh.slice_ids;
+  const auto& contour = mesh.contour_ids;
+  std::ostringstream msg;
+  for (Index i = 0; i < n; ++i) {
+    if (slice[i] < kNoId || contour[i] < kNoId) {
+      msg << "vertex " << i << " has slice id " << slice[i] << " and contour id " << contour[i]
+          << " (ids are >= 0, or -1 for none)";
+      return msg.str();
+    }
+    if ((slice[i] == kNoId) != (contour[i] == kNoId)) {
+      msg << "vertex " << i << " has slice id " << slice[i] << " but contour id " << contour[i];
+      return msg.str();
+    }
+  }
+  for (Index i = 0; i < n; ++i) {
+    if (slice[i] == kNoId) continue;
+    for (Index j : adj.ring(i)) {
+      if (j > i && slice[j] != kNoId && std::abs(slice[j] - slice[i]) > 1) {
+        msg << "the edge between vertex " << i << " (slice " << slice[i] << ") and vertex " << j << " (slice "
+            << slice[j] << ") skips " << std::abs(slice[j] - slice[i]) - 1 << " slice"
+            << (std::abs(slice[j] - slice[i]) == 2 ? "" : "s");
+        return msg.str();
+      }
+    }
+  }
+  // Geometry: the heights of the slice planes along the estimated axis.
+  std::map<std::int32_t, std::pair<double, Index>> height;  // slice -> (sum, count)
+  for (Index i = 0; i < n; ++i) {
+    if (slice[i] != kNoId) height[slice[i]].second += 1;
+  }
+  if (height.size() < 2) return {};
+  Eigen::Vector3d axis;
+  try {
+    axis = estimate_slice_axis(mesh);
+  } catch (const InvalidInputError&) {
+    return "the slice ids do not describe slice planes (the vertices of a slice span no plane)";
+  }
+  for (Index i = 0; i < n; ++i) {
+    if (slice[i] != kNoId) height[slice[i]].first += mesh.positions.col(i).dot(axis);
+  }
+  std::map<std::int32_t, double> plane;
+  for (const auto& [s, sum_count] : height) plane[s] = sum_count.first / sum_count.second;
+  for (auto it = std::next(plane.begin()); it != plane.end(); ++it) {
+    const auto prev = std::prev(it);
+    if (!(it->second > prev->second)) {
+      msg << "slice " << it->first << " does not lie above slice " << prev->first << " along the slice axis";
+      return msg.str();
+    }
+  }
+  for (Index i = 0; i < n; ++i) {
+    if (slice[i] == kNoId) continue;
+    const auto it = plane.find(slice[i]);
+    const double h = mesh.positions.col(i).dot(axis);
+    const double off = h - it->second;
+    // Half the gap to the adjacent plane on the side the vertex strays to.
+    double half_gap = std::numeric_limits<double>::infinity();
+    if (off > 0.0 && std::next(it) != plane.end()) half_gap = 0.5 * (std::next(it)->second - it->second);
+    if (off < 0.0 && it != plane.begin()) half_gap = 0.5 * (it->second - std::prev(it)->second);
+    if (std::abs(off) > half_gap) {
+      const std::int32_t nearer = off > 0.0 ? std::next(it)->first : std::prev(it)->first;
+      msg << "vertex " << i << " has slice id " << slice[i] << " but lies " << std::abs(off)
+          << " from that slice's plane, nearer to slice " << nearer;
+      return msg.str();
+    }
+  }
+  return {};
 }
 
 }  // namespace contourmesh

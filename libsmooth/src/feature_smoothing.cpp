@@ -46,6 +46,7 @@ FeatureSmoothingResult feature_preserving_smooth(const Mesh& mesh, const Feature
   sub.max_levels = options.max_levels;
   sub.gamma = result.detection.gamma;
   sub.measure = options.detection.measure;
+  sub.limits = options.limits;
   AdaptiveMesh adaptive = subdivide_adaptively(mesh, selected, sub);
   result.subdivided_vertices = adaptive.subdivided.size();
   result.adaptive_vertices = adaptive.mesh.num_vertices();

@@ -5,7 +5,10 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdint>
 #include <sstream>
+#include <string>
+#include <vector>
 
 namespace contourmesh {
 
@@ -26,12 +29,14 @@ std::string describe(const MeshProblem& p) {
   std::ostringstream out;
   out << to_string(p.kind);
   switch (p.kind) {
-    case MeshProblemKind::NonFiniteCoordinate:
-    case MeshProblemKind::NonManifoldVertex: out << " at vertex " << p.index; break;
-    case MeshProblemKind::IndexOutOfRange:
-    case MeshProblemKind::DegenerateTriangle: out << " at triangle " << p.index; break;
+    case MeshProblemKind::NonFiniteCoordinate: out << " at vertex " << p.index; break;
+    case MeshProblemKind::NonManifoldVertex: out << " " << p.index << " (its triangles form separate fans)"; break;
+    case MeshProblemKind::IndexOutOfRange: out << " at triangle " << p.index; break;
+    case MeshProblemKind::DegenerateTriangle: out << " " << p.index << " (zero area)"; break;
     case MeshProblemKind::DuplicateTriangle: out << ": triangle " << p.index << " repeats triangle " << p.other; break;
-    case MeshProblemKind::NonManifoldEdge: out << " between vertices " << p.index << " and " << p.other; break;
+    case MeshProblemKind::NonManifoldEdge:
+      out << " between vertices " << p.index << " and " << p.other << " (more than two triangles)";
+      break;
     case MeshProblemKind::IdSizeMismatch: out << " (" << p.index << " ids for " << p.other << " vertices)"; break;
   }
   return out.str();
@@ -181,6 +186,122 @@ void validate_mesh(const Mesh& mesh, const ValidationOptions& options) {
   }
   if (input_error) throw InvalidInputError(msg.str());
   throw TopologyError(msg.str());
+}
+
+std::string MeshRepair::describe() const {
+  std::vector<std::string> parts;
+  auto plural = [](Index n, const std::string& one, const std::string& many) {
+    return std::to_string(n) + " " + (n == 1 ? one : many);
+  };
+  if (merged_vertices) parts.push_back("merged " + plural(merged_vertices, "coincident vertex", "coincident vertices"));
+  if (dropped_degenerate) {
+    parts.push_back("dropped " + plural(dropped_degenerate, "triangle", "triangles") + " with a repeated vertex");
+  }
+  if (dropped_duplicates) {
+    parts.push_back((dropped_degenerate ? "" : "dropped ") +
+                    plural(dropped_duplicates, "duplicate triangle", "duplicate triangles"));
+  }
+  std::string out;
+  for (std::size_t k = 0; k < parts.size(); ++k) {
+    out += (k == 0 ? "" : k + 1 == parts.size() ? " and " : ", ") + parts[k];
+  }
+  return out;
+}
+
+MeshRepair repair_mesh(Mesh& mesh, const RepairOptions& options) {
+  const Index n = mesh.num_vertices();
+  for (Index f = 0; f < mesh.num_faces(); ++f) {
+    for (Index v : mesh.triangles[f]) {
+      if (v < 0 || v >= n) {
+        throw InvalidInputError("triangle " + std::to_string(f) + " references vertex " + std::to_string(v) +
+                                " but the mesh has " + std::to_string(n) + " vertices");
+      }
+    }
+  }
+  MeshRepair report;
+  const bool ids = mesh.has_contour_ids();
+
+  if (options.merging == VertexMerging::Coincident && n > 1) {
+    // Sort the finite vertices by (x, y, z, ids); equal runs merge into their smallest index.
+    std::vector<Index> order;
+    order.reserve(static_cast<std::size_t>(n));
+    for (Index i = 0; i < n; ++i) {
+      if (mesh.positions.col(i).allFinite()) order.push_back(i);
+    }
+    auto key_less = [&](Index a, Index b) {
+      for (int k = 0; k < 3; ++k) {
+        if (mesh.positions(k, a) != mesh.positions(k, b)) return mesh.positions(k, a) < mesh.positions(k, b);
+      }
+      if (ids && mesh.slice_ids[a] != mesh.slice_ids[b]) return mesh.slice_ids[a] < mesh.slice_ids[b];
+      if (ids && mesh.contour_ids[a] != mesh.contour_ids[b]) return mesh.contour_ids[a] < mesh.contour_ids[b];
+      return a < b;
+    };
+    auto same = [&](Index a, Index b) {
+      return mesh.positions.col(a) == mesh.positions.col(b) &&
+             (!ids || (mesh.slice_ids[a] == mesh.slice_ids[b] && mesh.contour_ids[a] == mesh.contour_ids[b]));
+    };
+    std::sort(order.begin(), order.end(), key_less);
+    std::vector<Index> representative(static_cast<std::size_t>(n));
+    for (Index i = 0; i < n; ++i) representative[i] = i;
+    for (std::size_t k = 1; k < order.size(); ++k) {
+      if (same(order[k], order[k - 1])) representative[order[k]] = representative[order[k - 1]];
+    }
+    std::vector<Index> new_index(static_cast<std::size_t>(n), -1);
+    Index kept = 0;
+    for (Index i = 0; i < n; ++i) {
+      if (representative[i] == i) new_index[i] = kept++;
+    }
+    if (kept < n) {
+      report.merged_vertices = n - kept;
+      Mesh merged;
+      merged.positions.resize(3, kept);
+      for (Index i = 0; i < n; ++i) {
+        if (new_index[i] < 0) continue;
+        merged.positions.col(new_index[i]) = mesh.positions.col(i);
+        if (ids) {
+          merged.slice_ids.push_back(mesh.slice_ids[i]);
+          merged.contour_ids.push_back(mesh.contour_ids[i]);
+        }
+      }
+      merged.triangles = std::move(mesh.triangles);
+      for (Triangle& t : merged.triangles) {
+        for (Index& v : t) v = new_index[representative[v]];
+      }
+      mesh = std::move(merged);
+    }
+  }
+
+  // Triangles with a repeated vertex, then repeats of a vertex set (first occurrence kept).
+  const Index nf = mesh.num_faces();
+  std::vector<std::uint8_t> drop(static_cast<std::size_t>(nf), 0);
+  std::vector<std::pair<Triangle, Index>> keyed;
+  keyed.reserve(static_cast<std::size_t>(nf));
+  for (Index f = 0; f < nf; ++f) {
+    Triangle t = mesh.triangles[f];
+    if (t[0] == t[1] || t[1] == t[2] || t[0] == t[2]) {
+      drop[f] = 1;
+      ++report.dropped_degenerate;
+      continue;
+    }
+    std::sort(t.begin(), t.end());
+    keyed.emplace_back(t, f);
+  }
+  std::sort(keyed.begin(), keyed.end());
+  for (std::size_t k = 1; k < keyed.size(); ++k) {
+    if (keyed[k].first == keyed[k - 1].first) {
+      drop[keyed[k].second] = 1;
+      ++report.dropped_duplicates;
+    }
+  }
+  if (report.dropped_degenerate + report.dropped_duplicates > 0) {
+    std::vector<Triangle> kept;
+    kept.reserve(static_cast<std::size_t>(nf));
+    for (Index f = 0; f < nf; ++f) {
+      if (!drop[f]) kept.push_back(mesh.triangles[f]);
+    }
+    mesh.triangles = std::move(kept);
+  }
+  return report;
 }
 
 }  // namespace contourmesh

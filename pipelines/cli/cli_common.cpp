@@ -2,7 +2,12 @@
 
 #include <smooth/errors.h>
 
+#include <CLI/CLI.hpp>
+
 #include <cmath>
+#include <filesystem>
+#include <limits>
+#include <new>
 #include <iostream>
 #include <string>
 #include <vector>
@@ -12,11 +17,25 @@ namespace contourmesh::cli {
 int run_guarded(const std::string& command, const std::function<int()>& body) {
   try {
     return body();
+  } catch (const LimitError& e) {
+    const std::string what = e.what();
+    std::cerr << "contourmesh " << command << ": error: " << what
+              << (what.find("limit of") != std::string::npos ? "; raise it with --max-vertices" : "") << "\n";
+    return kBadInput;
   } catch (const InvalidInputError& e) {
     std::cerr << "contourmesh " << command << ": error: " << e.what() << "\n";
     return kBadInput;
   } catch (const CancelledError& e) {
     std::cerr << "contourmesh " << command << ": " << e.what() << "\n";
+    return kBadInput;
+  } catch (const std::filesystem::filesystem_error& e) {
+    // Creating an output directory, and the like: the path the user gave is unusable.
+    std::cerr << "contourmesh " << command << ": error: " << e.path1().string() << ": " << e.code().message() << "\n";
+    return kBadInput;
+  } catch (const std::bad_alloc&) {
+    std::cerr << "contourmesh " << command
+              << ": error: out of memory (the input is too large for this machine; lower --max-vertices to fail "
+                 "earlier, or use a coarser sampling)\n";
     return kBadInput;
   } catch (const std::exception& e) {
     std::cerr << "contourmesh " << command << ": internal error: " << e.what() << "\n";
@@ -59,6 +78,14 @@ Eigen::Vector3d parse_spacing(const std::string& text) {
   }
   if (values.size() != 3) fail();
   return {values[0], values[1], values[2]};
+}
+
+void add_max_vertices_option(CLI::App* command, Index& max_vertices) {
+  command
+      ->add_option("--max-vertices", max_vertices,
+                   "Refuse meshes (read or produced) with more vertices than this, before allocating them")
+      ->check(CLI::Range(1, std::numeric_limits<Index>::max()))
+      ->capture_default_str();
 }
 
 double seconds_since(std::chrono::steady_clock::time_point start) {

@@ -1,6 +1,8 @@
 // Conventions shared by the contourmesh subcommands: exit codes, error reporting, JSON output.
 #pragma once
 
+#include <smooth/mesh.h>
+
 #include <Eigen/Core>
 #include <nlohmann/json.hpp>
 
@@ -23,7 +25,8 @@ enum ExitCode : int {
 };
 
 /// Runs a subcommand body, mapping exceptions to exit codes and one-line messages on stderr:
-/// InvalidInputError -> 2, CancelledError -> 2, anything else -> 3.
+/// InvalidInputError (LimitError with a hint at --max-vertices) -> 2, CancelledError -> 2, a
+/// filesystem error -> 2, std::bad_alloc -> 2 (out of memory), anything else -> 3.
 int run_guarded(const std::string& command, const std::function<int()>& body);
 
 /// The exit code of the subcommand that ran (subcommand callbacks cannot return one).
@@ -36,6 +39,10 @@ void print_json(const nlohmann::json& json);
 /// Parses "sx,sy,sz": three comma-separated finite numbers > 0 (voxel spacing in mm); throws
 /// InvalidInputError quoting the text otherwise.
 [[nodiscard]] Eigen::Vector3d parse_spacing(const std::string& text);
+
+/// Registers --max-vertices N on `command`: meshes read or produced with more vertices are refused
+/// (exit 2) before the memory is allocated. Default kDefaultMaxVertices.
+void add_max_vertices_option(CLI::App* command, Index& max_vertices);
 
 /// Seconds since `start`.
 double seconds_since(std::chrono::steady_clock::time_point start);

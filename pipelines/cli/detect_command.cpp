@@ -3,10 +3,12 @@
 #include "progress_display.h"
 #include "feature_options.h"
 
+#include <pipelines/atomic_file.h>
 #include <pipelines/mesh_io.h>
 #include <smooth/adjacency.h>
 #include <smooth/errors.h>
 #include <smooth/feature_detection.h>
+#include <smooth/limits.h>
 
 #include <CLI/CLI.hpp>
 
@@ -24,6 +26,7 @@ struct DetectArgs {
   FeatureArgs features;
   std::string slice_array = "ContourId";
   std::string contour_array = "ContourIndex";
+  Index max_vertices = kDefaultMaxVertices;
   bool json = false;
   CommonArgs common;
 };
@@ -34,8 +37,10 @@ int run_detect(const DetectArgs& a) {
   if (!format_keeps_contour_ids(format_from_extension(a.output))) {
     throw InvalidInputError(a.output + ": labels need a .vtp or .ply file");
   }
+  check_output_path(a.output);
   MeshReadOptions read_options;
   read_options.arrays = {a.slice_array, a.contour_array};
+  read_options.max_vertices = a.max_vertices;
   Mesh mesh = read_mesh(a.input, read_options);
   check_mesh(mesh, a.input, "detect");
   const MeshAdjacency adjacency = build_adjacency(mesh);
@@ -89,6 +94,7 @@ void add_detect_command(CLI::App& app) {
   cmd->add_option("--slice-array", args->slice_array, "Point array holding the slice index c(i)")->capture_default_str();
   cmd->add_option("--contour-array", args->contour_array, "Point array holding the contour index within a slice")
       ->capture_default_str();
+  add_max_vertices_option(cmd, args->max_vertices);
   cmd->add_flag("--json", args->json, "Print one JSON object on stdout instead of the summary");
   add_common_options(cmd, args->common);
   cmd->callback([args] { set_exit_code(run_guarded("detect", [&] { return run_detect(*args); })); });

@@ -34,10 +34,13 @@ void add_feature_options(CLI::App* command, FeatureArgs& args);
 /// Detection options from the arguments (throws InvalidInputError for a bad --measure).
 [[nodiscard]] DetectionOptions detection_options(const FeatureArgs& args);
 
-/// Makes sure detection can run on `mesh`: keeps the ids it was read with ("file"), recovers them
-/// from the slice planes along --slice-axis ("slice-planes"), or switches `detection` to the
-/// curvature-only fallback ("none", with a warning on stderr). Throws InvalidInputError naming the file
-/// when --slice-axis was given but the vertices do not lie on planes normal to it.
+/// Makes sure detection can run on `mesh`: keeps the ids it was read with ("file"; a gap in the slice
+/// ids is closed with a warning), corrects ids inconsistent with the mesh from its slice planes
+/// ("file-repaired", see repair_contour_ids; with a warning naming the inconsistency), recovers them
+/// from the slice planes ("slice-planes": along --slice-axis for a mesh without ids, or when the
+/// correction fails), or switches `detection` to the curvature-only fallback
+/// ("none", with a warning on stderr). Throws InvalidInputError naming the file when --slice-axis was
+/// given but the vertices do not lie on planes normal to it.
 [[nodiscard]] std::string prepare_contour_ids(Mesh& mesh, const MeshAdjacency& adjacency, const FeatureArgs& args,
                                               const std::string& path, const std::string& command,
                                               DetectionOptions& detection);
@@ -46,8 +49,10 @@ void add_feature_options(CLI::App* command, FeatureArgs& args);
 /// 3 noise), Umbrella, KappaMin, KappaMax, KBelow, K0, KAbove, Psi.
 [[nodiscard]] std::vector<PointScalars> detection_arrays(const FeatureDetection& detection);
 
-/// Non-finite coordinates, bad indices and id mismatches throw InvalidInputError naming `path`;
-/// topology problems that smoothing tolerates are one warning line on stderr.
-void check_mesh(const Mesh& mesh, const std::string& path, const std::string& command);
+/// Prepares a mesh read from `path`: non-finite coordinates, bad indices and id mismatches throw
+/// InvalidInputError naming `path`; coincident vertices are merged and triangles with a repeated vertex
+/// and duplicate triangles dropped (repair_mesh), with one warning line; topology problems that
+/// smoothing tolerates (zero-area triangles, non-manifold edges and vertices) are one warning line.
+void check_mesh(Mesh& mesh, const std::string& path, const std::string& command);
 
 }  // namespace contourmesh::cli

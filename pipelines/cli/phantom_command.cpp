@@ -3,6 +3,7 @@
 #include "cli_common.h"
 #include "progress_display.h"
 
+#include <pipelines/atomic_file.h>
 #include <reconstruct/phantom.h>
 #include <reconstruct/volume.h>
 #include <smooth/errors.h>
@@ -49,11 +50,7 @@ void check_output(const std::string& output) {
     return name.size() > ext.size() && name.compare(name.size() - ext.size(), ext.size(), ext) == 0;
   });
   if (!known) throw InvalidInputError(output + ": unsupported volume extension; use .mha, .nrrd, .nii or .nii.gz");
-  const std::filesystem::path dir = std::filesystem::path(output).parent_path();
-  std::error_code ec;
-  if (!dir.empty() && !std::filesystem::is_directory(dir, ec)) {
-    throw InvalidInputError(output + ": cannot write: directory '" + dir.string() + "' does not exist");
-  }
+  check_output_path(output);
 }
 
 nlohmann::json to_json(const Eigen::Vector3d& v) { return nlohmann::json::array({v.x(), v.y(), v.z()}); }

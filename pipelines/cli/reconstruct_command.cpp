@@ -2,10 +2,12 @@
 #include "cli_common.h"
 #include "progress_display.h"
 
+#include <pipelines/atomic_file.h>
 #include <pipelines/mesh_io.h>
 #include <reconstruct/reconstruction.h>
 #include <reconstruct/volume.h>
 #include <smooth/errors.h>
+#include <smooth/limits.h>
 #include <smooth/metrics.h>
 #include <smooth/topology.h>
 
@@ -31,6 +33,7 @@ struct ReconstructArgs {
   bool fill_holes = false;
   std::string end_caps = "half-spacing";
   std::string format = "auto";
+  Index max_vertices = kDefaultMaxVertices;
   bool json = false;
   CommonArgs common;
 };
@@ -61,6 +64,8 @@ int run_reconstruct(const ReconstructArgs& a) {
   MeshWriteOptions write_options;
   write_options.format = parse_mesh_format(a.format);
   if (write_options.format == MeshFormat::Auto) (void)format_from_extension(a.output);  // fail before the work
+  check_output_path(a.output);
+  options.tiling.limits.max_vertices = a.max_vertices;
 
   apply_common_options(a.common);
   ProgressDisplay progress("reconstruct", a.common.quiet);
@@ -69,6 +74,8 @@ int run_reconstruct(const ReconstructArgs& a) {
   Reconstruction r;
   try {
     r = reconstruct(*image, options, progress.callback());
+  } catch (const LimitError& e) {
+    throw LimitError(a.input + ": " + e.what());
   } catch (const InvalidInputError& e) {
     throw InvalidInputError(a.input + ": " + e.what());
   }
@@ -146,6 +153,7 @@ void add_reconstruct_command(CLI::App& app) {
       ->capture_default_str();
   cmd->add_option("--format", args->format, "Output format: auto | stl | stl-ascii | ply | vtp | obj")
       ->capture_default_str();
+  add_max_vertices_option(cmd, args->max_vertices);
   cmd->add_flag("--json", args->json, "Print one JSON object on stdout instead of the summary");
   add_common_options(cmd, args->common);
   cmd->callback([args] { set_exit_code(run_guarded("reconstruct", [&] { return run_reconstruct(*args); })); });

@@ -5,6 +5,7 @@
 #include "feature_options.h"
 #include "progress_display.h"
 
+#include <pipelines/atomic_file.h>
 #include <pipelines/mesh_io.h>
 #include <reconstruct/phantom.h>
 #include <reconstruct/reconstruction.h>
@@ -12,6 +13,7 @@
 #include <smooth/adjacency.h>
 #include <smooth/errors.h>
 #include <smooth/feature_smoothing.h>
+#include <smooth/limits.h>
 #include <smooth/metrics.h>
 #include <smooth/smoothing.h>
 #include <smooth/topology.h>
@@ -42,6 +44,7 @@ struct RunArgs {
   std::optional<int> iterations;
   double feature_radius = 2.0;
   std::string end_caps = "half-spacing";
+  Index max_vertices = kDefaultMaxVertices;
   bool json = false;
   FeatureArgs detection;
   CommonArgs common;
@@ -54,6 +57,17 @@ int run_run(const RunArgs& a) {
   if (!(a.feature_radius > 0.0)) throw InvalidInputError("--feature-radius must be > 0 mm");
   apply_common_options(a.common);
   ProgressDisplay progress("run", a.common.quiet);
+  // The default output goes to out/: create the directory, then check it can take the file.
+  const std::filesystem::path out(a.output);
+  if (!out.parent_path().empty() && !std::filesystem::exists(out.parent_path())) {
+    std::error_code ec;
+    std::filesystem::create_directories(out.parent_path(), ec);
+    if (ec) {
+      throw InvalidInputError(a.output + ": cannot create the directory '" + out.parent_path().string() +
+                              "': " + ec.message());
+    }
+  }
+  check_output_path(out);
 
   // 1. Read or generate the volume.
   auto t = std::chrono::steady_clock::now();
@@ -86,9 +100,12 @@ int run_run(const RunArgs& a) {
   const PhantomVolumeOptions phantom_defaults;
   ro.segmentation.threshold =
       a.threshold.value_or(phantom ? 0.5 * (phantom_defaults.bone_hu + phantom_defaults.tissue_hu) : 300.0);
+  ro.tiling.limits.max_vertices = a.max_vertices;
   Reconstruction rec;
   try {
     rec = reconstruct(*image, ro, progress.callback());
+  } catch (const LimitError& e) {
+    throw LimitError(source + ": " + e.what());
   } catch (const InvalidInputError& e) {
     throw InvalidInputError(source + ": " + e.what());
   }
@@ -103,7 +120,12 @@ int run_run(const RunArgs& a) {
     o.detection = detection_options(a.detection);
     o.progress = progress.callback();
     if (a.iterations) o.iterations = *a.iterations;
-    paper = feature_preserving_smooth(mesh, o);
+    o.limits.max_vertices = a.max_vertices;
+    try {
+      paper = feature_preserving_smooth(mesh, o);
+    } catch (const LimitError& e) {
+      throw LimitError(source + ": " + e.what());
+    }
     result = paper->mesh;
   } else {
     SmoothingOptions o;
@@ -116,8 +138,6 @@ int run_run(const RunArgs& a) {
 
   // 4. Export.
   t = std::chrono::steady_clock::now();
-  const std::filesystem::path out(a.output);
-  if (!out.parent_path().empty()) std::filesystem::create_directories(out.parent_path());
   progress.stage("write");
   write_mesh(result, out);
   progress.finish();
@@ -230,6 +250,7 @@ void add_run_command(CLI::App& app) {
       ->capture_default_str();
   add_detection_options(cmd, args->detection);
   add_common_options(cmd, args->common);
+  add_max_vertices_option(cmd, args->max_vertices);
   cmd->add_flag("--json", args->json, "Print one JSON object on stdout instead of the summary");
   cmd->callback([args] { set_exit_code(run_guarded("run", [&] { return run_run(*args); })); });
 }

@@ -3,10 +3,12 @@
 #include "progress_display.h"
 #include "feature_options.h"
 
+#include <pipelines/atomic_file.h>
 #include <pipelines/mesh_io.h>
 #include <smooth/adjacency.h>
 #include <smooth/errors.h>
 #include <smooth/feature_smoothing.h>
+#include <smooth/limits.h>
 #include <smooth/metrics.h>
 #include <smooth/smoothing.h>
 
@@ -40,6 +42,7 @@ struct SmoothArgs {
   std::string diffusion = "taubin";
   bool keep_adaptive = false;
   std::string labels_out;
+  Index max_vertices = kDefaultMaxVertices;
   bool json = false;
   CommonArgs common;
 };
@@ -49,6 +52,7 @@ int run_smooth(const SmoothArgs& a) {
   const bool paper = a.method == "paper";
   MeshReadOptions read_options;
   read_options.arrays = {a.slice_array, a.contour_array};
+  read_options.max_vertices = a.max_vertices;
   MeshWriteOptions write_options;
   write_options.format = parse_mesh_format(a.format);
   write_options.arrays = read_options.arrays;
@@ -66,6 +70,9 @@ int run_smooth(const SmoothArgs& a) {
   if (a.keep_adaptive && !paper) throw InvalidInputError("--keep-adaptive needs --method paper");
   apply_common_options(a.common);
   ProgressDisplay progress("smooth", a.common.quiet);
+
+  check_output_path(a.output);
+  if (!a.labels_out.empty()) check_output_path(a.labels_out);
 
   progress.stage("read");
 
@@ -94,7 +101,13 @@ int run_smooth(const SmoothArgs& a) {
     o.boundary = boundary;
     o.output = a.keep_adaptive ? OutputResolution::Adaptive : OutputResolution::Original;
     o.progress = progress.callback();
-    const FeatureSmoothingResult r = feature_preserving_smooth(mesh, o);
+    o.limits.max_vertices = a.max_vertices;
+    FeatureSmoothingResult r;
+    try {
+      r = feature_preserving_smooth(mesh, o);
+    } catch (const LimitError& e) {
+      throw LimitError(a.input + ": " + e.what());
+    }
     result = r.mesh;
     iterations = o.iterations;
     lambda = o.lambda.value_or(default_lambda(o.diffusion));
@@ -216,6 +229,7 @@ void add_smooth_command(CLI::App& app) {
   cmd->add_option("--slice-array", args->slice_array, "Point array holding the slice index c(i)")->capture_default_str();
   cmd->add_option("--contour-array", args->contour_array, "Point array holding the contour index within a slice")
       ->capture_default_str();
+  add_max_vertices_option(cmd, args->max_vertices);
   cmd->add_flag("--json", args->json, "Print one JSON object on stdout instead of the summary");
   add_common_options(cmd, args->common);
   cmd->callback([args] { set_exit_code(run_guarded("smooth", [&] { return run_smooth(*args); })); });

@@ -4,6 +4,7 @@
 
 #include <unistd.h>
 
+#include <cerrno>
 #include <fstream>
 #include <random>
 #include <system_error>
@@ -23,14 +24,30 @@ fs::path temporary_sibling(const fs::path& path) {
 
 }  // namespace
 
-void write_atomically(const fs::path& path, const std::function<void(const fs::path&)>& write) {
-  if (path.empty() || path.filename().empty()) throw InvalidInputError("output path '" + path.string() + "' names no file");
+void check_output_path(const fs::path& path) {
+  if (path.empty() || path.filename().empty() || path.filename() == "." || path.filename() == "..") {
+    throw InvalidInputError("output path '" + path.string() + "' names no file");
+  }
   const fs::path dir = path.parent_path().empty() ? fs::path(".") : path.parent_path();
   std::error_code ec;
-  if (!fs::is_directory(dir, ec)) {
+  const fs::file_status status = fs::status(dir, ec);
+  if (!fs::exists(status)) {
     throw InvalidInputError(path.string() + ": cannot write: directory '" + dir.string() + "' does not exist");
   }
+  if (!fs::is_directory(status)) {
+    throw InvalidInputError(path.string() + ": cannot write: '" + dir.string() + "' is not a directory");
+  }
   if (fs::is_directory(path, ec)) throw InvalidInputError(path.string() + ": cannot write: it is a directory");
+  if (::access(dir.c_str(), W_OK | X_OK) != 0) {
+    const int error = errno;
+    throw InvalidInputError(path.string() + ": cannot write in '" + dir.string() +
+                            "': " + std::generic_category().message(error));
+  }
+}
+
+void write_atomically(const fs::path& path, const std::function<void(const fs::path&)>& write) {
+  check_output_path(path);
+  std::error_code ec;
   const fs::path tmp = temporary_sibling(path);
   try {
     write(tmp);

@@ -4,15 +4,16 @@
 #include "pipelines/ply_io.h"
 #include "pipelines/vtk_convert.h"
 
+#include "mesh_readers.h"
+
 #include <smooth/errors.h>
 
 #include <vtkAlgorithm.h>
+#include <vtkLogger.h>
 #include <vtkNew.h>
-#include <vtkOBJReader.h>
 #include <vtkOBJWriter.h>
 #include <vtkOutputWindow.h>
 #include <vtkPolyData.h>
-#include <vtkSTLReader.h>
 #include <vtkSTLWriter.h>
 #include <vtkSmartPointer.h>
 #include <vtkStringOutputWindow.h>
@@ -22,6 +23,7 @@
 #include <algorithm>
 #include <cctype>
 #include <fstream>
+#include <iterator>
 #include <sstream>
 
 namespace contourmesh {
@@ -64,10 +66,18 @@ namespace {
 
 // Routes VTK's error and warning text into a string for the lifetime of the object, so failures can
 // be reported as one clear exception instead of VTK's multi-line console output.
+// VTK also logs every error to stderr through vtkLogger; that is switched off meanwhile.
 class CapturedVtkMessages {
  public:
-  CapturedVtkMessages() : previous_(vtkOutputWindow::GetInstance()) { vtkOutputWindow::SetInstance(window_); }
-  ~CapturedVtkMessages() { vtkOutputWindow::SetInstance(previous_); }
+  CapturedVtkMessages()
+      : previous_(vtkOutputWindow::GetInstance()), previous_verbosity_(vtkLogger::GetCurrentVerbosityCutoff()) {
+    vtkOutputWindow::SetInstance(window_);
+    vtkLogger::SetStderrVerbosity(vtkLogger::VERBOSITY_OFF);
+  }
+  ~CapturedVtkMessages() {
+    vtkLogger::SetStderrVerbosity(previous_verbosity_);
+    vtkOutputWindow::SetInstance(previous_);
+  }
   CapturedVtkMessages(const CapturedVtkMessages&) = delete;
   CapturedVtkMessages& operator=(const CapturedVtkMessages&) = delete;
 
@@ -83,14 +93,22 @@ class CapturedVtkMessages {
       }
       if (in_error && !line.empty()) {
         const auto pos = line.find("): ");
-        return pos == std::string::npos ? line : line.substr(pos + 3);
+        return printable(pos == std::string::npos ? line : line.substr(pos + 3));
       }
     }
     return {};
   }
 
  private:
+  // VTK quotes the offending text, which may be binary: keep it printable and short.
+  static std::string printable(const std::string& text) {
+    std::string out;
+    for (char c : text.substr(0, 160)) out += std::isprint(static_cast<unsigned char>(c)) ? c : '?';
+    return text.size() > 160 ? out + "..." : out;
+  }
+
   vtkSmartPointer<vtkOutputWindow> previous_;
+  vtkLogger::Verbosity previous_verbosity_;
   vtkNew<vtkStringOutputWindow> window_;
 };
 
@@ -104,6 +122,39 @@ vtkSmartPointer<vtkPolyData> run_reader(vtkAlgorithm* reader, vtkPolyData* outpu
   const std::string error = messages.first_error();
   if (!error.empty()) throw InvalidInputError(path.string() + ": cannot read: " + error);
   return output;
+}
+
+// The whole file, for the parsers that work on bytes.
+std::string slurp(const fs::path& path) {
+  std::ifstream in(path, std::ios::binary);
+  std::string bytes((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  if (in.bad()) throw InvalidInputError(path.string() + ": read error");
+  return bytes;
+}
+
+// Checks every format's result: finite coordinates, indices in range, the vertex limit.
+void check_read_mesh(const Mesh& mesh, const fs::path& path, const MeshReadOptions& options) {
+  const Index n = mesh.num_vertices();
+  if (n > options.max_vertices) {
+    throw LimitError(path.string() + ": " + std::to_string(n) + " vertices, more than the limit of " +
+                     std::to_string(options.max_vertices));
+  }
+  for (Index i = 0; i < n; ++i) {
+    if (!mesh.positions.col(i).allFinite()) {
+      std::ostringstream msg;
+      msg << path.string() << ": vertex " << i << " has a non-finite coordinate (" << mesh.positions(0, i) << ", "
+          << mesh.positions(1, i) << ", " << mesh.positions(2, i) << ")";
+      throw InvalidInputError(msg.str());
+    }
+  }
+  for (Index f = 0; f < mesh.num_faces(); ++f) {
+    for (Index v : mesh.triangles[f]) {
+      if (v < 0 || v >= n) {
+        throw InvalidInputError(path.string() + ": triangle " + std::to_string(f) + " references vertex " +
+                                std::to_string(v) + " but the file has " + std::to_string(n) + " vertices");
+      }
+    }
+  }
 }
 
 }  // namespace
@@ -120,35 +171,33 @@ Mesh read_mesh(const fs::path& path, const MeshReadOptions& options) {
   const MeshFormat format = resolve(options.format, path);
 
   Mesh mesh;
-  if (format == MeshFormat::Ply) {
-    std::ifstream in(path, std::ios::binary);
-    try {
-      mesh = read_ply(in, options.arrays);
-    } catch (const InvalidInputError& e) {
-      throw InvalidInputError(path.string() + ": " + e.what());
-    }
-  } else {
-    CapturedVtkMessages messages;
-    vtkSmartPointer<vtkPolyData> poly;
-    if (format == MeshFormat::StlBinary || format == MeshFormat::StlAscii) {
-      vtkNew<vtkSTLReader> reader;  // merges coincident corners into shared vertices by default
-      reader->SetFileName(path.c_str());
-      poly = run_reader(reader, reader->GetOutput(), path, messages);
-    } else if (format == MeshFormat::Vtp) {
+  try {
+    if (format == MeshFormat::Ply) {
+      std::ifstream in(path, std::ios::binary);
+      mesh = read_ply(in, options.arrays, options.max_vertices);
+    } else if (format == MeshFormat::StlBinary || format == MeshFormat::StlAscii) {
+      mesh = detail::read_stl(slurp(path), options.max_vertices);
+    } else if (format == MeshFormat::Obj) {
+      mesh = detail::read_obj(slurp(path), options.max_vertices);
+    } else {
+      CapturedVtkMessages messages;
       vtkNew<vtkXMLPolyDataReader> reader;
       reader->SetFileName(path.c_str());
-      poly = run_reader(reader, reader->GetOutput(), path, messages);
-    } else {
-      vtkNew<vtkOBJReader> reader;
-      reader->SetFileName(path.c_str());
-      poly = run_reader(reader, reader->GetOutput(), path, messages);
-    }
-    try {
+      const vtkSmartPointer<vtkPolyData> poly = run_reader(reader, reader->GetOutput(), path, messages);
+      if (poly->GetNumberOfPoints() > options.max_vertices) {
+        throw LimitError(std::to_string(poly->GetNumberOfPoints()) + " vertices, more than the limit of " +
+                         std::to_string(options.max_vertices));
+      }
       mesh = from_polydata(poly, options.arrays);
-    } catch (const InvalidInputError& e) {
-      throw InvalidInputError(path.string() + ": " + e.what());
     }
+  } catch (const LimitError& e) {
+    throw LimitError(path.string() + ": " + e.what());
+  } catch (const InvalidInputError& e) {
+    const std::string what = e.what();
+    if (what.rfind(path.string() + ": ", 0) == 0) throw;  // already names the file
+    throw InvalidInputError(path.string() + ": " + what);
   }
+  check_read_mesh(mesh, path, options);
   if (mesh.num_faces() == 0) {
     throw InvalidInputError(path.string() + ": no triangles found (" + std::to_string(mesh.num_vertices()) +
                             " points); is it a " + std::string(to_string(format)) + " surface mesh?");

@@ -3,6 +3,7 @@
 #include <smooth/errors.h>
 
 #include <bit>
+#include <cmath>
 #include <cstring>
 #include <limits>
 #include <sstream>
@@ -97,7 +98,7 @@ std::string element_at(const Element& e, std::uint64_t k) {
 
 }  // namespace
 
-Mesh read_ply(std::istream& in, const ContourIdArrayNames& arrays) {
+Mesh read_ply(std::istream& in, const ContourIdArrayNames& arrays, Index max_vertices) {
   std::string line;
   if (!std::getline(in, line) || line.substr(0, 3) != "ply") throw InvalidInputError("not a PLY file (no 'ply' magic)");
   Encoding enc = Encoding::Ascii;
@@ -157,6 +158,7 @@ Mesh read_ply(std::istream& in, const ContourIdArrayNames& arrays) {
   std::vector<double> xyz;
   std::vector<std::int32_t> slice, contour;
   bool have_vertices = false;
+  std::vector<std::uint64_t> face_of;  // the face element each triangle came from
   ValueReader reader(in, enc);
   std::vector<double> row;
   for (const Element& e : elements) {
@@ -177,8 +179,9 @@ Mesh read_ply(std::istream& in, const ContourIdArrayNames& arrays) {
     if (is_vertex) {
       if (ix < 0 || iy < 0 || iz < 0) throw InvalidInputError("PLY: vertex element lacks x, y or z");
       have_vertices = true;
-      if (e.count > static_cast<std::uint64_t>(std::numeric_limits<Index>::max())) {
-        throw InvalidInputError("PLY: " + std::to_string(e.count) + " vertices is more than supported");
+      if (e.count > static_cast<std::uint64_t>(max_vertices)) {
+        throw LimitError("PLY: the header announces " + std::to_string(e.count) + " vertices, more than the limit of " +
+                         std::to_string(max_vertices));
       }
     }
     if (is_face && iface < 0) throw InvalidInputError("PLY: face element has no vertex_indices list");
@@ -205,6 +208,12 @@ Mesh read_ply(std::istream& in, const ContourIdArrayNames& arrays) {
         }
       }
       if (is_vertex) {
+        if (!std::isfinite(row[ix]) || !std::isfinite(row[iy]) || !std::isfinite(row[iz])) {
+          std::ostringstream msg;
+          msg << "PLY: vertex " << k << " has a non-finite coordinate (" << row[ix] << ", " << row[iy] << ", "
+              << row[iz] << ")";
+          throw InvalidInputError(msg.str());
+        }
         xyz.push_back(row[ix]);
         xyz.push_back(row[iy]);
         xyz.push_back(row[iz]);
@@ -213,7 +222,10 @@ Mesh read_ply(std::istream& in, const ContourIdArrayNames& arrays) {
           contour.push_back(static_cast<std::int32_t>(row[icontour]));
         }
       } else if (is_face && corners.size() >= 3) {
-        for (std::size_t c = 1; c + 1 < corners.size(); ++c) mesh.triangles.push_back({corners[0], corners[c], corners[c + 1]});
+        for (std::size_t c = 1; c + 1 < corners.size(); ++c) {
+          mesh.triangles.push_back({corners[0], corners[c], corners[c + 1]});
+          face_of.push_back(k);
+        }
       }
     }
   }
@@ -223,8 +235,9 @@ Mesh read_ply(std::istream& in, const ContourIdArrayNames& arrays) {
   for (std::size_t f = 0; f < mesh.triangles.size(); ++f) {
     for (Index v : mesh.triangles[f]) {
       if (v < 0 || v >= n) {
-        throw InvalidInputError("PLY: face " + std::to_string(f) + " references vertex " + std::to_string(v) +
-                                " of " + std::to_string(n));
+        throw InvalidInputError("PLY: triangle " + std::to_string(f) + " (face " + std::to_string(face_of[f]) +
+                                ") references vertex " + std::to_string(v) + " but the file has " +
+                                std::to_string(n) + " vertices");
       }
     }
   }

@@ -13,6 +13,8 @@
 #include <vtkPolyData.h>
 #include <vtkTriangleFilter.h>
 
+#include <string>
+
 namespace contourmesh {
 
 vtkSmartPointer<vtkPolyData> to_polydata(const Mesh& mesh, const ContourIdArrayNames& arrays,
@@ -83,6 +85,24 @@ std::vector<std::int32_t> read_id_array(vtkDataArray* array, Index n) {
 Mesh from_polydata(vtkPolyData* input, const ContourIdArrayNames& arrays) {
   if (input == nullptr) throw InvalidInputError("no polydata");
   vtkSmartPointer<vtkPolyData> poly = input;
+  // Out-of-range point ids would make the triangle filter read out of bounds: check them first.
+  {
+    const vtkIdType points = input->GetNumberOfPoints();
+    vtkIdType cell = 0;
+    for (vtkCellArray* cells : {input->GetPolys(), input->GetStrips()}) {
+      if (cells == nullptr) continue;
+      vtkIdType npts = 0;
+      const vtkIdType* ids = nullptr;
+      for (cells->InitTraversal(); cells->GetNextCell(npts, ids); ++cell) {
+        for (vtkIdType k = 0; k < npts; ++k) {
+          if (ids[k] < 0 || ids[k] >= points) {
+            throw InvalidInputError("polygon " + std::to_string(cell) + " references point " + std::to_string(ids[k]) +
+                                    " but the file has " + std::to_string(points) + " points");
+          }
+        }
+      }
+    }
+  }
   const bool triangles_only = input->GetNumberOfStrips() == 0 &&
                               (input->GetPolys()->GetNumberOfCells() == 0 || input->GetPolys()->IsHomogeneous() == 3);
   if (!triangles_only) {

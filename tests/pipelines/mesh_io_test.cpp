@@ -12,6 +12,9 @@
 #include <vtkPolyData.h>
 #include <vtkXMLPolyDataReader.h>
 
+#include <array>
+#include <cstdint>
+#include <cstring>
 #include <filesystem>
 #include <fstream>
 #include <random>
@@ -149,6 +152,62 @@ TEST_F(MeshIo, AsciiPlyWithQuadsAndExtraElements) {
   EXPECT_EQ(m.num_vertices(), 4);
   ASSERT_EQ(m.num_faces(), 2);
   EXPECT_EQ(m.triangles[1], (Triangle{0, 2, 3}));
+}
+
+std::string le_float(float v) {
+  std::string out(4, '\0');
+  std::uint32_t bits = 0;
+  std::memcpy(&bits, &v, 4);
+  for (int b = 0; b < 4; ++b) out[b] = static_cast<char>((bits >> (8 * b)) & 0xff);
+  return out;
+}
+
+// A binary STL of the given triangles; the header text and the triangle count are the caller's.
+std::string binary_stl(const std::string& header, std::uint32_t count, const std::vector<std::array<float, 9>>& tris) {
+  std::string out = header;
+  out.resize(80, ' ');
+  for (int b = 0; b < 4; ++b) out += static_cast<char>((count >> (8 * b)) & 0xff);
+  for (const auto& t : tris) {
+    for (int k = 0; k < 3; ++k) out += le_float(0.0f);
+    for (float v : t) out += le_float(v);
+    out += std::string(2, '\0');
+  }
+  return out;
+}
+
+TEST_F(MeshIo, StlVariantsWrittenByOtherTools) {
+  const std::vector<std::array<float, 9>> tet = {{0, 0, 0, 0, 1, 0, 1, 0, 0}, {0, 0, 0, 1, 0, 0, 0, 0, 1},
+                                                 {0, 0, 0, 0, 0, 1, 0, 1, 0}, {1, 0, 0, 0, 1, 0, -0.0f, 0, 1}};
+  // Binary whose header starts with "solid" (many exporters do this): told apart by its size.
+  write_bytes(dir_ / "solid_header.stl", binary_stl("solid exported by some CAD tool", 4, tet));
+  Mesh m = read_mesh(dir_ / "solid_header.stl");
+  EXPECT_EQ(m.num_vertices(), 4) << "corners merged, -0 and 0 alike";
+  EXPECT_EQ(m.num_faces(), 4);
+  // A triangle count left at zero: all the triangles the file holds are read (as VTK does).
+  write_bytes(dir_ / "count0.stl", binary_stl("", 0, tet));
+  EXPECT_EQ(read_mesh(dir_ / "count0.stl").num_faces(), 4);
+  // ASCII with two solids, blank lines, CRLF and upper case.
+  write_bytes(dir_ / "two.stl",
+              "solid a\r\n  FACET NORMAL 0 0 1\r\n OUTER LOOP\r\n VERTEX 0 0 0\r\n vertex 1 0 0\r\n vertex 0 1 0\r\n"
+              " endloop\r\n endfacet\r\nendsolid a\r\n\r\nsolid b\nfacet normal 0 0 1\nouter loop\nvertex 1 0 0\n"
+              "vertex 1 1 0\nvertex 0 1 0\nendloop\nendfacet\nendsolid b\n");
+  m = read_mesh(dir_ / "two.stl");
+  EXPECT_EQ(m.num_vertices(), 4);
+  ASSERT_EQ(m.num_faces(), 2);
+  EXPECT_EQ(m.triangles[1][0], m.triangles[0][1]) << "shared corner across solids";
+}
+
+TEST_F(MeshIo, ObjFacesWithTextureAndNormalIndicesRelativeIndicesAndPolygons) {
+  write_bytes(dir_ / "quad.obj",
+              "# comment\nmtllib x.mtl\no square\nv 0 0 0\nv 1 0 0 1.0\nv 1 1 0 0.5 0.5 0.5\nv 0 1 0\n"
+              "vt 0 0\nvn 0 0 1\ns off\nusemtl m\nf 1/1/1 2/1/1 3/1/1 4/1/1\nv 0 0 1\nf -5//1 -4//1 -1//1\nl 1 2\n");
+  const Mesh m = read_mesh(dir_ / "quad.obj");
+  ASSERT_EQ(m.num_vertices(), 5);
+  ASSERT_EQ(m.num_faces(), 3);
+  EXPECT_EQ(m.triangles[0], (Triangle{0, 1, 2}));
+  EXPECT_EQ(m.triangles[1], (Triangle{0, 2, 3}));
+  EXPECT_EQ(m.triangles[2], (Triangle{0, 1, 4}));
+  EXPECT_EQ(m.positions.col(4), Eigen::Vector3d(0, 0, 1));
 }
 
 void expect_error(const fs::path& p, const std::string& fragment) {

@@ -38,5 +38,37 @@ TEST(Contours, ResamplingIsUniformAndKeepsTheShape) {
   EXPECT_THROW((void)resample_closed(square(1.0), 0.0), InvalidInputError);
 }
 
+TEST(Contours, SelfIntersectionsAreFoundWithTheirEdges) {
+  EXPECT_FALSE(find_self_intersection(square(2.0)));
+  // A figure of eight: edges 1 (2,0)-(0,2) and 3 (2,2)-(0,0) cross at (1, 1).
+  const std::vector<Eigen::Vector2d> eight = {{0, 0}, {2, 0}, {0, 2}, {2, 2}};
+  const auto x = find_self_intersection(eight);
+  ASSERT_TRUE(x);
+  EXPECT_EQ(x->first, 1u);
+  EXPECT_EQ(x->second, 3u);
+  EXPECT_TRUE(x->where.isApprox(Eigen::Vector2d(1, 1)));
+  // A vertex touching a non-adjacent edge, and a repeated point.
+  EXPECT_TRUE(find_self_intersection({{0, 0}, {4, 0}, {4, 4}, {2, 0}, {0, 4}}));
+  EXPECT_TRUE(find_self_intersection({{0, 0}, {4, 0}, {2, 2}, {4, 4}, {0, 4}, {2, 2}}));
+  // A triangle cannot intersect itself; a thin spike that doubles back along itself does.
+  EXPECT_FALSE(find_self_intersection({{0, 0}, {1, 0}, {0, 1}}));
+  EXPECT_TRUE(find_self_intersection({{0, 0}, {4, 0}, {4, 1}, {1, 1}, {5, 1}, {5, 3}, {0, 3}}));
+}
+
+TEST(Contours, SelfIntersectionSearchIsFastOnLargeContours) {
+  std::vector<Eigen::Vector2d> circle;
+  const int n = 200'000;
+  for (int k = 0; k < n; ++k) {
+    const double a = 2 * std::numbers::pi * k / n;
+    circle.emplace_back(100 * std::cos(a), 100 * std::sin(a));
+  }
+  EXPECT_FALSE(find_self_intersection(circle));  // quadratic would take minutes
+  std::swap(circle[1000], circle[1001]);          // a bow tie in a long contour
+  const auto x = find_self_intersection(circle);
+  ASSERT_TRUE(x);
+  EXPECT_EQ(x->first, 999u);
+  EXPECT_EQ(x->second, 1001u);
+}
+
 }  // namespace
 }  // namespace contourmesh

@@ -1,3 +1,4 @@
+#include <reconstruct/reconstruction.h>
 #include <reconstruct/segmentation.h>
 #include <reconstruct/tiling.h>
 #include <smooth/errors.h>
@@ -147,6 +148,27 @@ TEST(Segmentation, BadOptionsAndEmptyResultsAreReported) {
   int calls = 0;
   EXPECT_THROW((void)segment_contours(*image, {}, [&](std::string_view, double) { return ++calls < 1; }),
                CancelledError);
+}
+
+TEST(Segmentation, AllBoneAndAllAirVolumesAreRejectedSayingWhich) {
+  auto message = [](const CtImage::Pointer& image) {
+    try {
+      (void)reconstruct(*image);
+    } catch (const InvalidInputError& e) {
+      return std::string(e.what());
+    }
+    return std::string();
+  };
+  const auto bone = make_volume({10, 10, 3}, {1, 1, 1}, {0, 0, 0}, [](const Eigen::Vector3d&) { return -1.0; });
+  EXPECT_NE(message(bone).find("every voxel is at or above the threshold 300 (all bone"), std::string::npos);
+  const auto air = make_volume({10, 10, 3}, {1, 1, 1}, {0, 0, 0}, [](const Eigen::Vector3d&) { return 1.0; });
+  EXPECT_NE(message(air).find("no region at or above the threshold 300 in any of the 3 slices"), std::string::npos);
+  // One bone voxel per slice: dropped as too small, and said so.
+  const auto specks = make_volume({10, 10, 3}, {1, 1, 1}, {0, 0, 0}, [](const Eigen::Vector3d& p) {
+    return std::abs(p.x() - 5) < 0.6 && std::abs(p.y() - 5) < 0.6 ? -1.0 : 1.0;
+  });
+  EXPECT_NE(message(specks).find("3 regions were smaller than the minimum area"), std::string::npos)
+      << message(specks);
 }
 
 }  // namespace

@@ -5,7 +5,10 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
+#include <limits>
+#include <string>
 #include <numbers>
 
 #include "reconstruct/mesh_checks.h"
@@ -289,6 +292,77 @@ TEST(Tiling, BadStacksAreRejected) {
   ContourStack orphan = s;
   orphan.slices[1].contours.push_back(circle(50, 0, 1, 10, true));
   EXPECT_THROW((void)tile_contours(orphan), InvalidInputError);
+}
+
+std::string tiling_error(const ContourStack& s, const TilingOptions& o = {}) {
+  try {
+    (void)tile_contours(s, o);
+  } catch (const InvalidInputError& e) {
+    return e.what();
+  }
+  return {};
+}
+
+TEST(Tiling, ContoursWithFewerThanThreeDistinctPointsAreNamed) {
+  ContourStack s = stack_of(3);
+  for (auto& slice : s.slices) slice.contours.push_back(circle(0, 0, 5, 24));
+  s.slices[1].contours[0].points = {{0, 0}, {1, 0}};
+  EXPECT_EQ(tiling_error(s), "tiling: contour 0 of slice 1 has 2 distinct points (at least 3 needed)");
+  s.slices[1].contours[0].points = {{0, 0}, {1, 0}, {1, 0}, {0, 0}};  // four points, two distinct
+  EXPECT_EQ(tiling_error(s), "tiling: contour 0 of slice 1 has 2 distinct points (at least 3 needed)");
+  s.slices[1].contours[0].points = {};
+  EXPECT_NE(tiling_error(s).find("has 0 distinct points"), std::string::npos);
+  s.slices[1].contours[0] = circle(0, 0, 5, 24);
+  s.slices[1].contours[0].points[4].y() = std::numeric_limits<double>::quiet_NaN();
+  EXPECT_EQ(tiling_error(s), "tiling: contour 0 of slice 1: point 4 is not finite");
+}
+
+TEST(Tiling, ARepeatedClosingPointIsDropped) {
+  ContourStack s = stack_of(3);
+  for (auto& slice : s.slices) {
+    slice.contours.push_back(circle(0, 0, 5, 24));
+    slice.contours.back().points.push_back(slice.contours.back().points.front());  // closed explicitly
+  }
+  const TilingResult r = tile_contours(s);
+  expect_sound(r.mesh, 2, 1);
+  EXPECT_EQ(std::count(r.mesh.slice_ids.begin(), r.mesh.slice_ids.end(), 1), 24);
+}
+
+TEST(Tiling, SelfIntersectingContourIsRejectedNamingItsEdges) {
+  ContourStack s = stack_of(3);
+  for (auto& slice : s.slices) slice.contours.push_back(circle(0, 0, 5, 24));
+  // A spike that folds back across the contour: edges 2 and 5 cross.
+  s.slices[2].contours[0].points = {{-5, -5}, {5, -5}, {5, 5}, {-2, 0}, {-2, 6}, {6, 2}, {-5, 5}};
+  const std::string e = tiling_error(s);
+  EXPECT_EQ(e.rfind("tiling: contour 0 of slice 2 intersects itself: its edges ", 0), 0u) << e;
+  EXPECT_NE(e.find(" meet at ("), std::string::npos) << e;
+  // A plain bow tie.
+  s.slices[2].contours[0].points = {{-5, -5}, {5, -5}, {-5, 5}, {5, 5}};
+  EXPECT_EQ(tiling_error(s), "tiling: contour 0 of slice 2 intersects itself: its edges 1 and 3 meet at (0, 0) mm");
+}
+
+TEST(Tiling, LimitsStopTheTilingBeforeItAllocates) {
+  ContourStack s = stack_of(3);
+  for (auto& slice : s.slices) slice.contours.push_back(circle(0, 0, 50, 2000));
+  TilingOptions o;
+  o.cap_refinement = CapRefinement::EarClipping;
+  o.limits.max_vertices = 5000;  // 6000 contour points
+  try {
+    (void)tile_contours(s, o);
+    FAIL();
+  } catch (const LimitError& e) {
+    EXPECT_EQ(std::string(e.what()), "tiling: 6000 vertices exceed the limit of 5000 vertices");
+  }
+  o.limits.max_vertices = 6100;  // the points fit, the end-cap copies do not
+  EXPECT_NE(tiling_error(s, o).find("the mesh would have more than 6100 vertices"), std::string::npos);
+  o.limits.max_vertices = kDefaultMaxVertices;
+  o.limits.max_memory_bytes = 20'000'000;  // the 2000 x 2000 programme needs 36 MB
+  const std::string e = tiling_error(s, o);
+  EXPECT_NE(e.find("tiling: contours of 2000 and 2000 points: needs about 36 MB of memory, more than the 20 MB allowed"),
+            std::string::npos)
+      << e;
+  o.limits.max_memory_bytes = 0;
+  EXPECT_EQ(tiling_error(s, o), "");
 }
 
 TEST(Tiling, LargeContoursUseTheBandedProgramme) {

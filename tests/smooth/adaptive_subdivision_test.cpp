@@ -84,5 +84,25 @@ TEST(AdaptiveSubdivision, RejectsABadMask) {
   EXPECT_THROW((void)subdivide_adaptively(m, short_mask, {}), InvalidInputError);
 }
 
+TEST(AdaptiveSubdivision, RefusesALevelBeyondTheLimitsBeforeAllocatingIt) {
+  const Mesh m = make_icosphere(2);  // 162 vertices of valence 5 or 6
+  std::vector<std::uint8_t> selected(static_cast<std::size_t>(m.num_vertices()), 1);
+  SubdivisionOptions o;
+  o.max_levels = 2;
+  o.limits.max_vertices = m.num_vertices() + 100;
+  try {
+    (void)subdivide_adaptively(m, selected, o);
+    FAIL() << "every vertex selected: level 1 can reach far more than 100 new vertices";
+  } catch (const LimitError& e) {
+    EXPECT_NE(std::string(e.what()).find("adaptive subdivision level 1: "), std::string::npos) << e.what();
+    EXPECT_NE(std::string(e.what()).find("exceed the limit of 262 vertices"), std::string::npos) << e.what();
+  }
+  o.limits.max_vertices = kDefaultMaxVertices;
+  o.limits.max_memory_bytes = 10'000;  // 10 kB: not even level 1
+  EXPECT_THROW((void)subdivide_adaptively(m, selected, o), LimitError);
+  o.limits.max_memory_bytes = 0;  // the machine's available memory
+  EXPECT_NO_THROW((void)subdivide_adaptively(m, selected, o));
+}
+
 }  // namespace
 }  // namespace contourmesh

@@ -3,6 +3,8 @@
 
 #include <Eigen/Core>
 
+#include <cstddef>
+#include <optional>
 #include <vector>
 
 namespace contourmesh {
@@ -51,6 +53,19 @@ struct ContourStack {
 
 /// Even-odd point-in-polygon test.
 [[nodiscard]] bool point_in_polygon(const std::vector<Eigen::Vector2d>& polygon, const Eigen::Vector2d& p);
+
+/// Two edges of a closed polygon that cross or touch although they are not neighbours along it. Edge k
+/// runs from point k to point k + 1 (mod n); `first` < `second`.
+struct SelfIntersection {
+  std::size_t first = 0;
+  std::size_t second = 0;
+  Eigen::Vector2d where = Eigen::Vector2d::Zero();  ///< a point both edges share
+};
+
+/// The first self-intersection of a closed polygon, if any: a crossing, a vertex on a non-adjacent edge,
+/// or a repeated point. Exact orientation tests on a uniform grid of the edges' bounding boxes, about
+/// linear time for contours with evenly spaced points.
+[[nodiscard]] std::optional<SelfIntersection> find_self_intersection(const std::vector<Eigen::Vector2d>& polygon);
 
 /// Resamples a closed polygon uniformly by arc length to round(perimeter / spacing) points (at least
 /// 3), starting at its first point. Throws InvalidInputError for spacing <= 0 or < 3 input points.

@@ -39,8 +39,10 @@ struct Reconstruction {
 };
 
 /// Segments and tiles a volume. Throws InvalidInputError when no contour is found (for example an
-/// all-air volume or a threshold above every voxel) or when fewer than two slices hold contours,
-/// naming the threshold used; CancelledError when `progress` returns false.
+/// all-air volume or a threshold above every voxel), when every voxel is foreground (an all-bone
+/// volume, whose only surface would be the volume's box) or when fewer than two slices hold contours,
+/// naming the threshold used; LimitError when the tiled mesh would exceed `options.tiling.limits`;
+/// CancelledError when `progress` returns false.
 [[nodiscard]] Reconstruction reconstruct(const CtImage& image, const ReconstructionOptions& options = {},
                                          const ProgressCallback& progress = {});
 

@@ -41,7 +41,8 @@ struct SegmentationOptions {
   /// Fill every hole of every region (per slice), not only the small ones.
   bool fill_holes = false;
   /// Target distance between contour points (the paper's "horizontal sampling rate"), mm.
-  /// 0 = the smaller in-plane pixel spacing.
+  /// 0 = the smaller in-plane pixel spacing. A contour that would cross itself at this sampling (a
+  /// narrow neck of a small region) is sampled more finely, so every contour is a simple polygon.
   double sampling = 0.0;
   /// Contours shorter than this (mm) are dropped, with their holes. >= 0.
   double min_contour_length = 3.0;
@@ -51,6 +52,8 @@ struct SegmentationResult {
   ContourStack stack;        ///< one entry per image slice (possibly with no contours), ids = slice index
   double threshold = 0.0;    ///< the threshold used (the Otsu value when chosen)
   std::size_t dropped_regions = 0;  ///< regions dropped as too small or too short
+  std::size_t voxels = 0;             ///< voxels of the volume
+  std::size_t foreground_voxels = 0;  ///< voxels at or above the threshold (before component selection)
 };
 
 /// Segments every slice (index axis 2) of `image` and extracts its contours in the slice frame

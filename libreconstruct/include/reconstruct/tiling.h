@@ -5,6 +5,7 @@
 #include "reconstruct/contours.h"
 
 #include <smooth/end_caps.h>
+#include <smooth/limits.h>
 #include <smooth/mesh.h>
 #include <smooth/progress.h>
 
@@ -33,6 +34,9 @@ struct TilingOptions {
   /// +/- `band_fraction` of the contour length around the arc-length diagonal.
   std::size_t full_dp_limit = 4'000'000;
   double band_fraction = 0.15;
+  /// Vertex cap of the tiled mesh and memory budget of each contour pair's dynamic programme
+  /// (LimitError, before allocating, when exceeded).
+  ResourceLimits limits;
 };
 
 /// What the tiler did, for reports.
@@ -69,8 +73,11 @@ struct TilingResult {
 ///
 /// Vertex ids: a vertex of contour c of slice s has slice id s and contour id c. Vertices of the
 /// copies made for branching and for half-spacing end caps lie off the slice planes and have slice id
-/// and contour id kNoId. Throws InvalidInputError for a stack whose slices are not ordered by increasing w, a contour
-/// with fewer than 3 points, or a hole whose parent is not an outer contour of its slice.
+/// and contour id kNoId. Repeated consecutive points (and a last point equal to the first) are dropped
+/// first. Throws InvalidInputError for a stack whose slices are not ordered by increasing w, a contour
+/// with fewer than 3 distinct points, a non-finite point, a contour that intersects itself (naming the
+/// two edges and where they meet), or a hole in no outer contour of its slice; LimitError when the mesh
+/// would exceed `options.limits.max_vertices` or a contour pair's programme the memory budget.
 [[nodiscard]] TilingResult tile_contours(const ContourStack& stack, const TilingOptions& options = {},
                                          const ProgressCallback& progress = {});
 

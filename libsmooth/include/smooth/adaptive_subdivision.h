@@ -2,6 +2,7 @@
 #pragma once
 
 #include "smooth/feature_detection.h"
+#include "smooth/limits.h"
 #include "smooth/mesh.h"
 
 #include <cstdint>
@@ -16,6 +17,9 @@ struct SubdivisionOptions {
   /// Stop threshold on the umbrella measure (the detection's gamma), length units, >= 0.
   double gamma = 0.0;
   UmbrellaMeasure measure = UmbrellaMeasure::Length;
+  /// Checked before each level allocates its midpoints: the vertices the level could reach (all
+  /// incident edges bisected) and their estimated memory (mesh, adjacency and smoothing buffers).
+  ResourceLimits limits;
 };
 
 /// The subdivided mesh. Vertices 0 .. original_vertices - 1 are the input's, unmoved and in order;
@@ -36,7 +40,7 @@ struct AdaptiveMesh {
 /// is unchanged (midpoints lie on the old edges). A midpoint on an edge of one contour keeps that
 /// contour's ids; others get kNoId. `selected` has one flag per vertex (non-zero: subdivide, e.g. the
 /// edge and corner labels). Throws InvalidInputError for a mask of the wrong size or options out of
-/// range.
+/// range, LimitError (before allocating) when a level would exceed `options.limits`.
 [[nodiscard]] AdaptiveMesh subdivide_adaptively(const Mesh& mesh, std::span<const std::uint8_t> selected,
                                                 const SubdivisionOptions& options);
 

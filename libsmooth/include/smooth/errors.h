@@ -21,6 +21,14 @@ class TopologyError : public InvalidInputError {
   using InvalidInputError::InvalidInputError;
 };
 
+/// The input is too large for a configured limit: a mesh with more vertices than allowed, or a step
+/// whose estimated memory exceeds the budget (see limits.h). Raised before the big allocation, so the
+/// process fails with a message instead of running out of memory.
+class LimitError : public InvalidInputError {
+ public:
+  using InvalidInputError::InvalidInputError;
+};
+
 /// A progress callback asked to stop. Nothing the operation would have returned is valid.
 class CancelledError : public std::runtime_error {
  public:

@@ -5,6 +5,7 @@
 
 #include "smooth/adaptive_subdivision.h"
 #include "smooth/feature_detection.h"
+#include "smooth/limits.h"
 #include "smooth/mesh.h"
 #include "smooth/progress.h"
 #include "smooth/smoothing.h"
@@ -38,6 +39,9 @@ struct FeatureSmoothingOptions {
   std::span<const std::uint8_t> locked;
   /// Stages "detect", "subdivide", "smooth"; return false to cancel (CancelledError).
   ProgressCallback progress;
+  /// Vertex cap and memory budget of the adaptive mesh (LimitError before a subdivision level that
+  /// would exceed them).
+  ResourceLimits limits;
 };
 
 /// Wall-clock seconds per stage (the paper's Table 1).
@@ -59,7 +63,8 @@ struct FeatureSmoothingResult {
 
 /// Runs Algorithm 1. The default detection needs contour ids (InvalidInputError otherwise): recover them
 /// with assign_ids_by_slice_planes, or set detection.mode = DetectionMode::CurvatureOnly. Throws
-/// InvalidInputError for options out of range and CancelledError on request.
+/// InvalidInputError for options out of range, LimitError when the adaptive mesh would exceed
+/// `options.limits`, and CancelledError on request.
 [[nodiscard]] FeatureSmoothingResult feature_preserving_smooth(const Mesh& mesh,
                                                                const FeatureSmoothingOptions& options = {});
 

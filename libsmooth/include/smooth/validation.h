@@ -26,7 +26,8 @@ struct MeshProblem {
 
 /// Short stable name of a problem kind ("non-manifold edge", ...).
 [[nodiscard]] const char* to_string(MeshProblemKind kind);
-/// One line naming the problem and its indices, e.g. "non-manifold edge (12, 40)".
+/// One line naming the problem and its indices, e.g. "non-manifold edge between vertices 12 and 40 (more
+/// than two triangles)".
 [[nodiscard]] std::string describe(const MeshProblem& problem);
 
 struct ValidationOptions {
@@ -45,5 +46,36 @@ struct ValidationOptions {
 /// out of range and id-size mismatches; TopologyError for degenerate, duplicate and non-manifold
 /// elements. The message names the first few problems with their indices and the total count.
 void validate_mesh(const Mesh& mesh, const ValidationOptions& options = {});
+
+/// Whether repair_mesh merges vertices.
+enum class VertexMerging {
+  Off,
+  /// Vertices at exactly the same position (and with the same contour ids) become one: the usual fix
+  /// for a file that stores a triangle soup or splits vertices along seams.
+  Coincident,
+};
+
+struct RepairOptions {
+  VertexMerging merging = VertexMerging::Coincident;
+};
+
+/// What repair_mesh changed.
+struct MeshRepair {
+  Index merged_vertices = 0;     ///< vertices merged into an earlier vertex at the same position
+  Index dropped_degenerate = 0;  ///< triangles with a repeated vertex index (after merging)
+  Index dropped_duplicates = 0;  ///< triangles on the same three vertices as an earlier one, either orientation
+  [[nodiscard]] bool changed() const { return merged_vertices + dropped_degenerate + dropped_duplicates > 0; }
+  /// One line, e.g. "merged 12 coincident vertices, dropped 3 triangles with a repeated vertex and 1
+  /// duplicate triangle"; empty when nothing changed.
+  [[nodiscard]] std::string describe() const;
+};
+
+/// Repairs what can be repaired without changing the surface: merges coincident vertices (optional),
+/// then drops triangles with a repeated vertex index (zero area by construction) and repeated
+/// triangles, keeping the first of each set. Vertices keep their order (merged ones are removed, the
+/// others shift down); triangles with three distinct vertices but zero area are kept, since dropping
+/// them would open a hole. Throws InvalidInputError for indices out of range; non-finite vertices are
+/// never merged.
+MeshRepair repair_mesh(Mesh& mesh, const RepairOptions& options = {});
 
 }  // namespace contourmesh

@@ -2,6 +2,7 @@
 // writers (PLY through our own codec so that the contour-id arrays survive, see ply_io.h).
 #pragma once
 
+#include <smooth/limits.h>
 #include <smooth/mesh.h>
 
 #include <filesystem>
@@ -39,6 +40,9 @@ struct ContourIdArrayNames {
 struct MeshReadOptions {
   MeshFormat format = MeshFormat::Auto;
   ContourIdArrayNames arrays;
+  /// Files with more vertices are refused with a LimitError (checked as early as the format allows:
+  /// from the PLY header, while parsing STL and OBJ, after VTK reads a VTP).
+  Index max_vertices = kDefaultMaxVertices;
 };
 
 /// Storage type of an extra per-vertex array.
@@ -60,10 +64,16 @@ struct MeshWriteOptions {
 };
 
 /// Reads a triangle mesh. Polygons with more than three corners are triangulated; lines and vertices
-/// are ignored. STL vertices are merged (STL stores each triangle's corners separately). Contour ids
-/// are read from the named point arrays when present (both or neither).
-/// Throws InvalidInputError with the file name and the problem: missing or unreadable file, unknown
-/// extension, a file VTK cannot parse, no triangles, id arrays of the wrong size.
+/// are ignored. STL corners at bit-identical positions are merged into shared vertices (STL stores each
+/// triangle's corners separately). Contour ids are read from the named point arrays when present
+/// (both or neither). The mesh is returned as stored otherwise: no triangle is dropped (see
+/// repair_mesh in smooth/validation.h).
+/// Throws InvalidInputError whose message starts with the file name and says what is wrong and where:
+/// missing, empty or unreadable file, unknown extension, a truncated or malformed file (STL, PLY, OBJ:
+/// with the byte count, line or element; VTP: VTK's parser message), a non-finite coordinate (after
+/// reading any format), a triangle index out of range ("triangle 12 references vertex 9001 but the
+/// file has 500 vertices"), no triangles, id arrays of the wrong size; LimitError (an
+/// InvalidInputError) beyond `options.max_vertices`.
 [[nodiscard]] Mesh read_mesh(const std::filesystem::path& path, const MeshReadOptions& options = {});
 
 /// Writes a mesh atomically: to a temporary file in the same directory, renamed over `path` only once

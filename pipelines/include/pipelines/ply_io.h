@@ -15,8 +15,10 @@ namespace contourmesh {
 
 /// Parses a PLY stream. Faces with more than three corners are fan-triangulated; extra elements and
 /// properties are skipped. Throws InvalidInputError (without the file name; read_mesh adds it) for a
-/// malformed header, unsupported type, truncated data or out-of-range face index.
-[[nodiscard]] Mesh read_ply(std::istream& in, const ContourIdArrayNames& arrays = {});
+/// malformed header, unsupported type, truncated data, a non-finite coordinate or an out-of-range face
+/// index; LimitError when the header announces more than `max_vertices` vertices.
+[[nodiscard]] Mesh read_ply(std::istream& in, const ContourIdArrayNames& arrays = {},
+                            Index max_vertices = kDefaultMaxVertices);
 
 /// Writes binary little-endian PLY: double x y z, int ids when present, the extra arrays as double or
 /// int vertex properties, uchar-count int-index faces.
