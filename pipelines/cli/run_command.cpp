@@ -44,6 +44,8 @@ struct RunArgs {
   std::optional<int> iterations;
   double feature_radius = 2.0;
   std::string end_caps = "half-spacing";
+  std::string format = "auto";
+  std::string labels_out;
   Index max_vertices = kDefaultMaxVertices;
   bool json = false;
   FeatureArgs detection;
@@ -53,7 +55,16 @@ struct RunArgs {
 int run_run(const RunArgs& a) {
   const auto start = std::chrono::steady_clock::now();
   const SmoothingMethod baseline = a.method == "paper" ? SmoothingMethod::None : parse_smoothing_method(a.method);
-  (void)format_from_extension(a.output);  // fail before the work
+  // Fail on bad options and output paths before the work.
+  MeshWriteOptions write_options;
+  write_options.format = parse_mesh_format(a.format);
+  if (write_options.format == MeshFormat::Auto) (void)format_from_extension(a.output);
+  if (!a.labels_out.empty()) {
+    if (a.method != "paper") throw InvalidInputError("--labels-out needs --method paper (the labels come from its detection)");
+    if (!format_keeps_contour_ids(format_from_extension(a.labels_out))) {
+      throw InvalidInputError(a.labels_out + ": labels need a .vtp or .ply file");
+    }
+  }
   if (!(a.feature_radius > 0.0)) throw InvalidInputError("--feature-radius must be > 0 mm");
   apply_common_options(a.common);
   ProgressDisplay progress("run", a.common.quiet);
@@ -68,6 +79,7 @@ int run_run(const RunArgs& a) {
     }
   }
   check_output_path(out);
+  if (!a.labels_out.empty()) check_output_path(a.labels_out);
 
   // 1. Read or generate the volume.
   auto t = std::chrono::steady_clock::now();
@@ -139,7 +151,12 @@ int run_run(const RunArgs& a) {
   // 4. Export.
   t = std::chrono::steady_clock::now();
   progress.stage("write");
-  write_mesh(result, out);
+  write_mesh(result, out, write_options);
+  if (paper && !a.labels_out.empty()) {
+    MeshWriteOptions labels;
+    labels.point_scalars = detection_arrays(paper->detection);
+    write_mesh(mesh, a.labels_out, labels);
+  }
   progress.finish();
   const double seconds_write = seconds_since(t);
 
@@ -150,6 +167,7 @@ int run_run(const RunArgs& a) {
   j["command"] = "run";
   j["source"] = source;
   j["output"] = a.output;
+  if (!a.labels_out.empty()) j["labels_out"] = a.labels_out;
   j["method"] = a.method;
   j["slices"] = rec.report.slices;
   j["contours"] = rec.report.contours;
@@ -220,7 +238,7 @@ int run_run(const RunArgs& a) {
   std::cout << std::setprecision(2) << "  seconds     volume " << seconds_volume << ", segment "
             << rec.report.seconds_segment << ", tile " << rec.report.seconds_tile << ", smooth " << seconds_smooth
             << ", write " << seconds_write << ", total " << seconds_since(start) << "\n"
-            << "  wrote       " << a.output << "\n";
+            << "  wrote       " << a.output << (a.labels_out.empty() ? "" : " and " + a.labels_out) << "\n";
   return kOk;
 }
 
@@ -231,7 +249,12 @@ void add_run_command(CLI::App& app) {
   CLI::App* cmd = app.add_subcommand(
       "run", "The whole pipeline: volume (or a built-in phantom) -> contours -> mesh -> smoothing -> file");
   cmd->add_option("input", args->input, "CT volume or DICOM directory; none: the built-in phantom --shape");
-  cmd->add_option("-o,--output", args->output, "Output mesh (.stl .ply .vtp .obj)")->capture_default_str();
+  cmd->add_option("-o,--output", args->output, "Output mesh (.stl .ply .vtp .obj); format from the extension unless --format")
+      ->capture_default_str();
+  cmd->add_option("--format", args->format, "Output format: auto | stl | stl-ascii | ply | vtp | obj")
+      ->capture_default_str();
+  cmd->add_option("--labels-out", args->labels_out,
+                  "paper: also write the reconstructed mesh with per-vertex labels and curvatures (.vtp or .ply)");
   cmd->add_option("--shape", args->shape, "Phantom when no input: ridge-box | femur | pelvis | skull | branch | "
                                           "two-objects | cavity")
       ->capture_default_str();

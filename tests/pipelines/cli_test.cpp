@@ -247,6 +247,32 @@ TEST_F(Cli, RunOnARealScan) {
   EXPECT_TRUE(fs::exists(out));
 }
 
+// run: --format overrides the extension, --labels-out writes the detection on the reconstructed mesh.
+TEST_F(Cli, RunFormatOverrideAndLabelsOut) {
+  const fs::path out = dir_ / "ridge.mesh";
+  const fs::path labels = dir_ / "labels.vtp";
+  const CliRun r = run_cli("run --shape ridge-box --spacing 1.4,1.4,3 --format ply -o " + out.string() +
+                               " --labels-out " + labels.string() + " --json",
+                           dir_);
+  ASSERT_EQ(r.code, 0) << r.err;
+  const auto j = nlohmann::json::parse(r.out);
+  std::ifstream in(out, std::ios::binary);
+  std::string magic(3, '\0');
+  in.read(magic.data(), 3);
+  EXPECT_EQ(magic, "ply") << "--format ply wins over the unknown extension";
+  const Mesh m = read_mesh(labels);
+  EXPECT_TRUE(m.has_contour_ids());
+  EXPECT_EQ(j["labels_out"].get<std::string>(), labels.string());
+  EXPECT_GT(j["edge_vertices"].get<int>(), 0);
+
+  // --labels-out with a baseline method is a usage problem, caught before any work or output.
+  const fs::path out2 = dir_ / "taubin.stl";
+  const CliRun bad = run_cli("run --method taubin -o " + out2.string() + " --labels-out " + labels.string(), dir_);
+  EXPECT_EQ(bad.code, 2) << bad.err;
+  EXPECT_NE(bad.err.find("--labels-out needs --method paper"), std::string::npos) << bad.err;
+  EXPECT_FALSE(fs::exists(out2));
+}
+
 // Off a terminal (here stderr is a file) progress is one line per finished stage; --quiet silences it
 // and the summary; --threads is validated.
 TEST_F(Cli, ProgressIsOneLinePerStageOffATerminalAndQuietSilencesIt) {
