@@ -199,7 +199,8 @@ SegmentationResult segment_contours(const CtImage& input, const SegmentationOpti
   stack.axis_v = Eigen::Vector3d(dir[0][1], dir[1][1], dir[2][1]).normalized();
   stack.axis_w = Eigen::Vector3d(dir[0][2], dir[1][2], dir[2][2]).normalized();
   stack.slices.resize(size[2]);
-  const double sampling = options.sampling > 0.0 ? options.sampling : std::min(sx, sy);
+  const double sampling =
+      options.sampling > 0.0 ? options.sampling : std::min({sx, sy, SegmentationOptions::kMaxDefaultSampling});
 
   std::vector<int> fg_label, bg_label;
   std::vector<std::uint8_t> slice_mask(static_cast<std::size_t>(nx) * ny);

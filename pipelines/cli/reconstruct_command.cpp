@@ -141,7 +141,7 @@ void add_reconstruct_command(CLI::App& app) {
   cmd->add_option("-o,--output", args->output, "Output mesh (.vtp or .ply keep the contour ids)")->required();
   cmd->add_option("--threshold", args->threshold, "Foreground threshold, HU (bone: 300)")->capture_default_str();
   cmd->add_flag("--otsu", args->otsu, "Use Otsu's threshold instead of --threshold");
-  cmd->add_option("--sampling", args->sampling, "Distance between contour points, mm (0: the pixel spacing)")
+  cmd->add_option("--sampling", args->sampling, "Distance between contour points, mm (0: the pixel spacing, at most 1 mm)")
       ->capture_default_str();
   cmd->add_option("--smoothing", args->smoothing, "Image denoising: none | median | anisotropic")->capture_default_str();
   cmd->add_option("--keep", args->keep, "Components: all | largest (3-D)")->capture_default_str();

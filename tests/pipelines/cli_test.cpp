@@ -9,6 +9,7 @@
 #include <sys/wait.h>
 
 #include <array>
+#include <cmath>
 #include <map>
 #include <vector>
 #include <cstdio>
@@ -244,6 +245,8 @@ TEST_F(Cli, RunOnARealScan) {
   EXPECT_TRUE(j["is_closed"].get<bool>());
   EXPECT_TRUE(j["is_manifold"].get<bool>());
   EXPECT_FALSE(j.contains("rms_distance_after"));  // no truth for a real scan
+  // 3 mm pixels: contours sampled at the pixel spacing lost a third of the volume under smoothing.
+  EXPECT_LT(std::abs(j["volume_change_percent"].get<double>()), 10.0);
   EXPECT_TRUE(fs::exists(out));
 }
 
