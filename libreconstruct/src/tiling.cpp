@@ -11,6 +11,7 @@
 #include <numeric>
 #include <sstream>
 #include <string>
+#include <vector>
 
 namespace contourmesh {
 
@@ -84,8 +85,16 @@ void tile_band(const Ring& lower, const Ring& upper, const TilingOptions& option
       q0 = j;
     }
   }
-  auto P = [&](int i) { return Eigen::Vector3d(lower.pts[i % m].x(), lower.pts[i % m].y(), lower.w); };
-  auto Q = [&](int j) { return Eigen::Vector3d(upper.pts[(q0 + j) % n].x(), upper.pts[(q0 + j) % n].y(), upper.w); };
+  // The rings as 3-D points in programme order (lower from 0, upper from q0), made once: each cell of
+  // the programme reads four of them, and wrapping the index (two integer divisions per point read)
+  // was a quarter of the tiler's instructions.
+  std::vector<Eigen::Vector3d> lower_points(static_cast<std::size_t>(m) + 1), upper_points(static_cast<std::size_t>(n) + 1);
+  for (int i = 0; i <= m; ++i) lower_points[i] = Eigen::Vector3d(lower.pts[i % m].x(), lower.pts[i % m].y(), lower.w);
+  for (int j = 0; j <= n; ++j) {
+    upper_points[j] = Eigen::Vector3d(upper.pts[(q0 + j) % n].x(), upper.pts[(q0 + j) % n].y(), upper.w);
+  }
+  auto P = [&](int i) -> const Eigen::Vector3d& { return lower_points[i]; };
+  auto Q = [&](int j) -> const Eigen::Vector3d& { return upper_points[j]; };
 
   // Band of admissible j per row i around the diagonal j = i n / m.
   int half = n;

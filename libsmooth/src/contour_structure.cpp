@@ -71,20 +71,38 @@ ContourNeighbours contour_neighbours(const Mesh& mesh, const MeshAdjacency& adj)
 
 Eigen::Vector3d estimate_slice_axis(const Mesh& mesh) {
   if (!mesh.has_contour_ids()) throw InvalidInputError("estimate_slice_axis: the mesh has no contour ids");
+  // Vertices come slice by slice in a tiled mesh: the map is looked up only when the slice changes.
   std::map<std::int32_t, std::pair<Eigen::Vector3d, int>> centroid;
-  for (Index i = 0; i < mesh.num_vertices(); ++i) {
-    if (mesh.slice_ids[i] == kNoId) continue;
-    auto& c = centroid[mesh.slice_ids[i]];
-    if (c.second == 0) c.first.setZero();
-    c.first += mesh.positions.col(i);
-    ++c.second;
+  {
+    std::int32_t last = kNoId;
+    std::pair<Eigen::Vector3d, int>* c = nullptr;
+    for (Index i = 0; i < mesh.num_vertices(); ++i) {
+      const std::int32_t s = mesh.slice_ids[i];
+      if (s == kNoId) continue;
+      if (s != last) {
+        c = &centroid[s];
+        last = s;
+        if (c->second == 0) c->first.setZero();
+      }
+      c->first += mesh.positions.col(i);
+      ++c->second;
+    }
   }
   Eigen::Matrix3d scatter = Eigen::Matrix3d::Zero();
-  for (Index i = 0; i < mesh.num_vertices(); ++i) {
-    if (mesh.slice_ids[i] == kNoId) continue;
-    const auto& c = centroid[mesh.slice_ids[i]];
-    const Eigen::Vector3d d = mesh.positions.col(i) - c.first / c.second;
-    scatter += d * d.transpose();
+  {
+    std::int32_t last = kNoId;
+    Eigen::Vector3d mean = Eigen::Vector3d::Zero();
+    for (Index i = 0; i < mesh.num_vertices(); ++i) {
+      const std::int32_t s = mesh.slice_ids[i];
+      if (s == kNoId) continue;
+      if (s != last) {
+        const auto& c = centroid[s];
+        mean = c.first / c.second;
+        last = s;
+      }
+      const Eigen::Vector3d d = mesh.positions.col(i) - mean;
+      scatter += d * d.transpose();
+    }
   }
   const Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d> eig(scatter);
   if (eig.info() != Eigen::Success || !(eig.eigenvalues()[1] > 0.0)) {

@@ -305,12 +305,17 @@ FeatureDetection detect_features(const Mesh& mesh, const MeshAdjacency& adj, con
   std::map<std::int32_t, PlaneFrame> planes;
   {
     std::map<std::int32_t, std::pair<Eigen::Vector3d, int>> sums;
+    std::pair<Eigen::Vector3d, int>* sum = nullptr;  // vertices come slice by slice: look up on change
+    std::int32_t last = kNoId;
     for (Index i = 0; i < n; ++i) {
       if (mesh.slice_ids[i] == kNoId) continue;
-      auto& s = sums[mesh.slice_ids[i]];
-      if (s.second == 0) s.first.setZero();
-      s.first += mesh.positions.col(i);
-      ++s.second;
+      if (mesh.slice_ids[i] != last) {
+        last = mesh.slice_ids[i];
+        sum = &sums[last];
+        if (sum->second == 0) sum->first.setZero();
+      }
+      sum->first += mesh.positions.col(i);
+      ++sum->second;
     }
     for (const auto& [slice, s] : sums) planes[slice] = {s.first / s.second, e1, e2};
   }

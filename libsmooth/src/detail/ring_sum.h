@@ -22,7 +22,20 @@ inline void for_each_ring_sum(const Eigen::Matrix3Xd& positions, const MeshAdjac
     const Index begin = offsets[i];
     const Index end = offsets[i + 1];
     double sx = 0.0, sy = 0.0, sz = 0.0;
-    for (Index k = begin; k < end; ++k) {
+    Index k = begin;
+    // The first four neighbours (every vertex of a closed mesh has at least three) without loop
+    // branches, added in the same order as the loop: fewer mispredicted exits at valence 5-7.
+    if (end - begin >= 4) {
+      const double* q0 = p + 3 * static_cast<std::ptrdiff_t>(nbrs[k]);
+      const double* q1 = p + 3 * static_cast<std::ptrdiff_t>(nbrs[k + 1]);
+      const double* q2 = p + 3 * static_cast<std::ptrdiff_t>(nbrs[k + 2]);
+      const double* q3 = p + 3 * static_cast<std::ptrdiff_t>(nbrs[k + 3]);
+      sx = sx + q0[0] + q1[0] + q2[0] + q3[0];
+      sy = sy + q0[1] + q1[1] + q2[1] + q3[1];
+      sz = sz + q0[2] + q1[2] + q2[2] + q3[2];
+      k += 4;
+    }
+    for (; k < end; ++k) {
       const double* q = p + 3 * static_cast<std::ptrdiff_t>(nbrs[k]);
       sx += q[0];
       sy += q[1];

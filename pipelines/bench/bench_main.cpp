@@ -1,0 +1,142 @@
+// contourmesh_bench: every stage of ContourMesh and its VTK counterparts at 10k, 100k, 1M and 4M
+// vertices in one run, size by size, then the ratios between them and the speed targets of issue 6.
+//
+//   build/release/pipelines/bench/contourmesh_bench                       # everything (a few minutes)
+//   build/release/pipelines/bench/contourmesh_bench --benchmark_filter=/1000000/
+//
+// Benchmarks are named stage/size/process_time[/manual_time]. Everything runs on one thread (VTK's SMP tools
+// run on their sequential backend), so the ratios compare per-core costs. See docs/benchmarks.md.
+#include "bench_inputs.h"
+#include "bench_stages.h"
+
+#include <benchmark/benchmark.h>
+
+#include <cmath>
+#include <cstdio>
+#include <cstdlib>
+#include <map>
+#include <string>
+#include <vector>
+
+namespace {
+
+using namespace contourmesh::bench;
+
+struct Stage {
+  const char* name;
+  void (*function)(benchmark::State&);
+  bool heavy;        // seconds at 1M vertices: run a fixed, small number of iterations at big sizes
+  bool manual_time;  // the function reports its own per-iteration (CPU) time
+};
+
+const Stage kStages[] = {
+    {"tiling", bm_tiling, true, false},
+    {"adjacency", bm_adjacency, false, false},
+    {"umbrella_pass", bm_umbrella_pass, false, false},
+    {"taubin_iteration", bm_taubin_iteration, false, true},
+    {"curvature", bm_curvature, true, false},
+    {"feature_detection", bm_feature_detection, true, false},
+    {"adaptive_subdivision", bm_adaptive_subdivision, true, false},
+    {"full_method", bm_full_method, true, false},
+    {"vtk_windowed_sinc20", bm_vtk_windowed_sinc20, true, false},
+    {"vtk_smooth20", bm_vtk_smooth20, true, false},
+    {"vtk_curvatures_mean", bm_vtk_curvatures_mean, true, false},
+    {"vtk_curvatures_gaussian", bm_vtk_curvatures_gaussian, true, false},
+};
+
+void register_all() {
+  for (const std::int64_t size : kSizes) {
+    for (const Stage& s : kStages) {
+      auto* b = benchmark::RegisterBenchmark(s.name, s.function)->Arg(size)->Unit(benchmark::kMillisecond);
+      b->MeasureProcessCPUTime();
+      if (s.manual_time) b->UseManualTime();
+      if (s.heavy && size >= 4'000'000) b->Iterations(1);
+      else if (s.heavy && size >= 1'000'000) b->Iterations(3);
+    }
+  }
+}
+
+// The console table as usual, then the ratios between stages measured in this run.
+class RatioReporter : public benchmark::ConsoleReporter {
+ public:
+  void ReportRuns(const std::vector<Run>& runs) override {
+    ConsoleReporter::ReportRuns(runs);
+    for (const Run& r : runs) {
+      if (r.run_type != Run::RT_Iteration || r.error_occurred) continue;
+      Result& out = results_[std::stoll(r.run_name.args)][r.run_name.function_name];
+      // CPU time, ms for every stage (the machine is shared; every stage runs on one thread). A manual
+      // time is already CPU time per iteration (bm_taubin_iteration).
+      const bool manual = r.run_name.time_type.find("manual_time") != std::string::npos;
+      out.ms = manual ? r.GetAdjustedRealTime() : r.GetAdjustedCPUTime();
+      if (const auto it = r.counters.find("vertices_per_s"); it != r.counters.end()) out.rate = it->second;
+      if (const auto it = r.counters.find("vertices"); it != r.counters.end()) out.vertices = it->second;
+    }
+  }
+
+  void Finalize() override {
+    ConsoleReporter::Finalize();
+    std::printf("\nRatios of times on the same meshes in this run (< 1: ContourMesh is faster)\n");
+    std::printf("%-10s %-10s %12s %14s %14s %16s\n", "size", "vertices", "full/wsinc20", "taubin/vtksmth",
+                "taubin/wsinc", "curv/vtkCurv");
+    for (const auto& [size, stages] : results_) {
+      auto ms = [&](const char* stage) {
+        const auto it = stages.find(stage);
+        return it == stages.end() ? NAN : it->second.ms;
+      };
+      double vertices = NAN;
+      for (const auto& [name, r] : stages) {
+        if (std::isfinite(r.vertices)) vertices = r.vertices;
+      }
+      std::printf("%-10lld %-10.0f %12.3f %14.3f %14.3f %16.3f\n", static_cast<long long>(size), vertices,
+                  ms("full_method") / ms("vtk_windowed_sinc20"),
+                  ms("taubin_iteration") / (ms("vtk_smooth20") / 20.0),
+                  ms("taubin_iteration") / (ms("vtk_windowed_sinc20") / 20.0),
+                  (ms("adjacency") + ms("curvature")) / (ms("vtk_curvatures_mean") + ms("vtk_curvatures_gaussian")));
+    }
+    std::printf(
+        "full/wsinc20:   the full method (defaults, from a bare mesh) / vtkWindowedSincPolyDataFilter, 20 its,\n"
+        "                3D Slicer's settings\n"
+        "taubin/vtksmth: one Taubin iteration / one vtkSmoothPolyDataFilter iteration (its 20-iteration run / 20)\n"
+        "taubin/wsinc:   one Taubin iteration / one windowed-sinc iteration (its 20-iteration run / 20)\n"
+        "curv/vtkCurv:   adjacency + principal curvatures / vtkCurvatures mean + vtkCurvatures Gaussian\n");
+
+    std::printf("\nTargets (issue 6)\n");
+    if (const auto it = results_.find(1'000'000); it != results_.end()) {
+      const auto& st = it->second;
+      if (st.count("full_method") && st.count("vtk_windowed_sinc20")) {
+        const double ratio = st.at("full_method").ms / st.at("vtk_windowed_sinc20").ms;
+        std::printf("  full method on the 1M mesh: %.2f x vtkWindowedSincPolyDataFilter 20 its (target < 2): %s\n",
+                    ratio, ratio < 2.0 ? "met" : "MISSED");
+      }
+    }
+    for (const auto& [size, stages] : results_) {
+      const auto it = stages.find("taubin_iteration");
+      if (it == stages.end()) continue;
+      std::printf("  Taubin iteration at %lld: %.3g vertex updates/s per core (target >= 5e7): %s\n",
+                  static_cast<long long>(size), it->second.rate, it->second.rate >= 5e7 ? "met" : "MISSED");
+    }
+  }
+
+ private:
+  struct Result {
+    double ms = NAN;
+    double rate = NAN;
+    double vertices = NAN;
+  };
+  std::map<std::int64_t, std::map<std::string, Result>> results_;
+};
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  // Per-core comparison: ContourMesh is single-threaded, so VTK's SMP tools run sequentially too (read
+  // when VTK first uses them; vtkSMPTools.h itself does not compile as C++20 in VTK 9.1).
+  setenv("VTK_SMP_BACKEND_IN_USE", "Sequential", 0);
+  benchmark::Initialize(&argc, argv);
+  if (benchmark::ReportUnrecognizedArguments(argc, argv)) return 1;
+  register_all();
+  RatioReporter reporter;
+  benchmark::RunSpecifiedBenchmarks(&reporter);
+  benchmark::Shutdown();
+  return 0;
+}

@@ -1,0 +1,40 @@
+// The paper's method end to end (feature_smoothing.h, default options: detection by contour
+// continuity, up to 3 subdivision levels, 40 Taubin iterations, original resolution), with its peak
+// heap per input vertex and the library's own per-stage timings.
+#include "bench_inputs.h"
+#include "bench_stages.h"
+#include "heap_counter.h"
+
+#include <smooth/feature_smoothing.h>
+
+#include <optional>
+
+namespace contourmesh::bench {
+
+// The time includes everything feature_preserving_smooth does from a bare mesh (it builds its own
+// adjacencies). peak_bytes_per_vertex: the highest live heap above what was live before the call,
+// returned result included, divided by the input's vertex count (heap_counter.h).
+void bm_full_method(benchmark::State& state) {
+  const Mesh& mesh = bench_input(state.range(0)).mesh;
+  double peak = 0.0;
+  StageTimings sum;
+  Index adaptive_vertices = 0;
+  for (auto _ : state) {
+    std::optional<FeatureSmoothingResult> result;
+    peak = std::max(peak, peak_heap_bytes_during([&] { result.emplace(feature_preserving_smooth(mesh)); }));
+    benchmark::DoNotOptimize(result->mesh.positions.data());
+    sum.detect += result->seconds.detect;
+    sum.subdivide += result->seconds.subdivide;
+    sum.smooth += result->seconds.smooth;
+    adaptive_vertices = result->adaptive_vertices;
+  }
+  set_vertex_rate(state, mesh.num_vertices());
+  const auto runs = static_cast<double>(state.iterations());
+  state.counters["peak_bytes_per_vertex"] = peak / mesh.num_vertices();
+  state.counters["detect_ms"] = 1e3 * sum.detect / runs;
+  state.counters["subdivide_ms"] = 1e3 * sum.subdivide / runs;
+  state.counters["smooth_ms"] = 1e3 * sum.smooth / runs;
+  state.counters["adaptive_vertices"] = static_cast<double>(adaptive_vertices);
+}
+
+}  // namespace contourmesh::bench
