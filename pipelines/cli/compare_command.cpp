@@ -21,7 +21,10 @@
 #include <memory>
 #include <optional>
 #include <sstream>
+#include <stdexcept>
 #include <string>
+#include <tuple>
+#include <utility>
 #include <vector>
 
 namespace contourmesh::cli {
@@ -44,6 +47,7 @@ struct CompareArgs {
   double feature_radius = 2.0;
   double detection_radius = 0.8;
   int repeat = 1;
+  std::string render_size = "640x480";
   bool no_render = false;
   bool no_curves = false;
   Index max_vertices = kDefaultMaxVertices;
@@ -69,10 +73,31 @@ std::string command_line(const CompareArgs& a) {
   if (a.feature_radius != 2.0) s << " --feature-radius " << a.feature_radius;
   if (a.detection_radius != 0.8) s << " --detection-radius " << a.detection_radius;
   if (a.repeat != 1) s << " --repeat " << a.repeat;
+  if (a.render_size != "640x480") s << " --render-size " << a.render_size;
   if (a.no_render) s << " --no-render";
   if (a.no_curves) s << " --no-curves";
   if (!a.markdown.empty()) s << " --markdown " << a.markdown;
   return s.str();
+}
+
+// "WxH", each in [16, 4096].
+std::pair<int, int> parse_render_size(const std::string& text) {
+  const std::size_t x = text.find('x');
+  int w = 0, h = 0;
+  try {
+    std::size_t used_w = 0, used_h = 0;
+    if (x == std::string::npos) throw std::invalid_argument("no x");
+    w = std::stoi(text.substr(0, x), &used_w);
+    h = std::stoi(text.substr(x + 1), &used_h);
+    if (used_w != x || used_h != text.size() - x - 1) throw std::invalid_argument("trailing text");
+  } catch (const std::exception&) {
+    w = h = 0;
+  }
+  if (w < 16 || h < 16 || w > 4096 || h > 4096) {
+    throw InvalidInputError("--render-size must be WIDTHxHEIGHT in pixels, 16 to 4096 each (e.g. 640x480), got '" +
+                            text + "'");
+  }
+  return {w, h};
 }
 
 // Creates `dir` (and parents) and checks that files can be written in it: exit 2 before any work.
@@ -110,6 +135,7 @@ int run_compare(const CompareArgs& a) {
   if (a.repeat < 1) throw InvalidInputError("--repeat must be >= 1");
   if (!(a.feature_radius > 0.0)) throw InvalidInputError("--feature-radius must be > 0 mm");
   if (!(a.detection_radius > 0.0)) throw InvalidInputError("--detection-radius must be > 0 mm");
+  (void)parse_render_size(a.render_size);
 
   // What to compare: phantoms (one or all) or one volume.
   std::vector<PhantomShape> shapes;
@@ -144,6 +170,7 @@ int run_compare(const CompareArgs& a) {
   options.paper.limits.max_vertices = a.max_vertices;
   ComparisonReportOptions report;
   report.renders = !a.no_render;
+  std::tie(report.render_width, report.render_height) = parse_render_size(a.render_size);
   report.command_line = command_line(a);
 
   ProgressDisplay progress("compare", a.common.quiet);
@@ -266,6 +293,8 @@ void add_compare_command(CLI::App& app) {
                   "scored against, mm")
       ->capture_default_str();
   cmd->add_option("--repeat", args->repeat, "Time each method this many times and report the fastest")
+      ->capture_default_str();
+  cmd->add_option("--render-size", args->render_size, "Size of the renders in pixels, WIDTHxHEIGHT")
       ->capture_default_str();
   cmd->add_flag("--no-render", args->no_render, "Skip the PNG renders of the meshes (they need an X display)");
   cmd->add_flag("--no-curves", args->no_curves, "Skip the volume-shrinking curves (saves the extra runs)");

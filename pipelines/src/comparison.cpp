@@ -7,6 +7,7 @@
 
 #include <vtkCellArray.h>
 #include <vtkDiscreteFlyingEdges3D.h>
+#include <vtkImageConnectivityFilter.h>
 #include <vtkImageConstantPad.h>
 #include <vtkImageData.h>
 #include <vtkImageThreshold.h>
@@ -249,6 +250,8 @@ VoxelSurface voxel_route(const CtImage& image, const ComparisonOptions& o, const
   int extent[6];
   vtk_image->GetExtent(extent);
 
+  // The contour route drops mesh components enclosing less than min_component_voxels voxels.
+  const auto min_island_voxels = static_cast<vtkIdType>(std::ceil(o.reconstruction.min_component_voxels));
   vtkSmartPointer<vtkPolyData> raw_poly, smooth_poly;
   v.seconds = timed(o.timing_repeats, [&](const StageRecorder& record) {
     auto t = Clock::now();
@@ -260,10 +263,25 @@ VoxelSurface voxel_route(const CtImage& image, const ComparisonOptions& o, const
     threshold->ReplaceInOn();
     threshold->ReplaceOutOn();
     threshold->SetOutputScalarTypeToUnsignedChar();
+    vtkAlgorithm* binary = threshold;
+    // Islands below the contour route's speck size are dropped (3D Slicer's Islands effect), so that
+    // both routes start from the same cleaned segmentation and noise specks do not decide the metrics.
+    vtkNew<vtkImageConnectivityFilter> islands;
+    if (min_island_voxels > 0) {
+      islands->SetInputConnection(threshold->GetOutputPort());
+      islands->SetScalarRange(1.0, 1.0);
+      islands->SetExtractionModeToAllRegions();
+      islands->SetSizeRange(min_island_voxels, std::numeric_limits<vtkIdType>::max());
+      islands->SetLabelModeToConstantValue();
+      islands->SetLabelConstantValue(1);
+      islands->SetLabelScalarTypeToUnsignedChar();
+      islands->GenerateRegionExtentsOff();
+      binary = islands;
+    }
     // One voxel of background around the volume, so that bone touching the border gives a closed
     // surface (Slicer pads the labelmap the same way).
     vtkNew<vtkImageConstantPad> pad;
-    pad->SetInputConnection(threshold->GetOutputPort());
+    pad->SetInputConnection(binary->GetOutputPort());
     pad->SetOutputWholeExtent(extent[0] - 1, extent[1] + 1, extent[2] - 1, extent[3] + 1, extent[4] - 1, extent[5] + 1);
     pad->SetConstant(0);
     pad->Update();
@@ -514,6 +532,11 @@ Comparison run_comparison(const CtImage& image, const std::string& source, const
   progress("voxel-flying-edges", 0.0);
   VoxelSurface voxel = voxel_route(image, options, progress);
   const double voxel_v0 = enclosed_volume(voxel.raw);
+  const auto islands_text = [&] {
+    const double min_voxels = std::ceil(options.reconstruction.min_component_voxels);
+    return min_voxels > 0.0 ? ", islands under " + std::to_string(static_cast<long>(min_voxels)) + " voxels removed"
+                            : std::string();
+  };
   std::optional<Regions> voxel_regions;
   if (truth.phantom) voxel_regions = split_regions(voxel.raw, near_features(voxel.raw, *truth.phantom, options.feature_radius));
   {
@@ -521,7 +544,7 @@ Comparison run_comparison(const CtImage& image, const std::string& source, const
     raw.name = "voxel-flying-edges";
     raw.route = "voxel";
     raw.settings = format_settings([&](std::ostringstream& s) {
-      s << "threshold at " << options.reconstruction.segmentation.threshold
+      s << "threshold at " << options.reconstruction.segmentation.threshold << islands_text()
         << ", vtkDiscreteFlyingEdges3D on the padded binary image, unsmoothed";
     });
     raw.mesh = voxel.raw;
@@ -535,7 +558,7 @@ Comparison run_comparison(const CtImage& image, const std::string& source, const
     smoothed.route = "voxel";
     smoothed.settings = format_settings([&](std::ostringstream& s) {
       s << "3D Slicer's voxel route: threshold at " << options.reconstruction.segmentation.threshold
-        << ", vtkDiscreteFlyingEdges3D, vtkWindowedSincPolyDataFilter (" << options.sinc_iterations
+        << islands_text() << ", vtkDiscreteFlyingEdges3D, vtkWindowedSincPolyDataFilter (" << options.sinc_iterations
         << " iterations, passband " << options.sinc_passband << ")";
     });
     smoothed.mesh = voxel.smoothed;

@@ -8,11 +8,17 @@
 
 #include <nlohmann/json.hpp>
 
+#include <sys/wait.h>
+#include <unistd.h>
+
 #include <algorithm>
+#include <cerrno>
 #include <cmath>
 #include <cstdio>
+#include <cstring>
 #include <functional>
 #include <iomanip>
+#include <iostream>
 #include <limits>
 #include <map>
 #include <optional>
@@ -473,13 +479,18 @@ std::string comparison_html(const Comparison& c, const ComparisonFiles& files, c
   return s.str();
 }
 
-void write_renders(const Comparison& c, const fs::path& dir, const ComparisonReportOptions& o, ComparisonFiles& files) {
+// The PNG files write_renders makes.
+std::vector<fs::path> render_files(const Comparison& c, const fs::path& dir) {
+  std::vector<fs::path> files;
+  for (const MethodResult& m : c.methods) files.push_back(dir / render_file(m.name));
+  if (!c.labels.empty()) files.push_back(dir / "labels.png");
+  if (!c.true_features.empty() && !c.labels.empty()) files.push_back(dir / "detection.png");
+  return files;
+}
+
+void write_renders(const Comparison& c, const fs::path& dir, const ComparisonReportOptions& o) {
   detail::SceneRenderer renderer(c.contour_mesh, o.render_width, o.render_height);
-  for (const MethodResult& m : c.methods) {
-    const fs::path png = dir / render_file(m.name);
-    renderer.surface(m.mesh, title_of(m.name), png);
-    files.files.push_back(png);
-  }
+  for (const MethodResult& m : c.methods) renderer.surface(m.mesh, title_of(m.name), dir / render_file(m.name));
   if (!c.labels.empty()) {
     std::vector<int> group(c.labels.size(), -1);
     for (std::size_t i = 0; i < c.labels.size(); ++i) {
@@ -494,7 +505,6 @@ void write_renders(const Comparison& c, const fs::path& dir, const ComparisonRep
     renderer.points(c.contour_mesh, group,
                     {{"edge", {0.0, 0.65, 0.0}, 6.0}, {"corner", {0.1, 0.3, 1.0}, 12.0}, {"noise", {0.9, 0.1, 0.1}, 6.0}},
                     "labels of the paper's method", png);
-    files.files.push_back(png);
   }
   if (!c.true_features.empty() && !c.labels.empty()) {
     std::vector<int> group(c.labels.size(), -1);
@@ -509,8 +519,38 @@ void write_renders(const Comparison& c, const fs::path& dir, const ComparisonRep
                      {"true feature, missed", {1.0, 0.55, 0.0}, 6.0},
                      {"false detection", {0.9, 0.1, 0.1}, 6.0}},
                     "detection against the phantom's features", png);
-    files.files.push_back(png);
   }
+}
+
+// Renders in a child process: Debian's VTK aborts the process when the X server goes away or
+// refuses a connection (a display that vanished mid-run, a deleted Xauthority file), and the metrics
+// must survive that. Returns an empty string on success, otherwise why the renders are missing.
+std::string write_renders_isolated(const Comparison& c, const fs::path& dir, const ComparisonReportOptions& o) {
+  std::cout.flush();
+  std::cerr.flush();
+  const pid_t pid = fork();
+  if (pid < 0) return std::string("cannot start the rendering process: ") + std::strerror(errno);
+  if (pid == 0) {
+    int code = 0;
+    try {
+      write_renders(c, dir, o);
+    } catch (const std::exception& e) {
+      std::cerr << "rendering: " << e.what() << "\n";
+      code = 2;
+    }
+    std::cerr.flush();
+    _exit(code);  // no destructors or atexit handlers of the parent's state in the child
+  }
+  int status = 0;
+  while (waitpid(pid, &status, 0) < 0) {
+    if (errno != EINTR) return std::string("lost the rendering process: ") + std::strerror(errno);
+  }
+  if (WIFEXITED(status) && WEXITSTATUS(status) == 0) return {};
+  if (WIFSIGNALED(status)) {
+    return "rendering failed (signal " + std::to_string(WTERMSIG(status)) +
+           "; VTK aborts when the X display goes away, see the message above)";
+  }
+  return "rendering failed (exit code " + std::to_string(WEXITSTATUS(status)) + ", see the message above)";
 }
 
 void ensure_directory(const fs::path& dir) {
@@ -697,8 +737,10 @@ ComparisonFiles write_comparison(const Comparison& c, const fs::path& dir, const
     files.render_note = "rendering was turned off (--no-render)";
   } else if (std::string why; !rendering_available(&why)) {
     files.render_note = why;
+  } else if (std::string failed = write_renders_isolated(c, dir, o); !failed.empty()) {
+    files.render_note = failed;
   } else {
-    write_renders(c, dir, o, files);
+    for (const fs::path& f : render_files(c, dir)) files.files.push_back(f);
     files.rendered = true;
   }
   text("report.html", comparison_html(c, files, o));

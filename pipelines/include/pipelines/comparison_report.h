@@ -67,7 +67,8 @@ void write_volume_curve_png(const Comparison& comparison, const std::filesystem:
 /// Writes into `directory` (created if missing): metrics.csv, metrics.json, volume_curve.csv,
 /// volume_curve.png, render_<method>.png for every method and labels.png (the paper's labels on the
 /// contour mesh: edge green, corner blue, noise red) and, for a phantom, detection.png (true feature
-/// vertices found / missed, false detections) when rendering is available and enabled, and
+/// vertices found / missed, false detections) when rendering is available and enabled (in a child
+/// process: VTK aborts when the X display goes away, and the rest must survive that), and
 /// report.html linking them. Throws InvalidInputError naming the path when the directory cannot be
 /// created or written.
 ComparisonFiles write_comparison(const Comparison& comparison, const std::filesystem::path& directory,
