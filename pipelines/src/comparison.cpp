@@ -227,6 +227,27 @@ void measure(MethodResult& r, const ComparisonTruth& truth, const Regions* regio
   r.all = all;
 }
 
+// Keeps the 6-connected regions of value 1 with at least `min_voxels` voxels, as 1; the rest becomes 0.
+void keep_large_regions(vtkImageConnectivityFilter* filter, vtkIdType min_voxels) {
+  filter->SetScalarRange(1.0, 1.0);
+  filter->SetExtractionModeToAllRegions();
+  filter->SetSizeRange(min_voxels, std::numeric_limits<vtkIdType>::max());
+  filter->SetLabelModeToConstantValue();
+  filter->SetLabelConstantValue(1);
+  filter->SetLabelScalarTypeToUnsignedChar();
+  filter->GenerateRegionExtentsOff();
+}
+
+// 0 -> 1 and 1 -> 0 on a binary unsigned char image.
+void invert(vtkImageThreshold* filter) {
+  filter->ThresholdByLower(0.5);
+  filter->SetInValue(1);
+  filter->SetOutValue(0);
+  filter->ReplaceInOn();
+  filter->ReplaceOutOn();
+  filter->SetOutputScalarTypeToUnsignedChar();
+}
+
 // The flying-edges surface of the thresholded volume, in physical coordinates, outward oriented.
 struct VoxelSurface {
   Mesh raw, smoothed;
@@ -251,7 +272,7 @@ VoxelSurface voxel_route(const CtImage& image, const ComparisonOptions& o, const
   vtk_image->GetExtent(extent);
 
   // The contour route drops mesh components enclosing less than min_component_voxels voxels.
-  const auto min_island_voxels = static_cast<vtkIdType>(std::ceil(o.reconstruction.min_component_voxels));
+  const auto min_speck_voxels = static_cast<vtkIdType>(std::ceil(o.reconstruction.min_component_voxels));
   vtkSmartPointer<vtkPolyData> raw_poly, smooth_poly;
   v.seconds = timed(o.timing_repeats, [&](const StageRecorder& record) {
     auto t = Clock::now();
@@ -264,19 +285,23 @@ VoxelSurface voxel_route(const CtImage& image, const ComparisonOptions& o, const
     threshold->ReplaceOutOn();
     threshold->SetOutputScalarTypeToUnsignedChar();
     vtkAlgorithm* binary = threshold;
-    // Islands below the contour route's speck size are dropped (3D Slicer's Islands effect), so that
-    // both routes start from the same cleaned segmentation and noise specks do not decide the metrics.
+    // Islands and holes below the contour route's speck size are removed and filled (3D Slicer's
+    // Islands effect and a hole fill), as the contour route drops such regions and holes per slice and
+    // such components after tiling; otherwise noise voxels decide the voxel route's metrics.
     vtkNew<vtkImageConnectivityFilter> islands;
-    if (min_island_voxels > 0) {
+    vtkNew<vtkImageThreshold> background;
+    vtkNew<vtkImageConnectivityFilter> large_background;
+    vtkNew<vtkImageThreshold> filled;
+    if (min_speck_voxels > 0) {
       islands->SetInputConnection(threshold->GetOutputPort());
-      islands->SetScalarRange(1.0, 1.0);
-      islands->SetExtractionModeToAllRegions();
-      islands->SetSizeRange(min_island_voxels, std::numeric_limits<vtkIdType>::max());
-      islands->SetLabelModeToConstantValue();
-      islands->SetLabelConstantValue(1);
-      islands->SetLabelScalarTypeToUnsignedChar();
-      islands->GenerateRegionExtentsOff();
-      binary = islands;
+      keep_large_regions(islands, min_speck_voxels);
+      background->SetInputConnection(islands->GetOutputPort());
+      invert(background);
+      large_background->SetInputConnection(background->GetOutputPort());
+      keep_large_regions(large_background, min_speck_voxels);
+      filled->SetInputConnection(large_background->GetOutputPort());
+      invert(filled);
+      binary = filled;
     }
     // One voxel of background around the volume, so that bone touching the border gives a closed
     // surface (Slicer pads the labelmap the same way).
@@ -534,7 +559,8 @@ Comparison run_comparison(const CtImage& image, const std::string& source, const
   const double voxel_v0 = enclosed_volume(voxel.raw);
   const auto islands_text = [&] {
     const double min_voxels = std::ceil(options.reconstruction.min_component_voxels);
-    return min_voxels > 0.0 ? ", islands under " + std::to_string(static_cast<long>(min_voxels)) + " voxels removed"
+    return min_voxels > 0.0 ? ", islands and holes under " + std::to_string(static_cast<long>(min_voxels)) +
+                                  " voxels removed and filled"
                             : std::string();
   };
   std::optional<Regions> voxel_regions;

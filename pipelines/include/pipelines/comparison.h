@@ -56,8 +56,8 @@ struct ComparisonTruth {
 /// How the methods are run and measured. The defaults are the paper's and 3D Slicer's settings.
 struct ComparisonOptions {
   /// Segmentation and tiling of the contour route. Its threshold is also the voxel route's, and the
-  /// voxel route drops islands of fewer than min_component_voxels voxels, as the contour route drops
-  /// such specks (3D Slicer's Islands effect).
+  /// voxel route removes islands and fills holes of fewer than min_component_voxels voxels, as the
+  /// contour route drops such specks and small holes (3D Slicer's Islands effect and a hole fill).
   ReconstructionOptions reconstruction;
   /// The paper's method (its progress member is ignored).
   FeatureSmoothingOptions paper;
@@ -127,7 +127,7 @@ struct MethodResult {
   /// the normal errors only for a phantom.
   std::optional<RegionMetrics> all, feature, smooth;
   /// Per stage: "detect", "subdivide", "smooth" (the paper), "smooth" (baselines, VTK filters),
-  /// "threshold" (with the island removal), "surface", "smooth" (voxel route); and "total".
+  /// "threshold" (with the island and hole clean-up), "surface", "smooth" (voxel route); and "total".
   std::vector<StageTime> seconds;
   std::optional<LabelSummary> labels;  ///< the paper's method only
   /// Volume shrinking rate (V0 - Vk) / V0 after k = 0, 1, ..., iterations iterations; empty for a
