@@ -48,6 +48,7 @@ struct CompareArgs {
   double detection_radius = 0.8;
   int repeat = 1;
   std::string render_size = "640x480";
+  int color_levels = 256;
   bool no_render = false;
   bool no_curves = false;
   Index max_vertices = kDefaultMaxVertices;
@@ -74,6 +75,7 @@ std::string command_line(const CompareArgs& a) {
   if (a.detection_radius != 0.8) s << " --detection-radius " << a.detection_radius;
   if (a.repeat != 1) s << " --repeat " << a.repeat;
   if (a.render_size != "640x480") s << " --render-size " << a.render_size;
+  if (a.color_levels != 256) s << " --color-levels " << a.color_levels;
   if (a.no_render) s << " --no-render";
   if (a.no_curves) s << " --no-curves";
   if (!a.markdown.empty()) s << " --markdown " << a.markdown;
@@ -136,6 +138,7 @@ int run_compare(const CompareArgs& a) {
   if (!(a.feature_radius > 0.0)) throw InvalidInputError("--feature-radius must be > 0 mm");
   if (!(a.detection_radius > 0.0)) throw InvalidInputError("--detection-radius must be > 0 mm");
   (void)parse_render_size(a.render_size);
+  if (a.color_levels < 2 || a.color_levels > 256) throw InvalidInputError("--color-levels must be in [2, 256]");
 
   // What to compare: phantoms (one or all) or one volume.
   std::vector<PhantomShape> shapes;
@@ -171,6 +174,7 @@ int run_compare(const CompareArgs& a) {
   ComparisonReportOptions report;
   report.renders = !a.no_render;
   std::tie(report.render_width, report.render_height) = parse_render_size(a.render_size);
+  report.color_levels = a.color_levels;
   report.command_line = command_line(a);
 
   ProgressDisplay progress("compare", a.common.quiet);
@@ -295,6 +299,9 @@ void add_compare_command(CLI::App& app) {
   cmd->add_option("--repeat", args->repeat, "Time each method this many times and report the fastest")
       ->capture_default_str();
   cmd->add_option("--render-size", args->render_size, "Size of the renders in pixels, WIDTHxHEIGHT")
+      ->capture_default_str();
+  cmd->add_option("--color-levels", args->color_levels,
+                  "Levels per colour channel in the renders (2-256): 32 halves the PNG files")
       ->capture_default_str();
   cmd->add_flag("--no-render", args->no_render, "Skip the PNG renders of the meshes (they need an X display)");
   cmd->add_flag("--no-curves", args->no_curves, "Skip the volume-shrinking curves (saves the extra runs)");

@@ -26,6 +26,7 @@
 
 #include <algorithm>
 #include <array>
+#include <cmath>
 #include <cstdlib>
 #include <numeric>
 
@@ -88,13 +89,15 @@ double mean_edge_length(const Mesh& mesh) {
 
 }  // namespace
 
-SceneRenderer::SceneRenderer(const Mesh& framing, int width, int height)
+SceneRenderer::SceneRenderer(const Mesh& framing, int width, int height, int color_levels)
     : width_(width),
       height_(height),
+      color_levels_(color_levels),
       window_(vtkSmartPointer<vtkRenderWindow>::New()),
       renderer_(vtkSmartPointer<vtkRenderer>::New()),
       camera_(vtkSmartPointer<vtkCamera>::New()) {
   if (width < 16 || height < 16) throw InvalidInputError("renders must be at least 16 x 16 pixels");
+  if (color_levels < 2 || color_levels > 256) throw InvalidInputError("renders need 2 to 256 colour levels");
   if (framing.num_vertices() == 0) throw InvalidInputError("nothing to render: the mesh is empty");
   window_->SetOffScreenRendering(1);
   window_->SetSize(width, height);
@@ -120,9 +123,25 @@ SceneRenderer::SceneRenderer(const Mesh& framing, int width, int height)
   camera_->Elevation(25.0);
   camera_->OrthogonalizeViewUp();
   renderer_->SetActiveCamera(camera_);
-  double bounds[6] = {lo.x(), hi.x(), lo.y(), hi.y(), lo.z(), hi.z()};
-  renderer_->ResetCamera(bounds);
-  camera_->Zoom(1.25);
+  // Move the camera back until every vertex is inside the view, with a margin: a vertex nearer than
+  // the focal plane by `depth` appears larger by d / (d - depth).
+  Eigen::Vector3d eye, view_up;
+  camera_->GetPosition(eye.data());
+  camera_->GetViewUp(view_up.data());
+  const Eigen::Vector3d toward_eye = (eye - center).normalized();
+  const Eigen::Vector3d right = view_up.cross(toward_eye).normalized();
+  const double aspect = static_cast<double>(width) / static_cast<double>(height);
+  constexpr double kPi = 3.14159265358979323846;
+  const double tan_half_angle = std::tan(0.5 * camera_->GetViewAngle() * kPi / 180.0);
+  constexpr double kMargin = 1.15;  // room for the title
+  double fit = 0.0;
+  for (Index i = 0; i < framing.num_vertices(); ++i) {
+    const Eigen::Vector3d rel = framing.positions.col(i) - center;
+    const double half = std::max(std::abs(rel.dot(view_up)), std::abs(rel.dot(right)) / aspect);
+    fit = std::max(fit, kMargin * half / tan_half_angle + rel.dot(toward_eye));
+  }
+  const Eigen::Vector3d fitted = center + fit * toward_eye;
+  camera_->SetPosition(fitted.data());
   edge_length_ = mean_edge_length(framing);
 }
 
@@ -135,7 +154,7 @@ void SceneRenderer::clear() {
 void SceneRenderer::add_title(const std::string& title) {
   vtkNew<vtkTextActor> text;
   text->SetInput(title.c_str());
-  text->GetTextProperty()->SetFontSize(20);
+  text->GetTextProperty()->SetFontSize(std::max(14, width_ / 32));
   text->GetTextProperty()->SetColor(0.1, 0.1, 0.1);
   text->GetTextProperty()->SetVerticalJustificationToTop();
   text->SetDisplayPosition(12, height_ - 10);
@@ -150,6 +169,16 @@ void SceneRenderer::snapshot(const std::filesystem::path& png) {
   grab->ReadFrontBufferOff();
   grab->SetInputBufferTypeToRGB();
   grab->Update();
+  if (color_levels_ < 256) {
+    // Fewer levels per channel: flat-shaded triangles of nearly the same shade merge, and the PNG
+    // shrinks by about half at 32 levels with no visible change.
+    const int step = 256 / color_levels_;
+    vtkImageData* image = grab->GetOutput();
+    auto* p = static_cast<unsigned char*>(image->GetScalarPointer());
+    const std::size_t n = static_cast<std::size_t>(image->GetNumberOfPoints()) *
+                          static_cast<std::size_t>(image->GetNumberOfScalarComponents());
+    for (std::size_t i = 0; i < n; ++i) p[i] = static_cast<unsigned char>(std::min(255, (p[i] + step / 2) / step * step));
+  }
   write_png_atomically(grab->GetOutput(), png);
 }
 

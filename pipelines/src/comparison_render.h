@@ -24,10 +24,11 @@ namespace contourmesh::detail {
 
 /// One offscreen render window, reused for every picture; the camera is fixed from the framing mesh
 /// (looking along its shortest extent, turned 35 degrees about and 25 degrees above it, the longest
-/// extent horizontal).
+/// extent horizontal, and just far enough for every vertex of the framing mesh to be in view).
 class SceneRenderer {
  public:
-  SceneRenderer(const Mesh& framing, int width, int height);
+  /// `color_levels` per channel (2 to 256) in the PNG files.
+  SceneRenderer(const Mesh& framing, int width, int height, int color_levels = 256);
   ~SceneRenderer();
   SceneRenderer(const SceneRenderer&) = delete;
   SceneRenderer& operator=(const SceneRenderer&) = delete;
@@ -49,7 +50,7 @@ class SceneRenderer {
   void add_title(const std::string& title);
   void snapshot(const std::filesystem::path& png);
 
-  int width_, height_;
+  int width_, height_, color_levels_;
   vtkSmartPointer<vtkRenderWindow> window_;
   vtkSmartPointer<vtkRenderer> renderer_;
   vtkSmartPointer<vtkCamera> camera_;

@@ -109,6 +109,7 @@ void write_png_atomically(vtkImageData* image, const std::filesystem::path& path
     vtkNew<vtkPNGWriter> writer;
     writer->SetFileName(temporary.string().c_str());
     writer->SetInputData(image);
+    writer->SetCompressionLevel(9);  // renders go into the repository's docs: smallest files
     writer->Write();
     if (writer->GetErrorCode() != 0 || !std::filesystem::exists(temporary)) {
       throw InvalidInputError(path.string() + ": cannot write the PNG file");

@@ -394,7 +394,7 @@ const char* kSmallPhantom = "--spacing 1,1,2.5 --noise 100 --repeat 1";
 TEST(CompareCli, OnePhantomWritesEveryFileAndRendersTheMeshes) {
   test::ScopedTempDir tmp("contourmesh_compare");
   const fs::path out = tmp.path() / "out" / "ridge";  // parents are created
-  const CliRun r = run_cli("compare --phantom ridge-box " + std::string(kSmallPhantom) + " --render-size 320x240 --out " +
+  const CliRun r = run_cli("compare --phantom ridge-box " + std::string(kSmallPhantom) + " --render-size 320x240 --color-levels 32 --out " +
                                out.string() + " --json",
                            tmp.path(), true);
   ASSERT_EQ(r.code, 0) << r.err;
@@ -528,6 +528,9 @@ TEST(CompareCli, BadInputExitsWithTwoAndAClearMessage) {
   r = run_cli("compare --phantom ridge-box --render-size 10x10" + out, tmp.path());
   EXPECT_EQ(r.code, 2);
   EXPECT_NE(r.err.find("--render-size"), std::string::npos) << r.err;
+  r = run_cli("compare --phantom ridge-box --color-levels 1" + out, tmp.path());
+  EXPECT_EQ(r.code, 2);
+  EXPECT_NE(r.err.find("--color-levels"), std::string::npos) << r.err;
 }
 
 TEST(CompareCli, ConflictingOptionsAreUsageErrors) {
