@@ -39,6 +39,7 @@ struct CompareArgs {
   std::string truth;
   std::string out;
   std::string markdown;
+  std::string note;
   std::string spacing = "0.7,0.7,2";
   double noise = 20.0;
   double blur = 0.5;
@@ -56,7 +57,8 @@ struct CompareArgs {
   CommonArgs common;
 };
 
-// The command as typed, for the reports (options at their defaults left out).
+// The command as typed, for the reports (options at their defaults left out, and the --note that the
+// reports print anyway).
 std::string command_line(const CompareArgs& a) {
   std::ostringstream s;
   s << "contourmesh compare";
@@ -176,6 +178,7 @@ int run_compare(const CompareArgs& a) {
   std::tie(report.render_width, report.render_height) = parse_render_size(a.render_size);
   report.color_levels = a.color_levels;
   report.command_line = command_line(a);
+  report.note = a.note;
 
   ProgressDisplay progress("compare", a.common.quiet);
   options.progress = progress.callback();
@@ -283,6 +286,7 @@ void add_compare_command(CLI::App& app) {
   truth->excludes(phantom);
   cmd->add_option("-o,--out", args->out, "Output directory (created if missing)")->required();
   cmd->add_option("--markdown", args->markdown, "Also write a Markdown page of the results (links relative to it)");
+  cmd->add_option("--note", args->note, "A paragraph to add under the title of the reports");
   cmd->add_option("--spacing", args->spacing, "Phantom voxel size, mm: sx,sy,sz")->capture_default_str();
   cmd->add_option("--noise", args->noise, "Phantom Gaussian noise, HU")->capture_default_str();
   cmd->add_option("--blur", args->blur, "Phantom Gaussian blur, mm")->capture_default_str();

@@ -421,7 +421,9 @@ std::string comparison_html(const Comparison& c, const ComparisonFiles& files, c
     << "td:first-child,th:first-child{text-align:left}td.best{font-weight:bold;background:#e6f4e6}"
     << "figure{display:inline-block;margin:0.5em;width:31%;vertical-align:top}figure img{width:100%;border:1px solid #ccc}"
     << "figcaption{font-size:85%}code{background:#f4f4f4}\n</style></head><body>\n";
-  s << "<h1>ContourMesh comparison</h1>\n<p>Volume: " << html_escape(c.source) << "<br>\n";
+  s << "<h1>ContourMesh comparison</h1>\n";
+  if (!o.note.empty()) s << "<p>" << html_escape(o.note) << "</p>\n";
+  s << "<p>Volume: " << html_escape(c.source) << "<br>\n";
   if (!o.command_line.empty()) s << "Command: <code>" << html_escape(o.command_line) << "</code><br>\n";
   s << "Truth: "
     << (c.truth == TruthKind::None ? std::string("none: no reference surface was given (--truth), so no distance or "
@@ -851,6 +853,7 @@ std::vector<fs::path> write_comparison_summary(std::span<const ComparisonEntry> 
        << "td,th{border:1px solid #bbb;padding:3px 8px;text-align:right}th{background:#eee}"
        << "td:first-child,th:first-child{text-align:left}td.best{font-weight:bold;background:#e6f4e6}code{background:#f4f4f4}"
        << "\n</style></head><body>\n<h1>ContourMesh comparison summary</h1>\n";
+  if (!o.note.empty()) html << "<p>" << html_escape(o.note) << "</p>\n";
   if (!o.command_line.empty()) html << "<p>Command: <code>" << html_escape(o.command_line) << "</code></p>\n";
   html << "<p>Reports: ";
   for (const ComparisonEntry& e : entries) {
@@ -907,6 +910,7 @@ void write_comparison_markdown(std::span<const ComparisonEntry> entries, const f
        "`xvfb-run -a` on a machine without a display, for the renders):\n\n```sh\n"
     << (o.command_line.empty() ? std::string("contourmesh compare --phantom all --out DIR") : o.command_line)
     << "\n```\n\n";
+  if (!o.note.empty()) s << o.note << "\n\n";
   if (!entries.empty()) {
     const Comparison& c0 = *entries.front().comparison;
     s << "Every method starts from the same reconstructed contour mesh of a phantom's CT volume; the voxel route "

@@ -24,6 +24,8 @@ struct ComparisonReportOptions {
   int color_levels = 256;
   /// The command that produced the comparison, quoted in the reports.
   std::string command_line;
+  /// A paragraph added under the title of the reports (HTML escaped; Markdown as is).
+  std::string note;
 };
 
 /// What write_comparison wrote.
