@@ -69,6 +69,7 @@ FeatureSmoothingResult feature_preserving_smooth(const Mesh& mesh, const Feature
   smoothing.boundary = options.boundary;
   smoothing.locked = locked;
   smoothing.progress = options.progress;
+  smoothing.on_iteration = options.on_iteration;
   const MeshAdjacency adaptive_adjacency = build_adjacency(adaptive.mesh);
   Eigen::Matrix3Xd smoothed = smooth(adaptive.mesh, adaptive_adjacency, smoothing);
   result.seconds.smooth = seconds_since(t);

@@ -53,5 +53,6 @@ void add_detect_command(CLI::App& app);
 void add_run_command(CLI::App& app);
 void add_phantom_command(CLI::App& app);
 void add_reconstruct_command(CLI::App& app);
+void add_compare_command(CLI::App& app);
 
 }  // namespace contourmesh::cli

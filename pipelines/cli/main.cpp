@@ -15,6 +15,7 @@ int main(int argc, char** argv) {
   contourmesh::cli::add_detect_command(app);
   contourmesh::cli::add_smooth_command(app);
   contourmesh::cli::add_run_command(app);
+  contourmesh::cli::add_compare_command(app);
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {

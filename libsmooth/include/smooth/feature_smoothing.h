@@ -39,6 +39,9 @@ struct FeatureSmoothingOptions {
   std::span<const std::uint8_t> locked;
   /// Stages "detect", "subdivide", "smooth"; return false to cancel (CancelledError).
   ProgressCallback progress;
+  /// Optional: sees the adaptive mesh's positions after every smoothing iteration; its first n columns
+  /// are the input vertices (used for the volume-shrinking curve).
+  IterationObserver on_iteration;
   /// Vertex cap and memory budget of the adaptive mesh (LimitError before a subdivision level that
   /// would exceed them).
   ResourceLimits limits;
