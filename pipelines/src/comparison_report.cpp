@@ -856,6 +856,14 @@ std::string targets_markdown(std::span<const ComparisonEntry> entries) {
     } else {
       s << ", the smallest";
     }
+    if (const MethodResult* none = c.find("none"); none && none->feature) {
+      int better = 0;
+      for (const MethodResult& m : c.methods) better += smoothed(m) && feature_rms(m) < feature_rms(*none);
+      s << ". Unsmoothed contour mesh: " << fixed(feature_rms(*none), 3) << " mm ("
+        << (better == 0 ? std::string("no smoothed method is closer")
+                        : std::to_string(better) + " smoothed method" + (better == 1 ? " is" : "s are") + " closer")
+        << ")";
+    }
     s << ".\n";
   }
   return s.str();
