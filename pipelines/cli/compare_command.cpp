@@ -119,15 +119,22 @@ void print_summary(const std::string& name, const Comparison& c, const Compariso
   std::cout << std::fixed << name << ": " << c.source << "\n  contour mesh " << c.contour_mesh.num_vertices()
             << " vertices; truth: " << (c.truth == TruthKind::None ? "none (no distance metrics)" : c.truth_description)
             << "\n";
-  std::cout << "  " << std::left << std::setw(26) << "method" << std::right << std::setw(10) << "RMS mm" << std::setw(12)
-            << "feature mm" << std::setw(10) << "dV %" << std::setw(10) << "seconds" << "\n";
+  std::cout << "  " << std::left << std::setw(26) << "method" << std::right << std::setw(10) << "RMS mm"
+            << std::setw(12) << "feature mm" << std::setw(10) << "dV %" << std::setw(10) << "seconds"
+            << "\n";
   for (const MethodResult& m : c.methods) {
     std::cout << "  " << std::left << std::setw(26) << m.name << std::right << std::setprecision(3) << std::setw(10);
-    if (m.all) std::cout << m.all->distance.rms; else std::cout << "-";
+    if (m.all)
+      std::cout << m.all->distance.rms;
+    else
+      std::cout << "-";
     std::cout << std::setw(12);
-    if (m.feature) std::cout << m.feature->distance.rms; else std::cout << "-";
-    std::cout << std::setprecision(2) << std::setw(10) << m.volume_change_percent << std::setprecision(3) << std::setw(10)
-              << m.stage_seconds("total") << "\n";
+    if (m.feature)
+      std::cout << m.feature->distance.rms;
+    else
+      std::cout << "-";
+    std::cout << std::setprecision(2) << std::setw(10) << m.volume_change_percent << std::setprecision(3)
+              << std::setw(10) << m.stage_seconds("total") << "\n";
   }
   if (!files.rendered) std::cout << "  no renders: " << files.render_note << "\n";
   std::cout << "  wrote " << (dir / "report.html").string() << " and " << files.files.size() - 1 << " other files\n";
@@ -146,8 +153,10 @@ int run_compare(const CompareArgs& a) {
   std::vector<PhantomShape> shapes;
   if (a.input.empty()) {
     const std::string name = a.phantom.empty() ? "femur" : a.phantom;
-    if (name == "all") shapes = all_phantom_shapes();
-    else shapes.push_back(parse_phantom_shape(name));
+    if (name == "all")
+      shapes = all_phantom_shapes();
+    else
+      shapes.push_back(parse_phantom_shape(name));
   }
   const bool several = shapes.size() > 1;
   PhantomVolumeOptions volume_options;

@@ -31,9 +31,12 @@ namespace contourmesh {
 
 std::string_view to_string(TruthKind kind) {
   switch (kind) {
-    case TruthKind::None: return "none";
-    case TruthKind::Phantom: return "phantom";
-    case TruthKind::ReferenceSurface: return "reference-surface";
+    case TruthKind::None:
+      return "none";
+    case TruthKind::Phantom:
+      return "phantom";
+    case TruthKind::ReferenceSurface:
+      return "reference-surface";
   }
   return "none";
 }
@@ -121,7 +124,8 @@ std::vector<StageTime> timed(int repeats, const std::function<void(const StageRe
     if (best.empty()) {
       best = run;
     } else {
-      for (std::size_t i = 0; i < best.size() && i < run.size(); ++i) best[i].seconds = std::min(best[i].seconds, run[i].seconds);
+      for (std::size_t i = 0; i < best.size() && i < run.size(); ++i)
+        best[i].seconds = std::min(best[i].seconds, run[i].seconds);
     }
   }
   return best;
@@ -197,12 +201,40 @@ Regions split_regions(const Mesh& mesh, const std::vector<std::uint8_t>& in_feat
   return r;
 }
 
-std::vector<std::uint8_t> near_features(const Mesh& mesh, const Phantom& phantom, double radius) {
-  std::vector<std::uint8_t> flags(static_cast<std::size_t>(mesh.num_vertices()), 0);
-  for (Index i = 0; i < mesh.num_vertices(); ++i) {
-    flags[i] = distance_to_features(phantom, mesh.positions.col(i)) < radius ? 1 : 0;
-  }
+// Distance of every vertex to the phantom's nearest feature point (a linear scan per vertex: compute
+// it once per mesh).
+std::vector<double> feature_distances(const Mesh& mesh, const Phantom& phantom) {
+  std::vector<double> d(static_cast<std::size_t>(mesh.num_vertices()));
+  for (Index i = 0; i < mesh.num_vertices(); ++i) d[i] = distance_to_features(phantom, mesh.positions.col(i));
+  return d;
+}
+
+std::vector<std::uint8_t> closer_than(const std::vector<double>& distances, double radius) {
+  std::vector<std::uint8_t> flags(distances.size(), 0);
+  for (std::size_t i = 0; i < distances.size(); ++i) flags[i] = distances[i] < radius ? 1 : 0;
   return flags;
+}
+
+// The statistics of the union of two disjoint sets, from the statistics of each.
+DistanceStats merge(const DistanceStats& a, const DistanceStats& b) {
+  DistanceStats m;
+  m.count = a.count + b.count;
+  if (m.count == 0) return m;
+  const double na = static_cast<double>(a.count), nb = static_cast<double>(b.count), n = na + nb;
+  m.mean = (na * a.mean + nb * b.mean) / n;
+  m.rms = std::sqrt((na * a.rms * a.rms + nb * b.rms * b.rms) / n);
+  m.max = std::max(a.max, b.max);
+  return m;
+}
+
+AngleStats merge(const AngleStats& a, const AngleStats& b) {
+  AngleStats m;
+  m.count = a.count + b.count;
+  if (m.count == 0) return m;
+  m.mean_degrees = (static_cast<double>(a.count) * a.mean_degrees + static_cast<double>(b.count) * b.mean_degrees) /
+                   static_cast<double>(m.count);
+  m.max_degrees = std::max(a.max_degrees, b.max_degrees);
+  return m;
 }
 
 // Distance, normals and volume of a result; `regions` is empty without a phantom.
@@ -212,17 +244,20 @@ void measure(MethodResult& r, const ComparisonTruth& truth, const Regions* regio
   if (truth_volume > 0.0) r.volume_error_percent = 100.0 * (r.volume_output - truth_volume) / truth_volume;
   if (!truth.distance) return;
   RegionMetrics all;
-  all.distance = distance_to_surface(r.mesh.positions, truth.distance);
   if (truth.phantom) {
+    // The whole mesh is the union of the two regions: measure each once.
     const Phantom& ph = *truth.phantom;
-    all.normals = normal_angular_error(r.mesh.positions, r.mesh.triangles, ph.normal);
     RegionMetrics feature, smooth;
     feature.distance = distance_to_surface(r.mesh.positions, ph.sdf, regions->feature_vertices);
     smooth.distance = distance_to_surface(r.mesh.positions, ph.sdf, regions->smooth_vertices);
     feature.normals = normal_angular_error(r.mesh.positions, r.mesh.triangles, ph.normal, regions->feature_faces);
     smooth.normals = normal_angular_error(r.mesh.positions, r.mesh.triangles, ph.normal, regions->smooth_faces);
+    all.distance = merge(feature.distance, smooth.distance);
+    all.normals = merge(feature.normals, smooth.normals);
     r.feature = feature;
     r.smooth = smooth;
+  } else {
+    all.distance = distance_to_surface(r.mesh.positions, truth.distance);
   }
   r.all = all;
 }
@@ -395,8 +430,9 @@ Comparison run_comparison(const CtImage& image, const std::string& source, const
 
   std::optional<Regions> regions;
   if (truth.phantom) {
-    c.feature_region = near_features(mesh, *truth.phantom, options.feature_radius);
-    c.true_features = near_features(mesh, *truth.phantom, options.detection_radius);
+    const std::vector<double> to_features = feature_distances(mesh, *truth.phantom);
+    c.feature_region = closer_than(to_features, options.feature_radius);
+    c.true_features = closer_than(to_features, options.detection_radius);
     regions = split_regions(mesh, c.feature_region);
   }
   const auto contour_result = [&](std::string name, std::string settings) {
@@ -410,10 +446,8 @@ Comparison run_comparison(const CtImage& image, const std::string& source, const
 
   // 2. The library's baselines.
   const std::pair<const char*, SmoothingMethod> baselines[] = {
-      {"none", SmoothingMethod::None},
-      {"laplacian", SmoothingMethod::Laplacian},
-      {"taubin", SmoothingMethod::Taubin},
-      {"mcf", SmoothingMethod::MeanCurvatureFlow},
+      {"none", SmoothingMethod::None},           {"laplacian", SmoothingMethod::Laplacian},
+      {"taubin", SmoothingMethod::Taubin},       {"mcf", SmoothingMethod::MeanCurvatureFlow},
       {"mindist", SmoothingMethod::MinDistFlow},
   };
   for (const auto& [name, method] : baselines) {
@@ -422,14 +456,16 @@ Comparison run_comparison(const CtImage& image, const std::string& source, const
     so.method = method;
     so.iterations = method == SmoothingMethod::None ? 0 : options.baseline_iterations;
     so.progress = progress.renamed(name);
-    MethodResult r = contour_result(
-        name, method == SmoothingMethod::None
-                  ? std::string("the reconstructed contour mesh, unsmoothed")
-                  : format_settings([&](std::ostringstream& s) {
-                      s << so.iterations << " iterations, lambda " << default_lambda(method);
-                      if (method == SmoothingMethod::Taubin) s << ", mu " << so.mu;
-                      if (method == SmoothingMethod::MinDistFlow) s << ", beta " << so.beta;
-                    }));
+    MethodResult r =
+        contour_result(name, method == SmoothingMethod::None ? std::string("the reconstructed contour mesh, unsmoothed")
+                                                             : format_settings([&](std::ostringstream& s) {
+                                                                 s << so.iterations << " iterations, lambda "
+                                                                   << default_lambda(method);
+                                                                 if (method == SmoothingMethod::Taubin)
+                                                                   s << ", mu " << so.mu;
+                                                                 if (method == SmoothingMethod::MinDistFlow)
+                                                                   s << ", beta " << so.beta;
+                                                               }));
     r.mesh = mesh;
     r.iterations = so.iterations;
     if (method == SmoothingMethod::None) {
@@ -457,9 +493,9 @@ Comparison run_comparison(const CtImage& image, const std::string& source, const
     po.on_iteration = {};
     MethodResult r = contour_result("paper", format_settings([&](std::ostringstream& s) {
                                       s << "Algorithm 1: detection (gamma " << po.detection.gamma_factor
-                                        << " x mean |U|, window " << po.detection.window << "), up to "
-                                        << po.max_levels << " subdivision levels, "
-                                        << to_string(po.diffusion) << " " << po.iterations << " iterations";
+                                        << " x mean |U|, window " << po.detection.window << "), up to " << po.max_levels
+                                        << " subdivision levels, " << to_string(po.diffusion) << " " << po.iterations
+                                        << " iterations";
                                     }));
     FeatureSmoothingResult result;
     r.seconds = timed(options.timing_repeats, [&](const StageRecorder& record) {
@@ -512,9 +548,8 @@ Comparison run_comparison(const CtImage& image, const std::string& source, const
   {
     progress("vtk-windowed-sinc", 0.0);
     MethodResult r = contour_result("vtk-windowed-sinc", format_settings([&](std::ostringstream& s) {
-                                      s << "3D Slicer's settings: "
-                                        << options.sinc_iterations << " iterations, passband "
-                                        << options.sinc_passband
+                                      s << "3D Slicer's settings: " << options.sinc_iterations
+                                        << " iterations, passband " << options.sinc_passband
                                         << ", normalized coordinates, no boundary or feature-edge smoothing";
                                     }));
     vtkSmartPointer<vtkPolyData> out;
@@ -531,9 +566,8 @@ Comparison run_comparison(const CtImage& image, const std::string& source, const
   {
     progress("vtk-smooth-feature-edges", 0.0);
     MethodResult r = contour_result("vtk-smooth-feature-edges", format_settings([&](std::ostringstream& s) {
-                                      s << options.laplace_iterations
-                                        << " iterations, relaxation " << options.laplace_relaxation
-                                        << ", feature-edge smoothing on (feature angle "
+                                      s << options.laplace_iterations << " iterations, relaxation "
+                                        << options.laplace_relaxation << ", feature-edge smoothing on (feature angle "
                                         << options.laplace_feature_angle << ", edge angle "
                                         << options.laplace_edge_angle << ")";
                                     }));
@@ -564,7 +598,10 @@ Comparison run_comparison(const CtImage& image, const std::string& source, const
                             : std::string();
   };
   std::optional<Regions> voxel_regions;
-  if (truth.phantom) voxel_regions = split_regions(voxel.raw, near_features(voxel.raw, *truth.phantom, options.feature_radius));
+  if (truth.phantom) {
+    voxel_regions =
+        split_regions(voxel.raw, closer_than(feature_distances(voxel.raw, *truth.phantom), options.feature_radius));
+  }
   {
     MethodResult raw;
     raw.name = "voxel-flying-edges";
@@ -583,8 +620,8 @@ Comparison run_comparison(const CtImage& image, const std::string& source, const
     smoothed.name = "voxel-windowed-sinc";
     smoothed.route = "voxel";
     smoothed.settings = format_settings([&](std::ostringstream& s) {
-      s << "3D Slicer's voxel route: threshold at " << options.reconstruction.segmentation.threshold
-        << islands_text() << ", vtkDiscreteFlyingEdges3D, vtkWindowedSincPolyDataFilter (" << options.sinc_iterations
+      s << "3D Slicer's voxel route: threshold at " << options.reconstruction.segmentation.threshold << islands_text()
+        << ", vtkDiscreteFlyingEdges3D, vtkWindowedSincPolyDataFilter (" << options.sinc_iterations
         << " iterations, passband " << options.sinc_passband << ")";
     });
     smoothed.mesh = voxel.smoothed;
@@ -598,7 +635,8 @@ Comparison run_comparison(const CtImage& image, const std::string& source, const
   progress("metrics", 0.0);
   for (std::size_t m = 0; m < c.methods.size(); ++m) {
     MethodResult& r = c.methods[m];
-    const Regions* reg = r.route == "voxel" ? (voxel_regions ? &*voxel_regions : nullptr) : (regions ? &*regions : nullptr);
+    const Regions* reg =
+        r.route == "voxel" ? (voxel_regions ? &*voxel_regions : nullptr) : (regions ? &*regions : nullptr);
     measure(r, truth, reg, c.truth_volume);
     progress("metrics", static_cast<double>(m + 1) / static_cast<double>(c.methods.size()));
   }

@@ -1,7 +1,7 @@
 #include "comparison_render.h"
 
-#include "png_canvas.h"
 #include "pipelines/vtk_convert.h"
+#include "png_canvas.h"
 
 #include <smooth/errors.h>
 
@@ -147,9 +147,7 @@ SceneRenderer::SceneRenderer(const Mesh& framing, int width, int height, int col
 
 SceneRenderer::~SceneRenderer() = default;
 
-void SceneRenderer::clear() {
-  renderer_->RemoveAllViewProps();
-}
+void SceneRenderer::clear() { renderer_->RemoveAllViewProps(); }
 
 void SceneRenderer::add_title(const std::string& title) {
   vtkNew<vtkTextActor> text;
@@ -177,7 +175,8 @@ void SceneRenderer::snapshot(const std::filesystem::path& png) {
     auto* p = static_cast<unsigned char*>(image->GetScalarPointer());
     const std::size_t n = static_cast<std::size_t>(image->GetNumberOfPoints()) *
                           static_cast<std::size_t>(image->GetNumberOfScalarComponents());
-    for (std::size_t i = 0; i < n; ++i) p[i] = static_cast<unsigned char>(std::min(255, (p[i] + step / 2) / step * step));
+    for (std::size_t i = 0; i < n; ++i)
+      p[i] = static_cast<unsigned char>(std::min(255, (p[i] + step / 2) / step * step));
   }
   write_png_atomically(grab->GetOutput(), png);
 }

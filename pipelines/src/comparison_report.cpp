@@ -1,8 +1,8 @@
 #include "pipelines/comparison_report.h"
 
 #include "comparison_render.h"
-#include "png_canvas.h"
 #include "pipelines/atomic_file.h"
+#include "png_canvas.h"
 
 #include <smooth/errors.h>
 
@@ -62,11 +62,20 @@ std::string html_escape(const std::string& text) {
   std::string out;
   for (char c : text) {
     switch (c) {
-      case '&': out += "&amp;"; break;
-      case '<': out += "&lt;"; break;
-      case '>': out += "&gt;"; break;
-      case '"': out += "&quot;"; break;
-      default: out += c;
+      case '&':
+        out += "&amp;";
+        break;
+      case '<':
+        out += "&lt;";
+        break;
+      case '>':
+        out += "&gt;";
+        break;
+      case '"':
+        out += "&quot;";
+        break;
+      default:
+        out += c;
     }
   }
   return out;
@@ -137,7 +146,8 @@ nlohmann::json distance_json(const std::optional<RegionMetrics>& r) {
 
 nlohmann::json normals_json(const std::optional<RegionMetrics>& r) {
   if (!r || r->normals.count == 0) return nullptr;
-  return {{"mean", number(r->normals.mean_degrees)}, {"max", number(r->normals.max_degrees)}, {"faces", r->normals.count}};
+  return {
+      {"mean", number(r->normals.mean_degrees)}, {"max", number(r->normals.max_degrees)}, {"faces", r->normals.count}};
 }
 
 nlohmann::json comparison_json(const Comparison& c) {
@@ -174,14 +184,14 @@ nlohmann::json comparison_json(const Comparison& c) {
     e["volume_change_percent"] = number(m.volume_change_percent);
     e["volume_error_percent"] = m.volume_error_percent ? number(*m.volume_error_percent) : nlohmann::json(nullptr);
     if (m.all) {
-      e["distance_mm"] = {{"all", distance_json(m.all)}, {"feature", distance_json(m.feature)},
-                          {"smooth", distance_json(m.smooth)}};
+      e["distance_mm"] = {
+          {"all", distance_json(m.all)}, {"feature", distance_json(m.feature)}, {"smooth", distance_json(m.smooth)}};
     } else {
       e["distance_mm"] = nullptr;
     }
     if (m.all && m.all->normals.count > 0) {
-      e["normal_error_degrees"] = {{"all", normals_json(m.all)}, {"feature", normals_json(m.feature)},
-                                   {"smooth", normals_json(m.smooth)}};
+      e["normal_error_degrees"] = {
+          {"all", normals_json(m.all)}, {"feature", normals_json(m.feature)}, {"smooth", normals_json(m.smooth)}};
     } else {
       e["normal_error_degrees"] = nullptr;
     }
@@ -306,9 +316,19 @@ std::pair<std::vector<std::string>, std::vector<std::vector<Cell>>> accuracy_tab
 }
 
 std::vector<std::string> timing_header() {
-  return {"volume", "contour mesh vertices", "segment + tile s", "paper: detect s", "subdivide s", "smooth s",
-          "total s", "Taubin 20 s", "vtkWindowedSinc 20 s", "paper / windowed sinc", "voxel mesh vertices",
-          "voxel: threshold + flying edges s", "voxel: windowed sinc s"};
+  return {"volume",
+          "contour mesh vertices",
+          "segment + tile s",
+          "paper: detect s",
+          "subdivide s",
+          "smooth s",
+          "total s",
+          "Taubin 20 s",
+          "vtkWindowedSinc 20 s",
+          "paper / windowed sinc",
+          "voxel mesh vertices",
+          "voxel: threshold + flying edges s",
+          "voxel: windowed sinc s"};
 }
 
 std::vector<std::string> timing_row(const ComparisonEntry& e) {
@@ -346,7 +366,8 @@ std::string markdown_table(const std::vector<std::string>& header, const std::ve
   s << "\n";
   for (const auto& row : rows) {
     s << "|";
-    for (const Cell& cell : row) s << " " << (cell.best && !cell.text.empty() ? "**" + cell.text + "**" : cell.text) << " |";
+    for (const Cell& cell : row)
+      s << " " << (cell.best && !cell.text.empty() ? "**" + cell.text + "**" : cell.text) << " |";
     s << "\n";
   }
   return s.str();
@@ -379,9 +400,19 @@ std::string html_table(const std::vector<std::string>& header, const std::vector
 }
 
 // The paper's labels and detection scores, as rows.
-std::pair<std::vector<std::string>, std::vector<std::vector<std::string>>> label_table(std::span<const ComparisonEntry> entries) {
-  std::vector<std::string> header = {"volume", "candidates", "edge", "corner", "noise", "subdivided", "adaptive vertices",
-                                     "true feature vertices", "detected (edge + corner)", "precision", "recall"};
+std::pair<std::vector<std::string>, std::vector<std::vector<std::string>>> label_table(
+    std::span<const ComparisonEntry> entries) {
+  std::vector<std::string> header = {"volume",
+                                     "candidates",
+                                     "edge",
+                                     "corner",
+                                     "noise",
+                                     "subdivided",
+                                     "adaptive vertices",
+                                     "true feature vertices",
+                                     "detected (edge + corner)",
+                                     "precision",
+                                     "recall"};
   std::vector<std::vector<std::string>> rows;
   for (const ComparisonEntry& e : entries) {
     const MethodResult* paper = e.comparison->find("paper");
@@ -414,12 +445,13 @@ std::string render_caption(const MethodResult& m) { return title_of(m.name) + ":
 // The HTML report of one comparison; `files` says what was rendered.
 std::string comparison_html(const Comparison& c, const ComparisonFiles& files, const ComparisonReportOptions& o) {
   std::ostringstream s;
-  s << "<!DOCTYPE html>\n<html><head><meta charset=\"utf-8\"><title>ContourMesh comparison: "
-    << html_escape(c.source) << "</title>\n<style>\n"
+  s << "<!DOCTYPE html>\n<html><head><meta charset=\"utf-8\"><title>ContourMesh comparison: " << html_escape(c.source)
+    << "</title>\n<style>\n"
     << "body{font-family:sans-serif;margin:2em;max-width:1400px}table{border-collapse:collapse;margin:1em 0}"
     << "td,th{border:1px solid #bbb;padding:3px 8px;text-align:right}th{background:#eee}"
     << "td:first-child,th:first-child{text-align:left}td.best{font-weight:bold;background:#e6f4e6}"
-    << "figure{display:inline-block;margin:0.5em;width:31%;vertical-align:top}figure img{width:100%;border:1px solid #ccc}"
+    << "figure{display:inline-block;margin:0.5em;width:31%;vertical-align:top}figure img{width:100%;border:1px solid "
+       "#ccc}"
     << "figcaption{font-size:85%}code{background:#f4f4f4}\n</style></head><body>\n";
   s << "<h1>ContourMesh comparison</h1>\n";
   if (!o.note.empty()) s << "<p>" << html_escape(o.note) << "</p>\n";
@@ -497,23 +529,33 @@ void write_renders(const Comparison& c, const fs::path& dir, const ComparisonRep
     std::vector<int> group(c.labels.size(), -1);
     for (std::size_t i = 0; i < c.labels.size(); ++i) {
       switch (c.labels[i]) {
-        case VertexLabel::Edge: group[i] = 0; break;
-        case VertexLabel::Corner: group[i] = 1; break;
-        case VertexLabel::Noise: group[i] = 2; break;
-        default: break;
+        case VertexLabel::Edge:
+          group[i] = 0;
+          break;
+        case VertexLabel::Corner:
+          group[i] = 1;
+          break;
+        case VertexLabel::Noise:
+          group[i] = 2;
+          break;
+        default:
+          break;
       }
     }
     const fs::path png = dir / "labels.png";
-    renderer.points(c.contour_mesh, group,
-                    {{"edge", {0.0, 0.65, 0.0}, 6.0}, {"corner", {0.1, 0.3, 1.0}, 12.0}, {"noise", {0.9, 0.1, 0.1}, 6.0}},
-                    "labels of the paper's method", png);
+    renderer.points(
+        c.contour_mesh, group,
+        {{"edge", {0.0, 0.65, 0.0}, 6.0}, {"corner", {0.1, 0.3, 1.0}, 12.0}, {"noise", {0.9, 0.1, 0.1}, 6.0}},
+        "labels of the paper's method", png);
   }
   if (!c.true_features.empty() && !c.labels.empty()) {
     std::vector<int> group(c.labels.size(), -1);
     for (std::size_t i = 0; i < c.labels.size(); ++i) {
       const bool detected = c.labels[i] == VertexLabel::Edge || c.labels[i] == VertexLabel::Corner;
-      if (c.true_features[i]) group[i] = detected ? 0 : 1;
-      else if (detected) group[i] = 2;
+      if (c.true_features[i])
+        group[i] = detected ? 0 : 1;
+      else if (detected)
+        group[i] = 2;
     }
     const fs::path png = dir / "detection.png";
     renderer.points(c.contour_mesh, group,
@@ -591,7 +633,8 @@ std::string metrics_csv(const Comparison& c) {
       << "," << csv_number(m.volume_error_percent) << "," << dist(m.all) << "," << dist(m.feature) << ","
       << dist(m.smooth) << "," << normal(m.all) << "," << normal(m.feature) << "," << normal(m.smooth);
     for (const char* stage : {"detect", "subdivide", "threshold", "surface", "smooth", "total"}) {
-      const bool has = std::any_of(m.seconds.begin(), m.seconds.end(), [&](const StageTime& t) { return t.stage == stage; });
+      const bool has =
+          std::any_of(m.seconds.begin(), m.seconds.end(), [&](const StageTime& t) { return t.stage == stage; });
       s << "," << (has ? csv_number(m.stage_seconds(stage)) : "");
     }
     if (m.labels) {
@@ -681,14 +724,15 @@ void write_volume_curve_png(const Comparison& c, const fs::path& path, int width
   canvas.line(left, bottom, right, bottom, ink, 1.2);
   canvas.line(left, bottom, left, top, ink, 1.2);
   canvas.text("iteration", 0.5 * (left + right), 12, ink, 15, Align::Center, Align::Start);
-  canvas.text("volume shrinking rate (V0 - Vk) / V0, %", 22, 0.5 * (bottom + top), ink, 15, Align::Center, Align::Center,
-              false, true);
+  canvas.text("volume shrinking rate (V0 - Vk) / V0, %", 22, 0.5 * (bottom + top), ink, 15, Align::Center,
+              Align::Center, false, true);
   canvas.text("Volume shrinking rate against iteration", 0.5 * (left + right), height - 15.0, ink, 17, Align::Center,
               Align::End, true);
 
   const auto diamond = [&](double x, double y, const detail::Rgb& color) {
     constexpr double r = 6.0;
-    for (double d = -r; d <= r; d += 0.5) canvas.line(x - (r - std::abs(d)), y + d, x + (r - std::abs(d)), y + d, color, 1.0);
+    for (double d = -r; d <= r; d += 0.5)
+      canvas.line(x - (r - std::abs(d)), y + d, x + (r - std::abs(d)), y + d, color, 1.0);
   };
   int legend_row = 0;
   for (const MethodResult& m : c.methods) {
@@ -710,8 +754,8 @@ void write_volume_curve_png(const Comparison& c, const fs::path& path, int width
     }
     canvas.text(legend_of(m.name), right + 58, ly, ink, 13, Align::Start, Align::Center);
   }
-  canvas.text("markers: filters without intermediate steps", right + 20, top - 14.0 - 24.0 * legend_row, {0.4, 0.4, 0.4},
-              11, Align::Start, Align::Center);
+  canvas.text("markers: filters without intermediate steps", right + 20, top - 14.0 - 24.0 * legend_row,
+              {0.4, 0.4, 0.4}, 11, Align::Start, Align::Center);
   canvas.write_png(path);
 }
 
@@ -760,8 +804,9 @@ std::string summary_markdown_tables(std::span<const ComparisonEntry> entries) {
     }
   }
   std::ostringstream s;
-  const bool any_phantom =
-      std::any_of(entries.begin(), entries.end(), [](const ComparisonEntry& e) { return e.comparison->truth == TruthKind::Phantom; });
+  const bool any_phantom = std::any_of(entries.begin(), entries.end(), [](const ComparisonEntry& e) {
+    return e.comparison->truth == TruthKind::Phantom;
+  });
   std::vector<std::string> header = {"method"};
   for (const ComparisonEntry& e : entries) header.push_back(e.name);
   std::vector<std::vector<Cell>> rows;
@@ -777,7 +822,8 @@ std::string summary_markdown_tables(std::span<const ComparisonEntry> entries) {
       const int best = best_of(c, feature_rms);
       const bool is_best = best >= 0 && &c.methods[static_cast<std::size_t>(best)] == m;
       const std::string rms = any_phantom ? rms_cell(m->feature) : rms_cell(m->all);
-      row.push_back({(rms.empty() ? std::string("-") : rms) + " / " + signed_fixed(m->volume_change_percent, 2), is_best});
+      row.push_back(
+          {(rms.empty() ? std::string("-") : rms) + " / " + signed_fixed(m->volume_change_percent, 2), is_best});
     }
     rows.push_back(std::move(row));
   }
@@ -810,6 +856,14 @@ std::string targets_markdown(std::span<const ComparisonEntry> entries) {
     } else {
       s << ", the smallest";
     }
+    if (const MethodResult* none = c.find("none"); none && none->feature) {
+      int better = 0;
+      for (const MethodResult& m : c.methods) better += smoothed(m) && feature_rms(m) < feature_rms(*none);
+      s << ". Unsmoothed contour mesh: " << fixed(feature_rms(*none), 3) << " mm ("
+        << (better == 0 ? std::string("no smoothed method is closer")
+                        : std::to_string(better) + " smoothed method" + (better == 1 ? " is" : "s are") + " closer")
+        << ")";
+    }
     s << ".\n";
   }
   return s.str();
@@ -824,7 +878,8 @@ std::vector<fs::path> write_comparison_summary(std::span<const ComparisonEntry> 
   // summary.csv: one row per volume and method.
   std::ostringstream csv;
   csv << "volume,method,route,vertices,distance_rms_mm,feature_distance_rms_mm,smooth_distance_rms_mm,"
-         "normal_error_mean_deg,feature_normal_error_mean_deg,volume_change_percent,volume_error_percent,seconds_total\n";
+         "normal_error_mean_deg,feature_normal_error_mean_deg,volume_change_percent,volume_error_percent,seconds_"
+         "total\n";
   nlohmann::json json = nlohmann::json::array();
   for (const ComparisonEntry& e : entries) {
     for (const MethodResult& m : e.comparison->methods) {
@@ -848,11 +903,13 @@ std::vector<fs::path> write_comparison_summary(std::span<const ComparisonEntry> 
   written.push_back(dir / "summary.json");
 
   std::ostringstream html;
-  html << "<!DOCTYPE html>\n<html><head><meta charset=\"utf-8\"><title>ContourMesh comparison summary</title>\n<style>\n"
-       << "body{font-family:sans-serif;margin:2em;max-width:1400px}table{border-collapse:collapse;margin:1em 0}"
-       << "td,th{border:1px solid #bbb;padding:3px 8px;text-align:right}th{background:#eee}"
-       << "td:first-child,th:first-child{text-align:left}td.best{font-weight:bold;background:#e6f4e6}code{background:#f4f4f4}"
-       << "\n</style></head><body>\n<h1>ContourMesh comparison summary</h1>\n";
+  html
+      << "<!DOCTYPE html>\n<html><head><meta charset=\"utf-8\"><title>ContourMesh comparison summary</title>\n<style>\n"
+      << "body{font-family:sans-serif;margin:2em;max-width:1400px}table{border-collapse:collapse;margin:1em 0}"
+      << "td,th{border:1px solid #bbb;padding:3px 8px;text-align:right}th{background:#eee}"
+      << "td:first-child,th:first-child{text-align:left}td.best{font-weight:bold;background:#e6f4e6}code{background:#"
+         "f4f4f4}"
+      << "\n</style></head><body>\n<h1>ContourMesh comparison summary</h1>\n";
   if (!o.note.empty()) html << "<p>" << html_escape(o.note) << "</p>\n";
   if (!o.command_line.empty()) html << "<p>Command: <code>" << html_escape(o.command_line) << "</code></p>\n";
   html << "<p>Reports: ";
@@ -879,8 +936,9 @@ std::vector<fs::path> write_comparison_summary(std::span<const ComparisonEntry> 
         const int best = best_of(*e.comparison, feature_rms);
         const bool is_best = m && best >= 0 && &e.comparison->methods[static_cast<std::size_t>(best)] == m;
         const std::string rms = m ? rms_cell(m->feature) : "";
-        row.push_back({m ? (rms.empty() ? std::string("-") : rms) + " / " + signed_fixed(m->volume_change_percent, 2) : "",
-                       is_best});
+        row.push_back(
+            {m ? (rms.empty() ? std::string("-") : rms) + " / " + signed_fixed(m->volume_change_percent, 2) : "",
+             is_best});
       }
       rows.push_back(std::move(row));
     }
@@ -893,7 +951,8 @@ std::vector<fs::path> write_comparison_summary(std::span<const ComparisonEntry> 
     html << html_table(timing_header(), plain_rows(rows));
   }
   const auto [lheader, lrows] = label_table(entries);
-  if (!lrows.empty()) html << "<h2>Feature labels of the paper's method</h2>\n" << html_table(lheader, plain_rows(lrows));
+  if (!lrows.empty())
+    html << "<h2>Feature labels of the paper's method</h2>\n" << html_table(lheader, plain_rows(lrows));
   html << "<p>" << html_escape(kDefinitions) << "</p>\n</body></html>\n";
   write_text_atomically(dir / "report.html", html.str());
   written.push_back(dir / "report.html");
@@ -918,25 +977,30 @@ void write_comparison_markdown(std::span<const ComparisonEntry> entries, const f
     for (const MethodResult& m : c0.methods) s << "- **" << title_of(m.name) << "**: " << m.settings << "\n";
     s << "\n";
   }
-  s << "## Feature-region RMS distance (mm) / volume change (%)\n\n" << summary_markdown_tables(entries) << "\n"
+  s << "## Feature-region RMS distance (mm) / volume change (%)\n\n"
+    << summary_markdown_tables(entries) << "\n"
     << "Bold: the lowest feature-region RMS among the smoothed methods of that volume.\n\n";
   const std::string targets = targets_markdown(entries);
   if (!targets.empty()) s << "### The paper's method per phantom\n\n" << targets << "\n";
   s << "## Time per stage (the paper's Table 1), seconds\n\n" << timing_table_markdown(entries) << "\n";
   const auto [lheader, lrows] = label_table(entries);
-  if (!lrows.empty()) s << "## Feature labels of the paper's method\n\n" << markdown_table(lheader, plain_rows(lrows)) << "\n";
+  if (!lrows.empty())
+    s << "## Feature labels of the paper's method\n\n" << markdown_table(lheader, plain_rows(lrows)) << "\n";
   s << "## Definitions\n\n" << kDefinitions << "\n\n";
   for (const ComparisonEntry& e : entries) {
     const Comparison& c = *e.comparison;
-    s << "## " << e.name << "\n\n" << c.source << "; truth: " << (c.truth == TruthKind::None ? "none" : c.truth_description)
+    s << "## " << e.name << "\n\n"
+      << c.source << "; truth: " << (c.truth == TruthKind::None ? "none" : c.truth_description)
       << ". Contour mesh: " << c.contour_mesh.num_vertices() << " vertices. Full report: ["
       << link(e.directory / "report.html") << "](" << link(e.directory / "report.html") << ").\n\n";
     const auto [header, rows] = accuracy_table(c);
     s << markdown_table(header, rows) << "\n";
     s << "<img src=\"" << link(e.directory / "volume_curve.png") << "\" width=\"60%\" alt=\"volume curve\">\n\n";
     if (e.files.rendered) {
-      for (const char* name : {"none", "taubin", "paper", "vtk-windowed-sinc", "vtk-smooth-feature-edges", "voxel-windowed-sinc"}) {
-        if (c.find(name)) s << "<img src=\"" << link(e.directory / render_file(name)) << "\" width=\"32%\" alt=\"" << name << "\"> ";
+      for (const char* name :
+           {"none", "taubin", "paper", "vtk-windowed-sinc", "vtk-smooth-feature-edges", "voxel-windowed-sinc"}) {
+        if (c.find(name))
+          s << "<img src=\"" << link(e.directory / render_file(name)) << "\" width=\"32%\" alt=\"" << name << "\"> ";
       }
       s << "\n\n<img src=\"" << link(e.directory / "labels.png") << "\" width=\"32%\" alt=\"labels\"> ";
       if (c.truth == TruthKind::Phantom) {

@@ -39,7 +39,7 @@ enum class TruthKind {
 /// The reference of a comparison. Build it with phantom_truth or reference_surface_truth.
 struct ComparisonTruth {
   TruthKind kind = TruthKind::None;
-  std::string description;        ///< e.g. "analytic surface of the femur phantom"
+  std::string description;         ///< e.g. "analytic surface of the femur phantom"
   std::optional<Phantom> phantom;  ///< TruthKind::Phantom
   /// Distance to the reference surface (signed for a phantom, unsigned for a reference mesh); empty
   /// for TruthKind::None.
@@ -119,9 +119,9 @@ struct MethodResult {
   std::string settings;  ///< the parameters, in words
   int iterations = 0;    ///< iterations of the smoother (0: unsmoothed)
   Mesh mesh;             ///< the smoothed mesh
-  double volume_input = 0.0;   ///< volume of the mesh the method started from, mm^3
-  double volume_output = 0.0;  ///< volume of its result
-  double volume_change_percent = 0.0;  ///< 100 (output - input) / input
+  double volume_input = 0.0;                   ///< volume of the mesh the method started from, mm^3
+  double volume_output = 0.0;                  ///< volume of its result
+  double volume_change_percent = 0.0;          ///< 100 (output - input) / input
   std::optional<double> volume_error_percent;  ///< 100 (output - truth) / truth (phantom only)
   /// Distance to the truth over all vertices (unset without a truth); feature and smooth regions and
   /// the normal errors only for a phantom.

@@ -37,8 +37,8 @@ struct ComparisonFiles {
 
 /// One comparison of a set (e.g. one phantom of `--phantom all`), for the summary.
 struct ComparisonEntry {
-  std::string name;                   ///< e.g. the phantom's name
-  std::filesystem::path directory;    ///< where its files are
+  std::string name;                 ///< e.g. the phantom's name
+  std::filesystem::path directory;  ///< where its files are
   const Comparison* comparison = nullptr;
   ComparisonFiles files;
 };
