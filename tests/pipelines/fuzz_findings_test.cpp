@@ -190,5 +190,18 @@ TEST_F(FuzzFindings, PlyWithTwoVertexElementsIsRejected) {
   expect_rejected(p, "more than one vertex element");
 }
 
+// A ContourId array of doubles holding 1e300 was converted to int (undefined behaviour).
+TEST_F(FuzzFindings, VtpContourIdsMustBe32BitIntegers) {
+  const std::string vtp =
+      "<?xml version=\"1.0\"?>\n<VTKFile type=\"PolyData\" version=\"1.0\" byte_order=\"LittleEndian\">\n<PolyData>\n"
+      "<Piece NumberOfPoints=\"4\" NumberOfVerts=\"0\" NumberOfLines=\"0\" NumberOfStrips=\"0\" NumberOfPolys=\"4\">\n"
+      "<PointData><DataArray type=\"Float64\" Name=\"ContourId\" format=\"ascii\">0 0 0 1e300</DataArray></PointData>\n"
+      "<Points><DataArray type=\"Float64\" NumberOfComponents=\"3\" format=\"ascii\">0 0 0 1 0 0 0 1 0 0 0 1</DataArray></Points>\n"
+      "<Polys><DataArray type=\"Int64\" Name=\"connectivity\" format=\"ascii\">0 2 1 0 1 3 0 3 2 1 2 3</DataArray>"
+      "<DataArray type=\"Int64\" Name=\"offsets\" format=\"ascii\">3 6 9 12</DataArray></Polys>\n"
+      "</Piece>\n</PolyData>\n</VTKFile>\n";
+  expect_rejected(write("huge_ids.vtp", vtp), "point 3 has ContourId = 1e+300, not a 32-bit integer");
+}
+
 }  // namespace
 }  // namespace contourmesh
