@@ -190,6 +190,76 @@ TEST_F(FuzzFindings, PlyWithTwoVertexElementsIsRejected) {
   expect_rejected(p, "more than one vertex element");
 }
 
+// Found by fuzz_read_vtp: VTK 9.1 trusts the compression header of appended data. A huge block count
+// made it allocate for the count (bad_alloc or std::length_error escaping read_mesh), a block size of
+// 0 made it divide by zero (SIGFPE, the process died), a block count of 0 with a last-block size made
+// it allocate that size, and a huge compressed size made it allocate that.
+TEST_F(FuzzFindings, VtpCompressionHeadersAreCheckedBeforeVtkTrustsThem) {
+  for (const bool raw : {false, true}) {
+    const std::string clean = compressed_vtp(raw);
+    ASSERT_NE(clean.find("vtkZLibDataCompressor"), std::string::npos);
+    const std::string kind = raw ? "raw_" : "base64_";
+    EXPECT_GT(read_mesh(write(kind + "clean.vtp", clean)).num_faces(), 0);
+    EXPECT_GT(read_mesh(write(kind + "rewritten.vtp", with_header_word(clean, 0, 1))).num_faces(), 0)
+        << "the test's header rewriting keeps a valid file valid";
+
+    expect_rejected(write(kind + "blocks.vtp", with_header_word(clean, 0, std::uint64_t{1} << 28)),
+                    "blocks, more than the file could hold");
+    expect_rejected(write(kind + "zero_block_size.vtp", with_header_word(clean, 1, 0)), "block size of 0");
+    expect_rejected(write(kind + "no_blocks.vtp", with_header_word(with_header_word(clean, 0, 0), 2, 1000000)),
+                    "no blocks but a last block of 1000000 bytes");
+    expect_rejected(write(kind + "last.vtp", with_header_word(clean, 2, 1u << 30)), "is larger than the block size");
+    expect_rejected(write(kind + "compressed.vtp", with_header_word(clean, 3, 1u << 30)),
+                    "compressed bytes, more than the file holds");
+  }
+}
+
+// The same checks apply to inline base64 data, decoded as VTK decodes it.
+TEST_F(FuzzFindings, VtpInlineBinaryCompressionHeaderIsChecked) {
+  // Headers (UInt32 words: blocks, block size, last block size, compressed sizes) encoded alone, as
+  // VTK writes them, followed by some data.
+  auto words = [](std::initializer_list<std::uint32_t> w) {
+    std::string out;
+    for (std::uint32_t v : w) {
+      for (int b = 0; b < 4; ++b) out += static_cast<char>((v >> (8 * b)) & 0xff);
+    }
+    return out;
+  };
+  auto vtp = [&](const std::string& header) {
+    return "<?xml version=\"1.0\"?>\n<VTKFile type=\"PolyData\" version=\"1.0\" byte_order=\"LittleEndian\" "
+           "header_type=\"UInt32\" compressor=\"vtkZLibDataCompressor\">\n<PolyData>\n"
+           "<Piece NumberOfPoints=\"4\" NumberOfVerts=\"0\" NumberOfLines=\"0\" NumberOfStrips=\"0\" NumberOfPolys=\"1\">\n"
+           "<Points><DataArray type=\"Float32\" NumberOfComponents=\"3\" format=\"binary\">\n" +
+           base64(header) + "AAAAAAAAAAAAAAAA\n</DataArray></Points>\n"
+           "<Polys><DataArray type=\"Int32\" Name=\"connectivity\" format=\"ascii\">0 1 2</DataArray>"
+           "<DataArray type=\"Int32\" Name=\"offsets\" format=\"ascii\">3</DataArray></Polys>\n"
+           "</Piece>\n</PolyData>\n</VTKFile>\n";
+  };
+  expect_rejected(write("inline_zero.vtp", vtp(words({1, 0, 48, 12}))), "block size of 0");
+  expect_rejected(write("inline_blocks.vtp", vtp(words({4000000, 48, 48, 12}))), "more than the file could hold");
+}
+
+// VTK leaked its array iterator on points with other than 3 components; now refused before it reads.
+TEST_F(FuzzFindings, VtpPointsNeedThreeComponents) {
+  std::string vtp = compressed_vtp();
+  const std::size_t points = vtp.find("NumberOfComponents=\"3\"");
+  ASSERT_NE(points, std::string::npos);
+  vtp[points + 20] = '6';
+  expect_rejected(write("six.vtp", vtp), "the points have 6 components, not 3");
+}
+
+// The points a file announces are checked against the vertex limit before VTK allocates for them.
+TEST_F(FuzzFindings, VtpAnnouncedPointsAreLimitedBeforeVtkAllocates) {
+  std::string vtp = compressed_vtp();
+  const std::size_t at = vtp.find("NumberOfPoints=\"");
+  ASSERT_NE(at, std::string::npos);
+  const std::size_t end = vtp.find('"', at + 16);
+  vtp.replace(at + 16, end - at - 16, "4000000000000");
+  const fs::path p = write("many_points.vtp", vtp);
+  EXPECT_THROW((void)read_mesh(p), LimitError);
+  expect_rejected(p, "announces 4000000000000 points, more than the limit of 50000000");
+}
+
 // A ContourId array of doubles holding 1e300 was converted to int (undefined behaviour).
 TEST_F(FuzzFindings, VtpContourIdsMustBe32BitIntegers) {
   const std::string vtp =
