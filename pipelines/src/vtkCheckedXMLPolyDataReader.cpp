@@ -191,11 +191,14 @@ int vtkCheckedXMLPolyDataReader::ReadArrayValues(vtkXMLDataElement* da, vtkIdTyp
     // Every connectivity entry takes at least a byte of the file, or 1/4096 of one when compressed
     // (about 1/1032 for zlib), plus one 64 MiB block a compressed header may announce on any data.
     const double most = 4096.0 * file_size + static_cast<double>(std::uint64_t{64} << 20);
+    // The values read are array values [arrayIndex, arrayIndex + numValues) (VTK 9 puts a 0 first and
+    // reads the file's offsets from index 1); startIndex is where they start in the file's data.
     double previous = 0.0;
-    for (vtkIdType i = startIndex; i < startIndex + numValues; ++i) {
+    const vtkIdType end = std::min<vtkIdType>(arrayIndex + numValues, values->GetNumberOfTuples());
+    for (vtkIdType i = std::max<vtkIdType>(arrayIndex, 0); i < end; ++i) {
       const double offset = values->GetComponent(i, 0);
       if (!(offset >= previous) || offset > most) {
-        vtkErrorMacro(<< "cell offset " << i << " is " << offset
+        vtkErrorMacro(<< "cell offset " << startIndex + (i - arrayIndex) << " is " << offset
                       << (offset > most ? ", more connectivity entries than the file can hold" : ", below the previous one")
                       << " (corrupt file)");
         return 0;

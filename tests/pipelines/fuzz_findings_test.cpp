@@ -260,6 +260,23 @@ TEST_F(FuzzFindings, VtpAnnouncedPointsAreLimitedBeforeVtkAllocates) {
   expect_rejected(p, "announces 4000000000000 points, more than the limit of 50000000");
 }
 
+// VTK sizes the connectivity from the last cell offset before reading it: 2^53 made it allocate 64 PB
+// (found by fuzz_read_vtp once the compression headers were checked).
+TEST_F(FuzzFindings, VtpCellOffsetsMustFitTheFile) {
+  auto vtp = [](const std::string& offsets) {
+    return "<?xml version=\"1.0\"?>\n<VTKFile type=\"PolyData\" version=\"1.0\" byte_order=\"LittleEndian\">\n"
+           "<PolyData>\n<Piece NumberOfPoints=\"4\" NumberOfVerts=\"0\" NumberOfLines=\"0\" NumberOfStrips=\"0\" "
+           "NumberOfPolys=\"4\">\n<Points><DataArray type=\"Float64\" NumberOfComponents=\"3\" format=\"ascii\">"
+           "0 0 0 1 0 0 0 1 0 0 0 1</DataArray></Points>\n<Polys><DataArray type=\"Int64\" Name=\"connectivity\" "
+           "format=\"ascii\">0 2 1 0 1 3 0 3 2 1 2 3</DataArray><DataArray type=\"Int64\" Name=\"offsets\" "
+           "format=\"ascii\">" + offsets + "</DataArray></Polys>\n</Piece>\n</PolyData>\n</VTKFile>\n";
+  };
+  EXPECT_EQ(read_mesh(write("fine.vtp", vtp("3 6 9 12"))).num_faces(), 4);
+  expect_rejected(write("huge.vtp", vtp("3 6 9 9007199254741004")),
+                  "cell offset 3 is 9.0072e+15, more connectivity entries than the file can hold");
+  expect_rejected(write("decreasing.vtp", vtp("3 6 2 12")), "cell offset 2 is 2, below the previous one");
+}
+
 // A ContourId array of doubles holding 1e300 was converted to int (undefined behaviour).
 TEST_F(FuzzFindings, VtpContourIdsMustBe32BitIntegers) {
   const std::string vtp =
