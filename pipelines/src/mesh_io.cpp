@@ -5,6 +5,7 @@
 #include "pipelines/vtk_convert.h"
 
 #include "mesh_readers.h"
+#include "vtkCheckedXMLPolyDataReader.h"
 
 #include <smooth/errors.h>
 
@@ -17,11 +18,11 @@
 #include <vtkSTLWriter.h>
 #include <vtkSmartPointer.h>
 #include <vtkStringOutputWindow.h>
-#include <vtkXMLPolyDataReader.h>
 #include <vtkXMLPolyDataWriter.h>
 
 #include <algorithm>
 #include <cctype>
+#include <exception>
 #include <fstream>
 #include <iterator>
 #include <sstream>
@@ -118,7 +119,11 @@ MeshFormat resolve(MeshFormat requested, const fs::path& path) {
 
 vtkSmartPointer<vtkPolyData> run_reader(vtkAlgorithm* reader, vtkPolyData* output, const fs::path& path,
                                         const CapturedVtkMessages& messages) {
-  reader->Update();
+  try {
+    reader->Update();
+  } catch (const std::exception& e) {  // VTK's containers throw on sizes from a corrupt file
+    throw InvalidInputError(path.string() + ": cannot read: " + e.what() + " (corrupt file?)");
+  }
   const std::string error = messages.first_error();
   if (!error.empty()) throw InvalidInputError(path.string() + ": cannot read: " + error);
   return output;
@@ -181,9 +186,16 @@ Mesh read_mesh(const fs::path& path, const MeshReadOptions& options) {
       mesh = detail::read_obj(slurp(path), options.max_vertices);
     } else {
       CapturedVtkMessages messages;
-      vtkNew<vtkXMLPolyDataReader> reader;
+      vtkNew<vtkCheckedXMLPolyDataReader> reader;  // checks what VTK's reader trusts (fuzzing found crashes)
       reader->SetFileName(path.c_str());
-      const vtkSmartPointer<vtkPolyData> poly = run_reader(reader, reader->GetOutput(), path, messages);
+      reader->SetMaximumNumberOfPoints(options.max_vertices);
+      vtkSmartPointer<vtkPolyData> poly;
+      try {
+        poly = run_reader(reader, reader->GetOutput(), path, messages);
+      } catch (const InvalidInputError&) {
+        if (!reader->GetLimitError().empty()) throw LimitError(reader->GetLimitError());
+        throw;
+      }
       if (poly->GetNumberOfPoints() > options.max_vertices) {
         throw LimitError(std::to_string(poly->GetNumberOfPoints()) + " vertices, more than the limit of " +
                          std::to_string(options.max_vertices));

@@ -96,6 +96,18 @@ std::string element_at(const Element& e, std::uint64_t k) {
   return "element '" + e.name + "' #" + std::to_string(k);
 }
 
+// A contour id read as a double (any property type, or ASCII text): must be a 32-bit integer, since
+// converting anything else to int is undefined.
+std::int32_t to_id(double value, const std::string& name, std::uint64_t vertex) {
+  if (!(value >= std::numeric_limits<std::int32_t>::min() && value <= std::numeric_limits<std::int32_t>::max()) ||
+      value != std::floor(value)) {
+    std::ostringstream msg;
+    msg << "PLY: vertex " << vertex << " has " << name << " = " << value << ", not a 32-bit integer";
+    throw InvalidInputError(msg.str());
+  }
+  return static_cast<std::int32_t>(value);
+}
+
 }  // namespace
 
 Mesh read_ply(std::istream& in, const ContourIdArrayNames& arrays, Index max_vertices) {
@@ -178,6 +190,8 @@ Mesh read_ply(std::istream& in, const ContourIdArrayNames& arrays, Index max_ver
     }
     if (is_vertex) {
       if (ix < 0 || iy < 0 || iz < 0) throw InvalidInputError("PLY: vertex element lacks x, y or z");
+      // A second one would number its vertices after the first's, with or without ids: nobody writes that.
+      if (have_vertices) throw InvalidInputError("PLY: more than one vertex element");
       have_vertices = true;
       if (e.count > static_cast<std::uint64_t>(max_vertices)) {
         throw LimitError("PLY: the header announces " + std::to_string(e.count) + " vertices, more than the limit of " +
@@ -187,7 +201,9 @@ Mesh read_ply(std::istream& in, const ContourIdArrayNames& arrays, Index max_ver
     if (is_face && iface < 0) throw InvalidInputError("PLY: face element has no vertex_indices list");
     const bool ids = is_vertex && islice >= 0 && icontour >= 0;
     std::vector<Index> corners;
-    for (std::uint64_t k = 0; k < e.count; ++k) {
+    // An element without properties has no data, whatever its count (which may be 2^63: no loop).
+    const std::uint64_t rows = e.properties.empty() ? 0 : e.count;
+    for (std::uint64_t k = 0; k < rows; ++k) {
       row.assign(e.properties.size(), 0.0);
       for (int p = 0; p < static_cast<int>(e.properties.size()); ++p) {
         const Property& prop = e.properties[p];
@@ -197,7 +213,7 @@ Mesh read_ply(std::istream& in, const ContourIdArrayNames& arrays, Index max_ver
         }
         double count = 0;
         if (!reader.read(prop.count_type, count)) throw InvalidInputError("PLY: data ends inside " + element_at(e, k));
-        if (count < 0 || count > 1e6 || count != static_cast<double>(static_cast<long long>(count))) {
+        if (!(count >= 0 && count <= 1e6) || count != std::floor(count)) {  // NaN included
           throw InvalidInputError("PLY: bad list length " + std::to_string(count) + " in " + element_at(e, k));
         }
         if (p == iface) corners.clear();
@@ -218,8 +234,8 @@ Mesh read_ply(std::istream& in, const ContourIdArrayNames& arrays, Index max_ver
         xyz.push_back(row[iy]);
         xyz.push_back(row[iz]);
         if (ids) {
-          slice.push_back(static_cast<std::int32_t>(row[islice]));
-          contour.push_back(static_cast<std::int32_t>(row[icontour]));
+          slice.push_back(to_id(row[islice], arrays.slice, k));
+          contour.push_back(to_id(row[icontour], arrays.contour, k));
         }
       } else if (is_face && corners.size() >= 3) {
         for (std::size_t c = 1; c + 1 < corners.size(); ++c) {

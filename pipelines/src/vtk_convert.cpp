@@ -13,6 +13,9 @@
 #include <vtkPolyData.h>
 #include <vtkTriangleFilter.h>
 
+#include <cmath>
+#include <limits>
+#include <sstream>
 #include <string>
 
 namespace contourmesh {
@@ -76,7 +79,18 @@ std::vector<std::int32_t> read_id_array(vtkDataArray* array, Index n) {
                             " x 1");
   }
   std::vector<std::int32_t> ids(static_cast<std::size_t>(n));
-  for (Index i = 0; i < n; ++i) ids[i] = static_cast<std::int32_t>(array->GetComponent(i, 0));
+  for (Index i = 0; i < n; ++i) {
+    // Any array type may carry the ids: a value that is no 32-bit integer (NaN, 1e300, 2.5) has no
+    // meaning as an id, and converting it to int would be undefined.
+    const double value = array->GetComponent(i, 0);
+    if (!(value >= std::numeric_limits<std::int32_t>::min() && value <= std::numeric_limits<std::int32_t>::max()) ||
+        value != std::floor(value)) {
+      std::ostringstream msg;
+      msg << "point " << i << " has " << array->GetName() << " = " << value << ", not a 32-bit integer";
+      throw InvalidInputError(msg.str());
+    }
+    ids[i] = static_cast<std::int32_t>(value);
+  }
   return ids;
 }
 

@@ -41,7 +41,7 @@ struct MeshReadOptions {
   MeshFormat format = MeshFormat::Auto;
   ContourIdArrayNames arrays;
   /// Files with more vertices are refused with a LimitError (checked as early as the format allows:
-  /// from the PLY header, while parsing STL and OBJ, after VTK reads a VTP).
+  /// from the PLY and VTP headers, while parsing STL and OBJ).
   Index max_vertices = kDefaultMaxVertices;
 };
 

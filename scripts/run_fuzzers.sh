@@ -1,0 +1,63 @@
+#!/usr/bin/env bash
+# Builds the libFuzzer targets (the "fuzz" preset: clang, ASan + UBSan) and runs each one in turn.
+# Usage: scripts/run_fuzzers.sh [SECONDS_PER_TARGET] [TARGET...]
+#   SECONDS_PER_TARGET  default 45 (CI); docs/robustness.md quotes 600-second runs.
+#   TARGET              fuzz_read_stl fuzz_read_ply fuzz_read_vtp fuzz_read_obj fuzz_tiling fuzz_features
+#                       (default: all)
+# Each target starts from its seeds and regression inputs (tests/fuzz/corpus, tests/fuzz/regressions);
+# what it discovers goes to build/fuzz/corpus/<target> (kept between runs, never into the source tree)
+# and a crashing input to build/fuzz/artifacts/<target>/. Exits 1 when a target finds something.
+set -euo pipefail
+cd "$(dirname "$0")/.."
+seconds="${1:-45}"
+shift || true
+targets=("$@")
+if [ ${#targets[@]} -eq 0 ]; then
+  targets=(fuzz_read_stl fuzz_read_ply fuzz_read_vtp fuzz_read_obj fuzz_tiling fuzz_features)
+fi
+
+scripts/setup.sh
+cmake --preset fuzz >/dev/null
+nice -n 10 cmake --build --preset fuzz
+
+export ASAN_OPTIONS="${ASAN_OPTIONS:-abort_on_error=1:detect_leaks=1}"
+export UBSAN_OPTIONS="${UBSAN_OPTIONS:-print_stacktrace=1:halt_on_error=1}"
+bin=build/fuzz/fuzz
+failed=()
+for t in "${targets[@]}"; do
+  corpus="build/fuzz/corpus/$t"
+  artifacts="build/fuzz/artifacts/$t"
+  mkdir -p "$corpus" "$artifacts"
+  inputs=("$corpus" "tests/fuzz/corpus/$t")
+  [ -d "tests/fuzz/regressions/$t" ] && inputs+=("tests/fuzz/regressions/$t")
+  dict=()
+  case "$t" in
+    fuzz_read_stl) dict=(-dict=tests/fuzz/dict/stl.dict) ;;
+    fuzz_read_ply) dict=(-dict=tests/fuzz/dict/ply.dict) ;;
+    fuzz_read_obj) dict=(-dict=tests/fuzz/dict/obj.dict) ;;
+    fuzz_read_vtp) dict=(-dict=tests/fuzz/dict/vtp.dict) ;;
+  esac
+  log="build/fuzz/$t.log"
+  echo "fuzz: $t for $seconds s"
+  set +e
+  nice -n 10 "$bin/$t" -max_total_time="$seconds" -rss_limit_mb=4096 -timeout=10 -print_final_stats=1 \
+    -artifact_prefix="$artifacts/" "${dict[@]}" "${inputs[@]}" >"$log" 2>&1
+  status=$?
+  set -e
+  execs=$(grep -o 'stat::number_of_executed_units: [0-9]*' "$log" | tail -1 | grep -o '[0-9]*$' || echo "?")
+  cov=$(grep -oE '(#[0-9]+).*cov: [0-9]+ ft: [0-9]+ corp: [0-9]+/[0-9]+[a-zA-Z]*' "$log" | tail -1 |
+        grep -oE 'cov: [0-9]+ ft: [0-9]+ corp: [0-9]+/[0-9]+[a-zA-Z]*' || echo "cov: ?")
+  if [ "$status" -ne 0 ]; then
+    echo "fuzz: $t FAILED (exit $status) after $execs runs; log: $log"
+    grep -E 'ERROR|contract violated|runtime error|Test unit written' "$log" | head -5 || true
+    failed+=("$t")
+  else
+    echo "fuzz: $t ok: $execs runs, $cov"
+  fi
+done
+
+if [ ${#failed[@]} -ne 0 ]; then
+  echo "fuzz: findings in ${failed[*]}: reproduce with $bin/<target> <artifact>; see docs/robustness.md"
+  exit 1
+fi
+echo "fuzz: all ${#targets[@]} targets ran $seconds s without a finding"

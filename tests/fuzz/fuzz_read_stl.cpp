@@ -1,0 +1,6 @@
+// Fuzz target: read_mesh on a .stl file, binary or ASCII (told apart by content; see read_mesh_fuzzer.h).
+#include "read_mesh_fuzzer.h"
+
+extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {
+  return contourmesh::fuzz::fuzz_read_mesh(data, size, ".stl");
+}
