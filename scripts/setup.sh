@@ -10,6 +10,7 @@ packages=(
   libvtk9-dev                         # pipelines: mesh I/O, VTK filters, rendering
   libcli11-dev nlohmann-json3-dev     # the contourmesh CLI
   libgtest-dev libbenchmark-dev       # tests and benchmarks
+  clang libclang-rt-dev llvm          # fuzz targets (scripts/run_fuzzers.sh): clang, libFuzzer, llvm-symbolizer
 )
 
 missing=()
