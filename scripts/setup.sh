@@ -11,6 +11,7 @@ packages=(
   libcli11-dev nlohmann-json3-dev     # the contourmesh CLI
   libgtest-dev libbenchmark-dev       # tests and benchmarks
   xvfb xauth libgl1-mesa-dri          # offscreen renders of `contourmesh compare` (VTK draws through X)
+  clang libclang-rt-dev llvm          # fuzz targets (scripts/run_fuzzers.sh): clang, libFuzzer, llvm-symbolizer
 )
 
 missing=()

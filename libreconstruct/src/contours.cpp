@@ -6,6 +6,7 @@
 #include <array>
 #include <cmath>
 #include <string>
+#include <utility>
 #include <vector>
 
 namespace contourmesh {
@@ -66,18 +67,39 @@ std::optional<Eigen::Vector2d> segments_meet(const Eigen::Vector2d& a, const Eig
 
 }  // namespace
 
-std::optional<SelfIntersection> find_self_intersection(const std::vector<Eigen::Vector2d>& p) {
-  const std::size_t n = p.size();
-  if (n < 4) return std::nullopt;  // a triangle's edges are all neighbours
-  Eigen::Vector2d lo = p[0], hi = p[0];
-  double total = 0.0;
-  for (std::size_t i = 0; i < n; ++i) {
-    if (!p[i].allFinite()) return SelfIntersection{i, i, p[i]};
-    lo = lo.cwiseMin(p[i]);
-    hi = hi.cwiseMax(p[i]);
-    total += (p[(i + 1) % n] - p[i]).norm();
+namespace {
+
+// Two edges that share a point: edge `edge_a` of polygon `a` and `edge_b` of `b`, (a, edge_a) first.
+struct Meeting {
+  std::size_t a = 0, edge_a = 0, b = 0, edge_b = 0;
+  Eigen::Vector2d where = Eigen::Vector2d::Zero();
+};
+
+// The first pair of edges, in (polygon, edge) order, that cross or touch, over the edges of all the
+// closed polygons (edge k joins point k to point k + 1 mod n): pairs within one polygon (not its
+// neighbouring edges) when `within`, pairs from two polygons when `between`. Exact orientation tests on
+// a uniform grid of the edges' bounding boxes (cells about one mean edge long, at most ~4 per edge):
+// about linear time for evenly sampled contours.
+std::optional<Meeting> first_meeting(const std::vector<const std::vector<Eigen::Vector2d>*>& polygons, bool within,
+                                     bool between) {
+  struct Edge {
+    std::size_t polygon, index, count;
+    Eigen::Vector2d a, b;
+  };
+  std::vector<Edge> all;
+  for (std::size_t q = 0; q < polygons.size(); ++q) {
+    const auto& p = *polygons[q];
+    for (std::size_t k = 0; k < p.size(); ++k) all.push_back({q, k, p.size(), p[k], p[(k + 1) % p.size()]});
   }
-  // Cells about one mean edge long, at most ~4n of them.
+  const std::size_t n = all.size();
+  if (n < 2) return std::nullopt;
+  Eigen::Vector2d lo = all[0].a, hi = all[0].a;
+  double total = 0.0;
+  for (const Edge& e : all) {
+    lo = lo.cwiseMin(e.a);
+    hi = hi.cwiseMax(e.a);
+    total += (e.b - e.a).norm();
+  }
   const Eigen::Vector2d extent = hi - lo;
   double cell = std::max(total / static_cast<double>(n), 1e-300);
   const double max_cells = 4.0 * static_cast<double>(n) + 16.0;
@@ -91,8 +113,8 @@ std::optional<SelfIntersection> find_self_intersection(const std::vector<Eigen::
   std::vector<std::size_t> start(nx * ny + 1, 0);
   std::vector<std::array<std::size_t, 4>> boxes(n);
   for (std::size_t k = 0; k < n; ++k) {
-    const Eigen::Vector2d& a = p[k];
-    const Eigen::Vector2d& b = p[(k + 1) % n];
+    const Eigen::Vector2d& a = all[k].a;
+    const Eigen::Vector2d& b = all[k].b;
     boxes[k] = {cell_of(std::min(a.x(), b.x()), lo.x(), nx), cell_of(std::max(a.x(), b.x()), lo.x(), nx),
                 cell_of(std::min(a.y(), b.y()), lo.y(), ny), cell_of(std::max(a.y(), b.y()), lo.y(), ny)};
     for (std::size_t y = boxes[k][2]; y <= boxes[k][3]; ++y) {
@@ -109,19 +131,60 @@ std::optional<SelfIntersection> find_self_intersection(const std::vector<Eigen::
       }
     }
   }
-  std::optional<SelfIntersection> best;
+  std::optional<std::pair<std::size_t, std::size_t>> best;  // indices into `all`, which is in (polygon, edge) order
+  Eigen::Vector2d where = Eigen::Vector2d::Zero();
   for (std::size_t c = 0; c < nx * ny; ++c) {
     for (std::size_t u = start[c]; u < start[c + 1]; ++u) {
       for (std::size_t v = u + 1; v < start[c + 1]; ++v) {
         const std::size_t i = std::min(edges[u], edges[v]);
         const std::size_t j = std::max(edges[u], edges[v]);
-        if (j == i + 1 || (i == 0 && j == n - 1)) continue;  // neighbours share a point by construction
-        if (best && std::make_pair(i, j) >= std::make_pair(best->first, best->second)) continue;
-        if (const auto at = segments_meet(p[i], p[(i + 1) % n], p[j], p[(j + 1) % n])) best = SelfIntersection{i, j, *at};
+        const Edge& ei = all[i];
+        const Edge& ej = all[j];
+        if (ei.polygon == ej.polygon) {
+          if (!within) continue;
+          // Neighbours share a point by construction.
+          if (ej.index == ei.index + 1 || (ei.index == 0 && ej.index == ei.count - 1)) continue;
+        } else if (!between) {
+          continue;
+        }
+        if (best && std::make_pair(i, j) >= *best) continue;
+        if (const auto at = segments_meet(ei.a, ei.b, ej.a, ej.b)) {
+          best = std::make_pair(i, j);
+          where = *at;
+        }
       }
     }
   }
-  return best;
+  if (!best) return std::nullopt;
+  const Edge& ei = all[best->first];
+  const Edge& ej = all[best->second];
+  return Meeting{ei.polygon, ei.index, ej.polygon, ej.index, where};
+}
+
+}  // namespace
+
+std::optional<SelfIntersection> find_self_intersection(const std::vector<Eigen::Vector2d>& p) {
+  const std::size_t n = p.size();
+  if (n < 4) return std::nullopt;  // a triangle's edges are all neighbours
+  for (std::size_t i = 0; i < n; ++i) {
+    if (!p[i].allFinite()) return SelfIntersection{i, i, p[i]};
+  }
+  const auto m = first_meeting({&p}, true, false);
+  if (!m) return std::nullopt;
+  return SelfIntersection{m->edge_a, m->edge_b, m->where};
+}
+
+std::optional<PolygonCrossing> find_polygon_crossing(const std::vector<std::vector<Eigen::Vector2d>>& polygons) {
+  std::vector<const std::vector<Eigen::Vector2d>*> refs;
+  for (const auto& p : polygons) {
+    for (const Eigen::Vector2d& v : p) {
+      if (!v.allFinite()) return std::nullopt;  // not comparable; find_self_intersection reports it
+    }
+    refs.push_back(&p);
+  }
+  const auto m = first_meeting(refs, false, true);
+  if (!m) return std::nullopt;
+  return PolygonCrossing{m->a, m->edge_a, m->b, m->edge_b, m->where};
 }
 
 std::vector<Eigen::Vector2d> resample_closed(const std::vector<Eigen::Vector2d>& poly, double spacing) {

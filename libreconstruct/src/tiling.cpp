@@ -290,14 +290,37 @@ PreparedStack prepare(const ContourStack& stack) {
       const double a = signed_area(k.points);
       if ((k.is_hole && a > 0.0) || (!k.is_hole && a < 0.0)) std::reverse(k.points.begin(), k.points.end());
     }
+    // The contours of a slice bound disjoint regions: none may meet another (overlapping holes made
+    // the tiler produce non-manifold meshes; found by fuzzing).
+    {
+      std::vector<std::vector<Eigen::Vector2d>> outlines;
+      outlines.reserve(contours.size());
+      for (const Contour& k : contours) outlines.push_back(k.points);
+      if (const auto x = find_polygon_crossing(outlines)) {
+        std::ostringstream msg;
+        msg << "tiling: contours " << x->first << " and " << x->second << " of slice " << s << " meet: edge "
+            << x->first_edge << " of the first and edge " << x->second_edge << " of the second at (" << x->where.x()
+            << ", " << x->where.y() << ") mm";
+        throw InvalidInputError(msg.str());
+      }
+    }
     for (std::size_t c = 0; c < contours.size(); ++c) {
       Contour& k = contours[c];
       if (!k.is_hole) {
         k.parent = -1;
         continue;
       }
+      // With no crossings, one point tells whether a contour lies inside another.
+      for (std::size_t h = 0; h < contours.size(); ++h) {
+        if (h != c && contours[h].is_hole && point_in_polygon(contours[h].points, k.points[0])) {
+          throw InvalidInputError("tiling: hole contour " + std::to_string(c) + " of slice " + std::to_string(s) +
+                                  " lies inside hole contour " + std::to_string(h) +
+                                  " (a region inside a hole is an outer contour)");
+        }
+      }
+      // A parent that does not contain the hole is ignored, as a missing one.
       const bool valid = k.parent >= 0 && static_cast<std::size_t>(k.parent) < contours.size() &&
-                         !contours[k.parent].is_hole;
+                         !contours[k.parent].is_hole && point_in_polygon(contours[k.parent].points, k.points[0]);
       if (!valid) {
         // Find the smallest outer contour that contains the hole.
         int best = -1;

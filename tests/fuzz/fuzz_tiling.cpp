@@ -1,7 +1,8 @@
 // Fuzz target: the contour tiler (reconstruct/tiling.h). The bytes decode to a small contour stack,
-// mostly valid (star-shaped outer contours, holes inside them, in slices of increasing w) with some
-// invalid pieces (arbitrary polygons that may cross themselves or their neighbours, repeated points,
-// non-finite or huge coordinates, slices out of order) and random tiling options. tile_contours must
+// mostly valid (star-shaped outer contours clear of each other, one hole inside each at most, in slices
+// of increasing w) or, with a flag, with invalid pieces (arbitrary polygons that may cross themselves or
+// their neighbours, overlapping contours and holes, repeated points, non-finite or huge coordinates,
+// slices out of order), and random tiling options. tile_contours must
 // either throw an InvalidInputError (LimitError included) with a one-line message or return a closed,
 // consistently oriented, edge-manifold mesh with finite coordinates and ids in range.
 #include "fuzz_support.h"
@@ -52,6 +53,8 @@ struct Outer {
   int index;             // in its slice
   Eigen::Vector2d centre;
   double inner_radius;   // a disc of this radius around the centre lies inside the contour
+  double outer_radius;   // and the contour inside a disc of this radius
+  bool has_hole = false;
 };
 
 ContourStack decode_stack(ByteReader& in, TilingOptions& options) {
@@ -106,10 +109,12 @@ ContourStack decode_stack(ByteReader& in, TilingOptions& options) {
         contour.is_hole = in.flag();
         contour.parent = in.integer(-1, 3);
       } else if (kind == 6 && !outers.empty()) {
-        // A hole inside one of this slice's outer contours, clockwise.
-        const Outer& o = outers[static_cast<std::size_t>(in.integer(0, static_cast<int>(outers.size()) - 1))];
+        // A hole inside one of this slice's outer contours, clockwise. A second one in the same outer
+        // would overlap the first: only with invalid pieces allowed.
+        Outer& o = outers[static_cast<std::size_t>(in.integer(0, static_cast<int>(outers.size()) - 1))];
         const double radius = o.inner_radius * in.real(0.2, 0.9);
-        if (radius <= 0.0) continue;
+        if (radius <= 0.0 || (o.has_hole && !allow_invalid)) continue;
+        o.has_hole = true;
         const Eigen::Vector2d offset = in.symmetric3().head<2>();
         const Eigen::Vector2d centre = o.centre + 0.05 * o.inner_radius * offset;
         contour.points = star(in, centre, radius, in.integer(3, 32));
@@ -117,16 +122,21 @@ ContourStack decode_stack(ByteReader& in, TilingOptions& options) {
         contour.is_hole = true;
         contour.parent = in.flag() ? o.index : -1;  // -1: the tiler finds the parent
       } else {
-        // A star-shaped outer contour. Centres may put two outers of a slice on top of each other.
+        // A star-shaped outer contour, kept clear of the slice's other outers unless invalid pieces are
+        // allowed (contours of a slice must not meet).
         const Eigen::Vector2d centre = scale * in.vec2(-30, 30);
-        const double radius = scale * in.real(0.5, 20.0);
+        double radius = scale * in.real(0.5, 20.0);
+        if (!allow_invalid) {
+          for (const Outer& o : outers) radius = std::min(radius, 0.98 * ((centre - o.centre).norm() - o.outer_radius));
+          if (radius < 0.1 * scale) continue;
+        }
         contour.points = star(in, centre, radius, in.integer(3, 48));
         double inner = std::numeric_limits<double>::infinity();
         for (std::size_t k = 0; k < contour.points.size(); ++k) {
           inner = std::min(inner, segment_distance(centre, contour.points[k],
                                                    contour.points[(k + 1) % contour.points.size()]));
         }
-        outers.push_back({static_cast<int>(slice.contours.size()), centre, inner});
+        outers.push_back({static_cast<int>(slice.contours.size()), centre, inner, radius});
         if (allow_invalid && in.byte() == 255) contour.points.push_back(contour.points.front());  // closed explicitly
       }
       slice.contours.push_back(std::move(contour));
@@ -184,6 +194,19 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
     std::fprintf(stderr, "stack: %zu slices, contours per slice:", stack.slices.size());
     for (const SliceContours& s : stack.slices) std::fprintf(stderr, " %zu", s.contours.size());
     std::fprintf(stderr, "\n");
+    for (std::size_t s = 0; s < stack.slices.size(); ++s) {
+      for (std::size_t c = 0; c < stack.slices[s].contours.size(); ++c) {
+        const Contour& k = stack.slices[s].contours[c];
+        Eigen::Vector2d lo = Eigen::Vector2d::Constant(std::numeric_limits<double>::infinity()), hi = -lo;
+        for (const Eigen::Vector2d& p : k.points) {
+          lo = lo.cwiseMin(p);
+          hi = hi.cwiseMax(p);
+        }
+        std::fprintf(stderr, "  slice %zu (w %g) contour %zu: %s, parent %d, %zu points, area %g, box (%g, %g)-(%g, %g)\n", s,
+                     stack.slices[s].w, c, k.is_hole ? "hole" : "outer", k.parent, k.points.size(),
+                     k.points.size() >= 3 ? signed_area(k.points) : 0.0, lo.x(), lo.y(), hi.x(), hi.y());
+      }
+    }
   }
   TilingResult result;
   try {

@@ -145,6 +145,40 @@ def vtp_appended(compressed):
     return head.encode() + b"".join(blobs) + b"\n  </AppendedData>\n</VTKFile>\n"
 
 
+# fuzz_tiling (byte layout: fuzz_tiling.cpp, decode_stack). Byte 0 = option bits, then the slices;
+# layout: per slice a list of (kind, centre x byte, radius byte), kind "outer", "hole" (in outer 0) or
+# "raw" (a crossing quadrilateral; needs modes & 32).
+def tiling(modes, slices, contours_per_slice, kinds, layout=None):
+    invalid = modes & 32
+    out = bytes([modes])
+    if modes & 4:
+        out += bytes([0x08, 0x00])  # min_overlap_fraction
+    if modes & 8:
+        out += bytes([0x00, 0x20])  # full_dp_limit 33: the banded programme
+    if modes & 16:
+        out += bytes([0x20, 0x00])  # band_fraction
+    out += bytes([slices - 1, 0x40, 0x00, 3, 0x80, 0x00])  # slices, spacing 2, scale 1, w 0
+    k = 0
+    for s in range(slices):
+        if s > 0:
+            out += bytes([0x80, 0x00]) + (bytes([0]) if invalid else b"")
+        here = layout[s] if layout else [(kinds[(k + c) % len(kinds)], 0x40 + 0x80 * c, 0x40)
+                                         for c in range(contours_per_slice)]
+        k += len(here)
+        out += bytes([len(here)])
+        for kind, cx, radius in here:
+            if kind == "outer":  # kind 0, centre(4), radius(2), n (9 -> 12 points), phase(2), 4 bytes a point
+                out += bytes([0, cx, 0, 0x80, 0, radius, 0, 9, 0, 0])
+                out += bytes([0x80, 0x00, 0x00, 0x00]) * 12 + (bytes([0]) if invalid else b"")
+            elif kind == "hole":  # kind 6 (in outer 0), radius(2), offset(6), n (5 -> 8 points), phase(2), points, parent
+                out += bytes([6, radius or 0x80, 0, 0x80, 0, 0x80, 0, 0x80, 0, 5, 0, 0])
+                out += bytes([0x80, 0x00, 0x00, 0x00]) * 8 + bytes([1])
+            else:  # kind 7 with invalid pieces allowed: 4 points, the last two crossing
+                out += bytes([7, 4]) + bytes([0, 0x40, 0, 0x40, 0, 0, 0xc0, 0, 0x40, 0, 0, 0x40, 0, 0xc0, 0, 0, 0xc0, 0, 0xc0, 0])
+                out += bytes([0, 0])  # not a hole, parent -1
+    return out
+
+
 def main():
     write("fuzz_read_stl", "binary.stl", stl_binary())
     write("fuzz_read_stl", "binary_solid_header.stl", stl_binary(b"solid but binary"))
@@ -158,43 +192,11 @@ def main():
     write("fuzz_read_vtp", "appended_raw.vtp", vtp_appended(False))
     write("fuzz_read_vtp", "appended_zlib.vtp", vtp_appended(True))
 
-    # fuzz_tiling (byte layout: fuzz_tiling.cpp, decode_stack). Byte 0 = option bits.
-    #   mode, slices, spacing(2), scale, w(2), then per slice [w step(2)] count, per contour kind, ...
-    def tiling(modes, slices, contours_per_slice, kinds, layout=None):
-        invalid = modes & 32
-        out = bytes([modes])
-        if modes & 4:
-            out += bytes([0x08, 0x00])  # min_overlap_fraction
-        if modes & 8:
-            out += bytes([0x00, 0x20])  # full_dp_limit 33: the banded programme
-        if modes & 16:
-            out += bytes([0x20, 0x00])  # band_fraction
-        out += bytes([slices - 1, 0x40, 0x00, 3, 0x80, 0x00])  # slices, spacing 2, scale 1, w 0
-        k = 0
-        for s in range(slices):
-            if s > 0:
-                out += bytes([0x80, 0x00]) + (bytes([0]) if invalid else b"")
-            here = layout[s] if layout else [(kinds[(k + c) % len(kinds)], 0x60 + 0x40 * c, 0x60)
-                                             for c in range(contours_per_slice)]
-            k += len(here)
-            out += bytes([len(here)])
-            for kind, cx, radius in here:
-                if kind == "outer":  # kind 0, centre(4), radius(2), n (9 -> 12 points), phase(2), 4 bytes a point
-                    out += bytes([0, cx, 0, 0x80, 0, radius, 0, 9, 0, 0])
-                    out += bytes([0x80, 0x00, 0x00, 0x00]) * 12 + (bytes([0]) if invalid else b"")
-                elif kind == "hole":  # kind 6 (in outer 0), radius(2), offset(6), n (5 -> 8 points), phase(2), points, parent
-                    out += bytes([6, 0x80, 0, 0x80, 0, 0x80, 0, 0x80, 0, 5, 0, 0])
-                    out += bytes([0x80, 0x00, 0x00, 0x00]) * 8 + bytes([1])
-                else:  # kind 7 with invalid pieces allowed: 4 points, the last two crossing
-                    out += bytes([7, 4]) + bytes([0, 0x40, 0, 0x40, 0, 0, 0xc0, 0, 0x40, 0, 0, 0x40, 0, 0xc0, 0, 0, 0xc0, 0, 0xc0, 0])
-                    out += bytes([0, 0])  # not a hole, parent -1
-        return out
-
     write("fuzz_tiling", "two_slices", tiling(0, 2, 1, ["outer"]))
     write("fuzz_tiling", "stack_end_slice_caps", tiling(1 | 2, 5, 1, ["outer"]))
     write("fuzz_tiling", "two_objects", tiling(0, 3, 2, ["outer"]))
     write("fuzz_tiling", "hole", tiling(0, 4, 2, ["outer", "hole"]))
-    big, left, right = ("outer", 0x80, 0x80), ("outer", 0x78, 0x30), ("outer", 0x88, 0x30)
+    big, left, right = ("outer", 0x80, 0x80), ("outer", 0x70, 0x28), ("outer", 0x90, 0x28)
     write("fuzz_tiling", "one_to_two", tiling(0, 3, 0, [], [[big], [left, right], [big]]))
     write("fuzz_tiling", "banded", tiling(8 | 16, 3, 1, ["outer"]) )
     write("fuzz_tiling", "invalid_allowed", tiling(32, 3, 2, ["outer", "raw"]))

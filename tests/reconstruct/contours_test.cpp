@@ -55,6 +55,33 @@ TEST(Contours, SelfIntersectionsAreFoundWithTheirEdges) {
   EXPECT_TRUE(find_self_intersection({{0, 0}, {4, 0}, {4, 1}, {1, 1}, {5, 1}, {5, 3}, {0, 3}}));
 }
 
+TEST(Contours, CrossingsBetweenPolygonsAreFoundWithTheirEdges) {
+  auto shifted = [](std::vector<Eigen::Vector2d> p, double dx, double dy) {
+    for (auto& v : p) v += Eigen::Vector2d(dx, dy);
+    return p;
+  };
+  // Disjoint, and nested without touching: no crossing.
+  EXPECT_FALSE(find_polygon_crossing({square(2.0), shifted(square(2.0), 5, 0)}));
+  EXPECT_FALSE(find_polygon_crossing({square(4.0), shifted(square(1.0), 1, 1)}));
+  // Overlapping squares: edge 0 (0,0)-(2,0) ... the first crossing in (polygon, edge) order is edge 1 of
+  // the first, (2,0)-(2,2), with edge 0 of the second, (1,1)-(3,1), at (2, 1).
+  const auto x = find_polygon_crossing({square(2.0), shifted(square(2.0), 1, 1)});
+  ASSERT_TRUE(x);
+  EXPECT_EQ(x->first, 0u);
+  EXPECT_EQ(x->first_edge, 1u);
+  EXPECT_EQ(x->second, 1u);
+  EXPECT_EQ(x->second_edge, 0u);
+  EXPECT_TRUE(x->where.isApprox(Eigen::Vector2d(2, 1)));
+  // Touching at a corner counts; self-intersections of one polygon do not.
+  EXPECT_TRUE(find_polygon_crossing({square(2.0), shifted(square(2.0), 2, 2)}));
+  EXPECT_FALSE(find_polygon_crossing({{{0, 0}, {2, 0}, {0, 2}, {2, 2}}}));
+  // The third polygon crosses the first: polygons are named by their index in the set.
+  const auto y = find_polygon_crossing({square(2.0), shifted(square(2.0), 10, 0), shifted(square(2.0), -1, 0.5)});
+  ASSERT_TRUE(y);
+  EXPECT_EQ(y->first, 0u);
+  EXPECT_EQ(y->second, 2u);
+}
+
 TEST(Contours, SelfIntersectionSearchIsFastOnLargeContours) {
   std::vector<Eigen::Vector2d> circle;
   const int n = 200'000;

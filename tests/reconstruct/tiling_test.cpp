@@ -341,6 +341,50 @@ TEST(Tiling, SelfIntersectingContourIsRejectedNamingItsEdges) {
   EXPECT_EQ(tiling_error(s), "tiling: contour 0 of slice 2 intersects itself: its edges 1 and 3 meet at (0, 0) mm");
 }
 
+// fuzz_tiling found a slice whose two holes overlapped (one inside the other): the tiler returned a
+// non-manifold mesh (tests/fuzz/regressions/fuzz_tiling). The contours of a slice must not meet, and a
+// region inside a hole is an outer contour, not another hole.
+TEST(Tiling, ContoursOfASliceThatMeetAreRejectedNamingBoth) {
+  ContourStack s = stack_of(3);
+  for (auto& slice : s.slices) slice.contours.push_back(circle(0, 0, 10, 48));
+  s.slices[1].contours.push_back(circle(8, 0, 5, 24));  // crosses contour 0
+  const std::string e = tiling_error(s);
+  EXPECT_EQ(e.rfind("tiling: contours 0 and 1 of slice 1 meet: edge ", 0), 0u) << e;
+  EXPECT_NE(e.find(" mm"), std::string::npos) << e;
+  // Two holes of one outer contour that overlap.
+  s.slices[1].contours.back() = circle(-2, 0, 4, 24, true, 0);
+  s.slices[1].contours.push_back(circle(2, 0, 4, 24, true, 0));
+  EXPECT_EQ(tiling_error(s).rfind("tiling: contours 1 and 2 of slice 1 meet", 0), 0u) << tiling_error(s);
+}
+
+TEST(Tiling, AHoleInsideAHoleIsRejected) {
+  ContourStack s = stack_of(3);
+  for (auto& slice : s.slices) slice.contours.push_back(circle(0, 0, 10, 48));
+  s.slices[1].contours.push_back(circle(0, 0, 6, 36, true, 0));
+  s.slices[1].contours.push_back(circle(0, 0, 3, 24, true, 0));
+  EXPECT_EQ(tiling_error(s), "tiling: hole contour 2 of slice 1 lies inside hole contour 1 (a region inside a hole is an "
+                             "outer contour)");
+  // An island inside the hole, given as an outer contour, is a valid slice.
+  s.slices[1].contours[2] = circle(0, 0, 3, 24);
+  EXPECT_EQ(tiling_error(s), "");
+}
+
+TEST(Tiling, AHoleParentThatDoesNotContainItIsIgnored) {
+  ContourStack s = stack_of(3);
+  for (auto& slice : s.slices) {
+    slice.contours.push_back(circle(-20, 0, 8, 48));
+    slice.contours.push_back(circle(20, 0, 8, 48));
+  }
+  // A hole through outer 1; in the middle slice it names outer 0, which does not contain it: it is
+  // tiled as a hole of outer 1 there too.
+  for (int k = 0; k < 3; ++k) s.slices[k].contours.push_back(circle(20, 0, 3, 24, true, k == 1 ? 0 : 1));
+  const TilingResult r = tile_contours(s);
+  const test::Topology t = test::topology_of(r.mesh);
+  EXPECT_TRUE(t.closed && t.manifold) << t.problems;
+  EXPECT_EQ(r.stats.hole_contours, 3u);
+  EXPECT_EQ(r.stats.dropped_contours, 0u);
+}
+
 TEST(Tiling, LimitsStopTheTilingBeforeItAllocates) {
   ContourStack s = stack_of(3);
   for (auto& slice : s.slices) slice.contours.push_back(circle(0, 0, 50, 2000));

@@ -67,6 +67,22 @@ struct SelfIntersection {
 /// linear time for contours with evenly spaced points.
 [[nodiscard]] std::optional<SelfIntersection> find_self_intersection(const std::vector<Eigen::Vector2d>& polygon);
 
+/// Two closed polygons of a set whose edges cross or touch: edge `first_edge` of polygon `first` and edge
+/// `second_edge` of polygon `second`, `first` < `second`.
+struct PolygonCrossing {
+  std::size_t first = 0;
+  std::size_t first_edge = 0;
+  std::size_t second = 0;
+  std::size_t second_edge = 0;
+  Eigen::Vector2d where = Eigen::Vector2d::Zero();  ///< a point both edges share
+};
+
+/// The first crossing, in (polygon, edge) order, between two different polygons of the set (the
+/// contours of one slice must not meet); each polygon's own self-intersections are not looked for (see
+/// find_self_intersection). The same grid search: about linear time in the total number of points.
+/// nullopt also when a point is not finite.
+[[nodiscard]] std::optional<PolygonCrossing> find_polygon_crossing(const std::vector<std::vector<Eigen::Vector2d>>& polygons);
+
 /// Resamples a closed polygon uniformly by arc length to round(perimeter / spacing) points (at least
 /// 3), starting at its first point. Throws InvalidInputError for spacing <= 0 or < 3 input points.
 [[nodiscard]] std::vector<Eigen::Vector2d> resample_closed(const std::vector<Eigen::Vector2d>& polygon, double spacing);

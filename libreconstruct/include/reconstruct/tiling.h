@@ -76,7 +76,9 @@ struct TilingResult {
 /// and contour id kNoId. Repeated consecutive points (and a last point equal to the first) are dropped
 /// first. Throws InvalidInputError for a stack whose slices are not ordered by increasing w, a contour
 /// with fewer than 3 distinct points, a non-finite point, a contour that intersects itself (naming the
-/// two edges and where they meet), or a hole in no outer contour of its slice; LimitError when the mesh
+/// two edges and where they meet), two contours of a slice that meet (naming both and where), a hole
+/// inside another hole, or a hole in no outer contour of its slice (a hole's parent that does not
+/// contain it is ignored, like a missing one); LimitError when the mesh
 /// would exceed `options.limits.max_vertices` or a contour pair's programme the memory budget.
 [[nodiscard]] TilingResult tile_contours(const ContourStack& stack, const TilingOptions& options = {},
                                          const ProgressCallback& progress = {});
