@@ -141,14 +141,52 @@ struct Box {
   }
 };
 
-// Resampling can cut across a narrow part of a small loop and make the contour cross itself (the
-// extractor's loops never do): resample more finely until it does not, or keep the loop as extracted.
-std::vector<Eigen::Vector2d> resample_simple(const std::vector<Eigen::Vector2d>& loop, double sampling) {
-  for (int halving = 0; halving < 4; ++halving) {
-    std::vector<Eigen::Vector2d> pts = resample_closed(loop, sampling / static_cast<double>(1 << halving));
-    if (!find_self_intersection(pts)) return pts;
+// A contour as extracted, and the resampled points the stack gets. Resampling can cut across a narrow
+// part of a loop and make it cross itself or a neighbouring contour of the slice (the extractor's loops
+// never do): such a contour is resampled more finely (`level` halvings of the spacing) until it does
+// not, or keeps its loop as extracted (level kRawLevel).
+struct PendingContour {
+  std::vector<Eigen::Vector2d> loop;
+  Contour contour;
+  int level = 0;
+};
+constexpr int kRawLevel = 4;
+
+void resample(PendingContour& c, double sampling) {
+  const bool hole = c.contour.is_hole;
+  for (; c.level < kRawLevel; ++c.level) {
+    c.contour.points = resample_closed(c.loop, sampling / static_cast<double>(1 << c.level));
+    if (!find_self_intersection(c.contour.points)) break;
   }
-  return loop;
+  if (c.level == kRawLevel) c.contour.points = c.loop;
+  const double area = signed_area(c.contour.points);
+  if ((hole && area > 0.0) || (!hole && area < 0.0)) std::reverse(c.contour.points.begin(), c.contour.points.end());
+}
+
+// The contours of a slice bound disjoint regions and must not meet (the tiler rejects a slice whose
+// contours do): refine the resampling of both contours of a meeting pair until none meet.
+std::vector<Contour> separated(std::vector<PendingContour> pending, double sampling) {
+  for (PendingContour& c : pending) resample(c, sampling);
+  for (;;) {
+    std::vector<std::vector<Eigen::Vector2d>> outlines;
+    outlines.reserve(pending.size());
+    for (const PendingContour& c : pending) outlines.push_back(c.contour.points);
+    const auto x = find_polygon_crossing(outlines);
+    if (!x) break;
+    bool refined = false;
+    for (std::size_t k : {x->first, x->second}) {
+      PendingContour& c = pending[k];
+      if (c.level >= kRawLevel) continue;
+      ++c.level;
+      resample(c, sampling);
+      refined = true;
+    }
+    if (!refined) break;  // the extracted loops themselves meet: the tiler names them
+  }
+  std::vector<Contour> out;
+  out.reserve(pending.size());
+  for (PendingContour& c : pending) out.push_back(std::move(c.contour));
+  return out;
 }
 
 void check_options(const SegmentationOptions& o) {
@@ -207,6 +245,7 @@ SegmentationResult segment_contours(const CtImage& input, const SegmentationOpti
   for (std::size_t z = 0; z < size[2]; ++z) {
     SliceContours& out = stack.slices[z];
     out.w = static_cast<double>(z) * sz;
+    std::vector<PendingContour> pending;
     const float* val = values.data() + z * size[0] * size[1];
     std::copy_n(mask.data() + z * size[0] * size[1], slice_mask.size(), slice_mask.begin());
 
@@ -308,25 +347,21 @@ SegmentationResult segment_contours(const CtImage& input, const SegmentationOpti
         ++result.dropped_regions;
         continue;
       }
-      Contour o;
-      o.points = resample_simple(loops[outer], sampling);
-      if (signed_area(o.points) < 0.0) std::reverse(o.points.begin(), o.points.end());
-      const int parent = static_cast<int>(out.contours.size());
-      out.contours.push_back(std::move(o));
+      const int parent = static_cast<int>(pending.size());
+      pending.push_back({std::move(loops[outer]), Contour{}, 0});
       for (std::size_t k = 0; k < loops.size(); ++k) {
         if (k == outer) continue;
         if (perimeter(loops[k]) < options.min_contour_length) {
           ++result.dropped_regions;
           continue;
         }
-        Contour hole;
-        hole.points = resample_simple(loops[k], sampling);
-        if (signed_area(hole.points) > 0.0) std::reverse(hole.points.begin(), hole.points.end());
-        hole.is_hole = true;
-        hole.parent = parent;
-        out.contours.push_back(std::move(hole));
+        PendingContour hole{std::move(loops[k]), Contour{}, 0};
+        hole.contour.is_hole = true;
+        hole.contour.parent = parent;
+        pending.push_back(std::move(hole));
       }
     }
+    out.contours = separated(std::move(pending), sampling);
     if (progress && !progress("segment", static_cast<double>(z + 1) / static_cast<double>(size[2]))) {
       throw CancelledError("segmentation");
     }

@@ -1,3 +1,4 @@
+#include <reconstruct/contours.h>
 #include <reconstruct/reconstruction.h>
 #include <reconstruct/segmentation.h>
 #include <reconstruct/tiling.h>
@@ -93,6 +94,28 @@ TEST(Segmentation, HolesAreClockwiseWithParentsAndSmallOnesAreFilled) {
   EXPECT_GE(r.dropped_regions, 3u);
   o.fill_holes = true;
   for (const SliceContours& s : segment_contours(*image, o).stack.slices) EXPECT_EQ(s.contours.size(), 1u);
+}
+
+// A tube with a 0.7 mm wall sampled every 8 mm: the outer contour's chords (sagitta 0.8 mm) would
+// cut through the hole. The contours of a slice must not meet (the tiler rejects them), so both are
+// resampled more finely until they do not.
+TEST(Segmentation, ResamplingNeverMakesTheContoursOfASliceMeet) {
+  const auto image = make_volume({100, 100, 3}, {0.25, 0.25, 1.0}, {-12.5, -12.5, 0}, [](const Eigen::Vector3d& p) {
+    return std::max(cylinder(p, 0, 0, 10.0), -cylinder(p, 0, 0, 9.3));
+  });
+  SegmentationOptions o;
+  o.threshold = 500;
+  o.sampling = 8.0;
+  const auto r = segment_contours(*image, o);
+  for (const SliceContours& slice : r.stack.slices) {
+    ASSERT_EQ(slice.contours.size(), 2u);
+    std::vector<std::vector<Eigen::Vector2d>> outlines;
+    for (const Contour& c : slice.contours) outlines.push_back(c.points);
+    EXPECT_FALSE(find_polygon_crossing(outlines));
+    // 2 pi 10 / 8 = 8 points at the asked spacing; the outer contour needed more.
+    EXPECT_GT(slice.contours[0].points.size(), 8u);
+  }
+  EXPECT_NO_THROW(tile_contours(r.stack));
 }
 
 TEST(Segmentation, KeepLargestDropsTheSmallerObject) {
