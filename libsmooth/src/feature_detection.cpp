@@ -172,10 +172,36 @@ FeatureDirections feature_directions(const PrincipalCurvatures& c, Index i) {
   return {c.direction_max.col(i), c.direction_min.col(i), c.kappa_min[i]};
 }
 
+// The smallest eigenvalue of sum_f theta_f n_f n_f^T over the faces around vertex i (theta_f: the
+// face's angle at i, n_f: its unit normal), divided by the trace: how far the normals spread in a third
+// direction. Angle weights make it independent of how the faces are cut into triangles.
+double normal_spread(const Eigen::Matrix3Xd& positions, const std::vector<Triangle>& triangles, const MeshAdjacency& adj,
+                     Index i) {
+  Eigen::Matrix3d tensor = Eigen::Matrix3d::Zero();
+  for (Index f : adj.incident_faces(i)) {
+    const Triangle& t = triangles[static_cast<std::size_t>(f)];
+    const int k = t[0] == i ? 0 : t[1] == i ? 1 : 2;
+    const Eigen::Vector3d e1 = positions.col(t[(k + 1) % 3]) - positions.col(i);
+    const Eigen::Vector3d e2 = positions.col(t[(k + 2) % 3]) - positions.col(i);
+    const Eigen::Vector3d cross = e1.cross(e2);
+    const double area2 = cross.norm();
+    if (!(area2 > 0.0)) continue;
+    const double angle = std::atan2(area2, e1.dot(e2));
+    const Eigen::Vector3d normal = cross / area2;
+    tensor += angle * normal * normal.transpose();
+  }
+  const double trace = tensor.trace();
+  if (!(trace > 0.0)) return 0.0;
+  const Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d> eig(tensor, Eigen::EigenvaluesOnly);
+  return std::max(0.0, eig.eigenvalues()(0)) / trace;
+}
+
 // The extension for feature lines within a slice plane: the curvature across the feature at the
-// neighbours of i nearest to +t and -t agrees with i's in sign and within delta.
-bool continuous_along_line(const Eigen::Matrix3Xd& positions, const MeshAdjacency& adj, const PrincipalCurvatures& c,
-                           Index i, const DetectionOptions& options) {
+// neighbours of i nearest to +t and -t agrees with i's in sign and within delta. A line may end in a
+// corner (a neighbour whose face normals spread in three directions): that side then agrees.
+bool continuous_along_line(const Eigen::Matrix3Xd& positions, const std::vector<Triangle>& triangles,
+                           const MeshAdjacency& adj, const PrincipalCurvatures& c, Index i,
+                           const DetectionOptions& options) {
   const FeatureDirections f = feature_directions(c, i);
   const Eigen::Vector3d& t = f.along;
   const double ki = f.curvature_across;
@@ -194,7 +220,9 @@ bool continuous_along_line(const Eigen::Matrix3Xd& positions, const MeshAdjacenc
         best = j;
       }
     }
-    if (best < 0 || c.umbilic[best]) return false;
+    if (best < 0) return false;
+    if (normal_spread(positions, triangles, adj, best) > options.corner_spread) continue;
+    if (c.umbilic[best]) return false;
     const double kj = feature_directions(c, best).curvature_across;
     if (!(ki * kj > 0.0 && std::abs(ki - kj) < delta)) return false;
   }
@@ -242,6 +270,7 @@ FeatureDetection detect_features(const Mesh& mesh, const MeshAdjacency& adj, con
   if (options.delta && !(*options.delta > 0.0)) throw InvalidInputError("delta must be > 0");
   if (!(options.delta_factor > 0.0)) throw InvalidInputError("delta factor must be > 0");
   if (options.prefilter_iterations < 0) throw InvalidInputError("prefilter iterations must be >= 0");
+  if (!(options.corner_spread >= 0.0)) throw InvalidInputError("corner spread must be >= 0");
   auto report = [&](double f) {
     if (options.progress && !options.progress("detect", f)) throw CancelledError("feature detection");
   };
@@ -279,13 +308,19 @@ FeatureDetection detect_features(const Mesh& mesh, const MeshAdjacency& adj, con
   out.k0 = Eigen::VectorXd::Constant(n, kNaN);
   out.k_above = Eigen::VectorXd::Constant(n, kNaN);
   out.psi = Eigen::VectorXd::Constant(n, kNaN);
+  out.normal_spread = Eigen::VectorXd::Constant(n, kNaN);
+  // Umbilic, or a point where faces meet: the principal directions are undefined; the Psi vote decides.
+  auto corner_like = [&](Index i) {
+    out.normal_spread[i] = normal_spread(positions, mesh.triangles, adj, i);
+    return out.curvature.umbilic[i] || out.normal_spread[i] > options.corner_spread;
+  };
 
   std::vector<Index> umbilic_candidates;
   if (!continuity) {
     for (Index i = 0; i < n; ++i) {
       if (!(out.umbrella[i] > out.gamma)) continue;
       ++out.candidates;
-      if (out.curvature.umbilic[i]) {
+      if (corner_like(i)) {
         umbilic_candidates.push_back(i);
         continue;
       }
@@ -336,21 +371,28 @@ FeatureDetection detect_features(const Mesh& mesh, const MeshAdjacency& adj, con
     if (!(out.umbrella[i] > out.gamma)) continue;
     ++out.candidates;
     const std::int32_t s = mesh.slice_ids[i];
-    if (out.curvature.umbilic[i]) {
+    if (corner_like(i)) {
       umbilic_candidates.push_back(i);
       continue;
     }
     // S contains t and n; its normal `across` is the other principal direction. Every slice plane
     // shares the in-plane axes e1, e2, so n2, the normal of the line S cuts from a slice, is the same
     // in all of them.
-    const Eigen::Vector3d across = feature_directions(out.curvature, i).across;
+    const FeatureDirections directions = feature_directions(out.curvature, i);
+    const Eigen::Vector3d& across = directions.across;
     const Eigen::Vector2d n2(across.dot(e1), across.dot(e2));
-    if (s == kNoId || n2.norm() <= 0.1) {
-      // Off the slices, or a feature line within a slice plane: the paper's blind spot.
-      out.labels[i] = options.in_slice == InSliceFeatures::AlongFeatureLine &&
-                              continuous_along_line(positions, adj, out.curvature, i, options)
-                          ? VertexLabel::Edge
-                          : VertexLabel::Noise;
+    // Off the slices, or a feature line within a slice plane: the paper's blind spot. With the
+    // extension, a line that runs within a slice plane (t across the slice axis) is also followed along
+    // itself where the plane S is not parallel to the slices (a cap's rim meeting a side at an angle).
+    const bool blind_spot = s == kNoId || n2.norm() <= 0.1;
+    if (options.in_slice == InSliceFeatures::AlongFeatureLine &&
+        (blind_spot || std::abs(directions.along.dot(axis)) <= 0.1) &&
+        continuous_along_line(positions, mesh.triangles, adj, out.curvature, i, options)) {
+      out.labels[i] = VertexLabel::Edge;
+      continue;
+    }
+    if (blind_spot) {
+      out.labels[i] = VertexLabel::Noise;
       continue;
     }
     const PlaneFrame& own_plane = planes[s];

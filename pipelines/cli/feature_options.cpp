@@ -26,6 +26,10 @@ void add_detection_options(CLI::App* cmd, FeatureArgs& args) {
                   "(continuity along the line itself)")
       ->capture_default_str();
   cmd->add_option("--window", args.window, "Contour vertices per curve fit (odd, >= 5)")->capture_default_str();
+  cmd->add_option("--corner-spread", args.corner_spread,
+                  "Normal spread (0..1/3: 1/3 at a box corner) above which a candidate goes to the corner vote; "
+                  "above 1/3: off")
+      ->capture_default_str();
 }
 
 void add_feature_options(CLI::App* cmd, FeatureArgs& args) {
@@ -46,6 +50,7 @@ DetectionOptions detection_options(const FeatureArgs& a) {
   else throw InvalidInputError("--in-slice must be noise or along-line, got '" + a.in_slice + "'");
   o.prefilter_iterations = a.prefilter;
   o.window = a.window;
+  o.corner_spread = a.corner_spread;
   return o;
 }
 

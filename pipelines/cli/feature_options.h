@@ -23,10 +23,11 @@ struct FeatureArgs {
   std::string in_slice = "noise";
   int prefilter = 0;
   int window = 7;
+  double corner_spread = 0.1;
   std::string slice_axis;  ///< "", "x", "y" or "z"
 };
 
-/// Registers --gamma, --delta, --measure, --in-slice, --prefilter, --window.
+/// Registers --gamma, --delta, --measure, --in-slice, --prefilter, --window, --corner-spread.
 void add_detection_options(CLI::App* cmd, FeatureArgs& args);
 /// The detection options and --slice-axis.
 void add_feature_options(CLI::App* command, FeatureArgs& args);

@@ -166,6 +166,7 @@ int vtkContourFeatureSmoothingFilter::Execute(vtkPolyData* input, vtkPolyData* o
   if (this->Delta >= 0.0) detection.delta = this->Delta;
   detection.delta_factor = this->DeltaFactor;
   detection.window = this->Window;
+  detection.corner_spread = this->CornerSpread;
   detection.prefilter_iterations = this->PrefilterIterations;
   detection.curvature.umbilic_tolerance = this->UmbilicTolerance;
   detection.curvature.min_reciprocal_condition = this->MinReciprocalCondition;
@@ -287,6 +288,7 @@ void vtkContourFeatureSmoothingFilter::PrintSelf(ostream& os, vtkIndent indent) 
   os << indent << "Delta: " << this->Delta << (this->Delta < 0.0 ? " (automatic)" : "") << "\n";
   os << indent << "DeltaFactor: " << this->DeltaFactor << "\n";
   os << indent << "Window: " << this->Window << "\n";
+  os << indent << "CornerSpread: " << this->CornerSpread << "\n";
   os << indent << "PrefilterIterations: " << this->PrefilterIterations << "\n";
   os << indent << "UmbilicTolerance: " << this->UmbilicTolerance << "\n";
   os << indent << "MinReciprocalCondition: " << this->MinReciprocalCondition << "\n";

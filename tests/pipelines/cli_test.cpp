@@ -305,7 +305,8 @@ TEST_F(Cli, HelpListsEveryOptionOfEverySubcommand) {
   const std::map<std::string, std::vector<std::string>> options = {
       {"phantom", {"--shape", "--spacing", "--noise", "--blur", "--seed", "--json"}},
       {"reconstruct", {"--threshold", "--otsu", "--end-caps", "--keep", "--fill-holes", "--json", "--quiet", "--threads"}},
-      {"detect", {"--gamma", "--delta", "--measure", "--in-slice", "--prefilter", "--window", "--slice-axis", "--json"}},
+      {"detect", {"--gamma", "--delta", "--measure", "--in-slice", "--prefilter", "--window", "--corner-spread", "--slice-axis",
+                  "--json"}},
       {"smooth", {"--method", "--iterations", "--gamma", "--delta", "--max-levels", "--keep-adaptive", "--labels-out",
                   "--in-slice", "--json", "--quiet", "--threads"}},
       {"run", {"--shape", "--noise", "--method", "--iterations", "--threshold", "--end-caps", "--in-slice", "--measure",

@@ -262,6 +262,7 @@ TEST_F(VtkFilters, NonDefaultSmoothingOptionsReachTheLibrary) {
   paper("measure", [](auto& o) { o.detection.measure = UmbrellaMeasure::NormalComponent; },
         [](Filter* f) { f->SetUmbrellaMeasureToNormalComponent(); });
   paper("window", [](auto& o) { o.detection.window = 9; }, [](Filter* f) { f->SetWindow(9); });
+  paper("corner spread", [](auto& o) { o.detection.corner_spread = 0.0; }, [](Filter* f) { f->SetCornerSpread(0.0); });
   paper("prefilter", [](auto& o) { o.detection.prefilter_iterations = 2; },
         [](Filter* f) { f->SetPrefilterIterations(2); });
   paper("umbilic tolerance", [](auto& o) { o.detection.curvature.umbilic_tolerance = 3.0; },
@@ -794,6 +795,8 @@ TEST_F(VtkFilters, OptionsClampAndPrintSelfListsThem) {
   EXPECT_EQ(f->GetDelta(), -0.1) << "any negative value means automatic";
   f->SetWindow(3);
   EXPECT_EQ(f->GetWindow(), 5);
+  f->SetCornerSpread(-1.0);
+  EXPECT_EQ(f->GetCornerSpread(), 0.0);
   f->SetMaxLevels(-1);
   EXPECT_EQ(f->GetMaxLevels(), 0);
   f->SetDiffusionMethod(vtkContourFeatureSmoothingFilter::METHOD_PAPER);
@@ -835,7 +838,7 @@ TEST_F(VtkFilters, OptionsClampAndPrintSelfListsThem) {
   for (const char* option :
        {"Method: None", "NumberOfIterations: -1 (automatic)", "Lambda", "Mu", "Beta", "BoundarySmoothing",
         "TimeStepMode", "DetectionMode", "Anisotropy", "Gamma: -1 (automatic)", "GammaFactor", "UmbrellaMeasure",
-        "Delta", "DeltaFactor", "Window: 5", "PrefilterIterations", "UmbilicTolerance", "MinReciprocalCondition",
+        "Delta", "DeltaFactor", "Window: 5", "CornerSpread", "PrefilterIterations", "UmbilicTolerance", "MinReciprocalCondition",
         "MaxLevels", "DiffusionMethod: Laplacian", "KeepAdaptiveMesh", "GenerateLabels", "SliceAxis: Z",
         "SliceTolerance", "ContourIdArrayName: ContourId", "ContourIndexArrayName: ContourIndex", "LockedArrayName"}) {
     EXPECT_NE(printed.str().find(option), std::string::npos) << option;

@@ -71,6 +71,15 @@ struct DetectionOptions {
   std::optional<double> delta;
   double delta_factor = 0.5;
   InSliceFeatures in_slice = InSliceFeatures::Noise;
+  /// Corners where faces meet (an extension; the paper examines corners only at umbilic vertices).
+  /// At a vertex where three or more faces meet, such as a box corner, the quadric fit of SPEC 3.2 gives
+  /// two curvatures that differ, and principal directions that mean nothing. A candidate whose face
+  /// normals spread in three directions therefore goes to the Psi vote (eq. 8), as an umbilic one does.
+  /// The measure is the smallest eigenvalue of the angle-weighted normal tensor
+  /// sum_f theta_f n_f n_f^T, divided by its trace: 1/3 at a cube corner, 0 along a sharp edge, about
+  /// (h kappa)^2 / 8 on a smooth patch with edges h long. The threshold is scale-free, in [0, 1/3];
+  /// a value above 1/3 turns the rule off.
+  double corner_spread = 0.1;
   /// Consecutive contour vertices in each curve fit (odd, >= 5; SPEC default 7).
   int window = 7;
   /// Taubin lambda|mu iterations applied to a copy used for detection only (paper section 5), >= 0.
@@ -91,6 +100,7 @@ struct FeatureDetection {
   Eigen::VectorXd k0;       ///< signed curvature of contour c(i) at v_i
   Eigen::VectorXd k_above;  ///< signed curvature of contour c(i)+1
   Eigen::VectorXd psi;      ///< corner vote of umbilic candidates (eq. 8)
+  Eigen::VectorXd normal_spread;  ///< the corner_spread measure of every candidate
   std::size_t candidates = 0, edges = 0, corners = 0, noise = 0;
 };
 
@@ -110,8 +120,9 @@ struct FeatureDetection {
 /// and last slice, none for a vertex off the slices: noise). No intersection inside the window
 /// (S misses the contour there) is noise; so is S parallel to the slices (a feature line within a
 /// slice plane: the paper's blind spot, SPEC 3.3).
-/// Umbilic candidates are classified after all others, in index order, by Psi_i = sum_j w_j tau_j with
-/// w_j = exp(-d_ij / d_max) and tau_j = +1 for edge/corner, -1 for noise, 0 otherwise (eq. 8).
+/// Umbilic candidates, and those whose face normals spread in three directions (`corner_spread`), are
+/// classified after all others, in index order, by Psi_i = sum_j w_j tau_j with w_j = exp(-d_ij / d_max)
+/// and tau_j = +1 for edge/corner, -1 for noise, 0 otherwise (eq. 8).
 [[nodiscard]] FeatureDetection detect_features(const Mesh& mesh, const MeshAdjacency& adjacency,
                                                const DetectionOptions& options = {});
 

@@ -171,6 +171,14 @@ class vtkContourFeatureSmoothingFilter : public vtkPolyDataAlgorithm {
   ///@}
 
   ///@{
+  /// A candidate whose face normals spread in three directions (the smallest eigenvalue of the
+  /// angle-weighted normal tensor over its trace: 1/3 at a box corner, 0 on an edge) above this value
+  /// goes to the corner vote like an umbilic one. In [0, 1] (default 0.1); above 1/3 turns it off.
+  vtkSetClampMacro(CornerSpread, double, 0.0, 1.0);
+  vtkGetMacro(CornerSpread, double);
+  ///@}
+
+  ///@{
   /// Consecutive contour vertices per curve fit: odd, >= 5 (default 7).
   vtkSetClampMacro(Window, int, 5, VTK_INT_MAX);
   vtkGetMacro(Window, int);
@@ -270,6 +278,7 @@ class vtkContourFeatureSmoothingFilter : public vtkPolyDataAlgorithm {
   double Delta = -1.0;
   double DeltaFactor = 0.5;
   int Window = 7;
+  double CornerSpread = 0.1;
   int PrefilterIterations = 0;
   double UmbilicTolerance = 0.05;
   double MinReciprocalCondition = 1e-6;
