@@ -217,6 +217,11 @@ std::string vtkCheckedXMLPolyDataReader::CheckCompressionHeader(vtkXMLDataElemen
   // else inline, binary when format="binary" (ASCII data have no compression header).
   std::int64_t start = -1;
   bool base64 = true;
+  const char* name = da->GetAttribute("Name");
+  const std::string where = std::string("compressed data array '") + (name != nullptr ? name : "") + "': ";
+  // VTK reports a missing or short compression header too, but leaks the array's iterator on the way
+  // (found by fuzz_read_vtp): say it first.
+  const std::string truncated = where + "the file ends before its compression header (truncated file?)";
   if (da->GetAttribute("offset") != nullptr) {
     vtkTypeInt64 offset = 0;
     da->GetScalarAttribute("offset", offset);
@@ -225,7 +230,8 @@ std::string vtkCheckedXMLPolyDataReader::CheckCompressionHeader(vtkXMLDataElemen
     const char* encoding = appended->GetAttribute("encoding");
     base64 = !(encoding != nullptr && std::strcmp(encoding, "raw") == 0);
     const std::int64_t position = data_start(file, appended->GetXMLByteIndex(), true);
-    if (position < 0 || offset < -position || offset > std::numeric_limits<std::int64_t>::max() - position) return {};
+    if (position < 0) return truncated;
+    if (offset < -position || offset > std::numeric_limits<std::int64_t>::max() - position) return {};
     start = position + offset;
   } else {
     const char* format = da->GetAttribute("format");
@@ -241,13 +247,10 @@ std::string vtkCheckedXMLPolyDataReader::CheckCompressionHeader(vtkXMLDataElemen
 
   DataBytes data(file, start, base64);
   std::vector<unsigned char> head;
-  if (!data.read(0, 3 * word, head)) return {};  // VTK reports a short header itself
+  if (!data.read(0, 3 * word, head)) return truncated;
   const std::uint64_t blocks = word_at(head, 0, word, big_endian);
   const std::uint64_t block_size = word_at(head, 1, word, big_endian);
   const std::uint64_t last_size = word_at(head, 2, word, big_endian);
-  const char* name = da->GetAttribute("Name");
-  const std::string where =
-      std::string("compressed data array '") + (name != nullptr ? name : "") + "': ";
   const std::uint64_t after_header = data.available() - 3 * word;
   if (blocks > after_header / word) {
     return where + "the header announces " + std::to_string(blocks) +

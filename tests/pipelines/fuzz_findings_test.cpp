@@ -248,6 +248,17 @@ TEST_F(FuzzFindings, VtpPointsNeedThreeComponents) {
   expect_rejected(write("six.vtp", vtp), "the points have 6 components, not 3");
 }
 
+// VTK leaked an array's iterator when the file ended before a compressed array's header (found by
+// fuzz_read_vtp: the appended data cut off after its start tag, and in the middle of a header).
+TEST_F(FuzzFindings, VtpDataEndingBeforeACompressionHeaderIsReportedWithoutALeak) {
+  const std::string vtp = compressed_vtp();
+  const std::size_t data = vtp.find('_', vtp.find("<AppendedData"));
+  ASSERT_NE(data, std::string::npos);
+  expect_rejected(write("no_data.vtp", vtp.substr(0, data)), "ends before its compression header (truncated file?)");
+  expect_rejected(write("short_header.vtp", vtp.substr(0, data + 1 + 5)),
+                  "ends before its compression header (truncated file?)");
+}
+
 // The points a file announces are checked against the vertex limit before VTK allocates for them.
 TEST_F(FuzzFindings, VtpAnnouncedPointsAreLimitedBeforeVtkAllocates) {
   std::string vtp = compressed_vtp();
