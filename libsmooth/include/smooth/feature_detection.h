@@ -53,6 +53,10 @@ enum class InSliceFeatures {
   /// Extension: continuity along the feature line itself. The vertex is an edge when the curvature
   /// across the feature (the principal curvature with the larger |kappa|) of its two neighbours
   /// nearest to the feature direction, one on each side, agrees with its own in sign and within delta.
+  /// Applied to the blind spot, and also to a candidate whose feature direction lies within its slice
+  /// plane (|t . slice axis| <= 0.1) where S is not parallel to the slices, such as a cap's rim meeting
+  /// a side at 45 degrees; when it fails there, the paper's test decides. A neighbour where three faces
+  /// meet (`corner_spread`) ends the line and counts as agreeing.
   /// Finds cap rims and ridges parallel to the slices, but cannot tell them from a whole contour
   /// segmented too large or too small (that also looks continuous along the contour).
   AlongFeatureLine,
