@@ -167,6 +167,8 @@ int vtkContourFeatureSmoothingFilter::Execute(vtkPolyData* input, vtkPolyData* o
   detection.delta_factor = this->DeltaFactor;
   detection.window = this->Window;
   detection.corner_spread = this->CornerSpread;
+  detection.in_slice = this->InSliceFeatures == IN_SLICE_ALONG_LINE ? contourmesh::InSliceFeatures::AlongFeatureLine
+                                                                    : contourmesh::InSliceFeatures::Noise;
   detection.prefilter_iterations = this->PrefilterIterations;
   detection.curvature.umbilic_tolerance = this->UmbilicTolerance;
   detection.curvature.min_reciprocal_condition = this->MinReciprocalCondition;
@@ -289,6 +291,7 @@ void vtkContourFeatureSmoothingFilter::PrintSelf(ostream& os, vtkIndent indent) 
   os << indent << "DeltaFactor: " << this->DeltaFactor << "\n";
   os << indent << "Window: " << this->Window << "\n";
   os << indent << "CornerSpread: " << this->CornerSpread << "\n";
+  os << indent << "InSliceFeatures: " << (this->InSliceFeatures == IN_SLICE_ALONG_LINE ? "AlongLine" : "Noise") << "\n";
   os << indent << "PrefilterIterations: " << this->PrefilterIterations << "\n";
   os << indent << "UmbilicTolerance: " << this->UmbilicTolerance << "\n";
   os << indent << "MinReciprocalCondition: " << this->MinReciprocalCondition << "\n";

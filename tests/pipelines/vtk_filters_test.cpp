@@ -262,6 +262,8 @@ TEST_F(VtkFilters, NonDefaultSmoothingOptionsReachTheLibrary) {
   paper("measure", [](auto& o) { o.detection.measure = UmbrellaMeasure::NormalComponent; },
         [](Filter* f) { f->SetUmbrellaMeasureToNormalComponent(); });
   paper("window", [](auto& o) { o.detection.window = 9; }, [](Filter* f) { f->SetWindow(9); });
+  paper("in-slice features", [](auto& o) { o.detection.in_slice = InSliceFeatures::AlongFeatureLine; },
+        [](Filter* f) { f->SetInSliceFeaturesToAlongLine(); });
   paper("corner spread", [](auto& o) { o.detection.corner_spread = 0.0; }, [](Filter* f) { f->SetCornerSpread(0.0); });
   paper("prefilter", [](auto& o) { o.detection.prefilter_iterations = 2; },
         [](Filter* f) { f->SetPrefilterIterations(2); });
@@ -838,7 +840,7 @@ TEST_F(VtkFilters, OptionsClampAndPrintSelfListsThem) {
   for (const char* option :
        {"Method: None", "NumberOfIterations: -1 (automatic)", "Lambda", "Mu", "Beta", "BoundarySmoothing",
         "TimeStepMode", "DetectionMode", "Anisotropy", "Gamma: -1 (automatic)", "GammaFactor", "UmbrellaMeasure",
-        "Delta", "DeltaFactor", "Window: 5", "CornerSpread", "PrefilterIterations", "UmbilicTolerance", "MinReciprocalCondition",
+        "Delta", "DeltaFactor", "Window: 5", "CornerSpread", "InSliceFeatures: Noise", "PrefilterIterations", "UmbilicTolerance", "MinReciprocalCondition",
         "MaxLevels", "DiffusionMethod: Laplacian", "KeepAdaptiveMesh", "GenerateLabels", "SliceAxis: Z",
         "SliceTolerance", "ContourIdArrayName: ContourId", "ContourIndexArrayName: ContourIndex", "LockedArrayName"}) {
     EXPECT_NE(printed.str().find(option), std::string::npos) << option;

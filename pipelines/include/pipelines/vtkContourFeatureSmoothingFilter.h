@@ -60,6 +60,10 @@ class vtkContourFeatureSmoothingFilter : public vtkPolyDataAlgorithm {
     UMBRELLA_LENGTH = 0,            ///< |U|, the paper's choice (default)
     UMBRELLA_NORMAL_COMPONENT = 1,  ///< |U . n|
   };
+  enum InSliceFeaturesType {
+    IN_SLICE_NOISE = 0,         ///< the paper's rule: no continuity across contours, noise (default)
+    IN_SLICE_ALONG_LINE = 1,    ///< extension: continuity along the feature line itself
+  };
   enum TimeStepType {
     TIME_STEP_RELATIVE_TO_MEAN_EDGE = 0,  ///< mean curvature flow: dt = lambda h^2 / 4 (default)
     TIME_STEP_ABSOLUTE = 1,               ///< dt = lambda in squared length units
@@ -158,6 +162,16 @@ class vtkContourFeatureSmoothingFilter : public vtkPolyDataAlgorithm {
   vtkGetMacro(UmbrellaMeasure, int);
   void SetUmbrellaMeasureToLength() { this->SetUmbrellaMeasure(UMBRELLA_LENGTH); }
   void SetUmbrellaMeasureToNormalComponent() { this->SetUmbrellaMeasure(UMBRELLA_NORMAL_COMPONENT); }
+  ///@}
+
+  ///@{
+  /// Feature lines within a slice plane (cap rims, ridges parallel to the slices): the paper's blind
+  /// spot. IN_SLICE_NOISE keeps the paper's rule (default); IN_SLICE_ALONG_LINE follows the line itself
+  /// (libsmooth's InSliceFeatures::AlongFeatureLine, docs/smoothing.md).
+  vtkSetClampMacro(InSliceFeatures, int, IN_SLICE_NOISE, IN_SLICE_ALONG_LINE);
+  vtkGetMacro(InSliceFeatures, int);
+  void SetInSliceFeaturesToNoise() { this->SetInSliceFeatures(IN_SLICE_NOISE); }
+  void SetInSliceFeaturesToAlongLine() { this->SetInSliceFeatures(IN_SLICE_ALONG_LINE); }
   ///@}
 
   ///@{
@@ -279,6 +293,7 @@ class vtkContourFeatureSmoothingFilter : public vtkPolyDataAlgorithm {
   double DeltaFactor = 0.5;
   int Window = 7;
   double CornerSpread = 0.1;
+  int InSliceFeatures = IN_SLICE_NOISE;
   int PrefilterIterations = 0;
   double UmbilicTolerance = 0.05;
   double MinReciprocalCondition = 1e-6;
