@@ -23,8 +23,14 @@ rows=(
   "paper, 20 its, --measure normal --in-slice along-line|--method paper --iterations 20 --measure normal --in-slice along-line"
 )
 phantoms=(ridge-box femur pelvis)
-echo "| method (noise ${noise} HU) | ${phantoms[*]// / | } |" | sed 's/ridge-box femur pelvis/ridge-box | femur | pelvis/'
-echo "| --- | --- | --- | --- |"
+header="| method (noise ${noise} HU) |"
+rule="| --- |"
+for p in "${phantoms[@]}"; do
+  header+=" $p |"
+  rule+=" --- |"
+done
+echo "$header"
+echo "$rule"
 for row in "${rows[@]}"; do
   name="${row%%|*}"
   read -r -a args <<<"${row#*|}"
