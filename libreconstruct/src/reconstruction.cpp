@@ -15,8 +15,8 @@ double seconds_since(std::chrono::steady_clock::time_point t) {
 }
 
 // Removes the connected components enclosing less than `min_volume` (cavity surfaces, which enclose a
-// negative volume, are kept) and compacts the vertex array.
-Mesh drop_small_components(Mesh mesh, double min_volume, std::size_t& dropped) {
+// negative volume, are kept) and compacts the vertex array; `roles` (one per face) follow the faces.
+Mesh drop_small_components(Mesh mesh, std::vector<FaceRole>& roles, double min_volume, std::size_t& dropped) {
   const Index n = mesh.num_vertices();
   const ComponentLabels components = component_labels(mesh);
   std::vector<double> volume(static_cast<std::size_t>(components.count), 0.0);
@@ -42,9 +42,14 @@ Mesh drop_small_components(Mesh mesh, double min_volume, std::size_t& dropped) {
     kept.slice_ids.push_back(mesh.slice_ids[i]);
     kept.contour_ids.push_back(mesh.contour_ids[i]);
   }
-  for (const Triangle& t : mesh.triangles) {
-    if (remap[t[0]] >= 0) kept.triangles.push_back({remap[t[0]], remap[t[1]], remap[t[2]]});
+  std::vector<FaceRole> kept_roles;
+  for (std::size_t f = 0; f < mesh.triangles.size(); ++f) {
+    const Triangle& t = mesh.triangles[f];
+    if (remap[t[0]] < 0) continue;
+    kept.triangles.push_back({remap[t[0]], remap[t[1]], remap[t[2]]});
+    kept_roles.push_back(roles[f]);
   }
+  roles = std::move(kept_roles);
   return kept;
 }
 
@@ -96,7 +101,8 @@ Reconstruction reconstruct(const CtImage& image, const ReconstructionOptions& op
   }
   const auto spacing = image.GetSpacing();
   const double min_volume = options.min_component_voxels * spacing[0] * spacing[1] * spacing[2];
-  out.mesh = drop_small_components(std::move(tiled.mesh), min_volume, out.report.dropped_components);
+  out.face_roles = std::move(tiled.face_roles);
+  out.mesh = drop_small_components(std::move(tiled.mesh), out.face_roles, min_volume, out.report.dropped_components);
   if (out.mesh.num_faces() == 0) {
     throw InvalidInputError("every reconstructed piece is smaller than " + std::to_string(options.min_component_voxels) +
                             " voxels");

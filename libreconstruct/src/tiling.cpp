@@ -43,7 +43,11 @@ class MeshBuilder {
     contours_.push_back(contour);
     return static_cast<Index>(positions_.size() - 1);
   }
-  void add_triangle(Index a, Index b, Index c) { triangles_.push_back({a, b, c}); }
+  void add_triangle(Index a, Index b, Index c, FaceRole role = FaceRole::Band) {
+    triangles_.push_back({a, b, c});
+    roles_.push_back(role);
+  }
+  std::vector<FaceRole> take_roles() { return std::move(roles_); }
 
   Mesh finish(bool flip) {
     Mesh mesh;
@@ -64,6 +68,7 @@ class MeshBuilder {
   std::vector<Eigen::Vector3d> positions_;
   std::vector<std::int32_t> slices_, contours_;
   std::vector<Triangle> triangles_;
+  std::vector<FaceRole> roles_;
 };
 
 double triangle_area(const Eigen::Vector3d& a, const Eigen::Vector3d& b, const Eigen::Vector3d& c) {
@@ -217,11 +222,11 @@ void close_quad(const std::array<Index, 4>& q, bool forward, const std::vector<E
   const double d02 = (pos[0] - pos[2]).squaredNorm();
   const double d13 = (pos[1] - pos[3]).squaredNorm();
   if (d02 <= d13) {
-    out.add_triangle(c[0], c[1], c[2]);
-    out.add_triangle(c[0], c[2], c[3]);
+    out.add_triangle(c[0], c[1], c[2], FaceRole::Bridge);
+    out.add_triangle(c[0], c[2], c[3], FaceRole::Bridge);
   } else {
-    out.add_triangle(c[1], c[2], c[3]);
-    out.add_triangle(c[1], c[3], c[0]);
+    out.add_triangle(c[1], c[2], c[3], FaceRole::Bridge);
+    out.add_triangle(c[1], c[3], c[0], FaceRole::Bridge);
   }
 }
 
@@ -576,8 +581,8 @@ TilingResult tile_contours(const ContourStack& stack, const TilingOptions& optio
                : t[k].polygon == 0 ? outer.ids[t[k].vertex]
                                    : holes[t[k].polygon - 1].ids[t[k].vertex];
       }
-      if (facing_up) builder.add_triangle(v[0], v[1], v[2]);
-      else builder.add_triangle(v[0], v[2], v[1]);
+      if (facing_up) builder.add_triangle(v[0], v[1], v[2], FaceRole::Cap);
+      else builder.add_triangle(v[0], v[2], v[1], FaceRole::Cap);
     }
     ++result.stats.caps;
   };
@@ -613,6 +618,7 @@ TilingResult tile_contours(const ContourStack& stack, const TilingOptions& optio
   }
 
   const bool left_handed = stack.axis_u.cross(stack.axis_v).dot(stack.axis_w) < 0.0;
+  result.face_roles = builder.take_roles();
   result.mesh = builder.finish(left_handed);
   return result;
 }

@@ -8,6 +8,7 @@
 #include <reconstruct/volume.h>
 #include <smooth/errors.h>
 #include <smooth/limits.h>
+#include <smooth/mesh_quality.h>
 #include <smooth/metrics.h>
 #include <smooth/topology.h>
 
@@ -84,6 +85,12 @@ int run_reconstruct(const ReconstructArgs& a) {
   progress.finish();
   const TopologySummary topo = summarize_topology(r.mesh);
   const double volume = enclosed_volume(r.mesh);
+  // Caps are flat by construction: the shelf measure counts the other faces parallel to the slices.
+  std::vector<std::uint8_t> caps(r.face_roles.size(), 0);
+  for (std::size_t f = 0; f < caps.size(); ++f) caps[f] = r.face_roles[f] == FaceRole::Cap ? 1 : 0;
+  MeshQualityOptions quality_options;
+  quality_options.slice_axis = r.contours.axis_w;
+  const MeshQuality quality = mesh_quality(r.mesh, quality_options, caps);
   const auto size = image->GetLargestPossibleRegion().GetSize();
   const auto spacing = image->GetSpacing();
   if (a.json) {
@@ -109,6 +116,12 @@ int run_reconstruct(const ReconstructArgs& a) {
     j["is_manifold"] = topo.manifold;
     j["euler_characteristic"] = topo.euler_characteristic;
     j["volume"] = volume;
+    j["area"] = quality.area;
+    j["sliver_area_share"] = quality.sliver_area_share;
+    j["min_angle_degrees"] = quality.min_angle_degrees;
+    j["shelf_area"] = quality.shelf_area;
+    j["shelf_area_share"] = quality.shelf_area_share;
+    j["share_without_ids"] = quality.share_without_ids;
     j["seconds_segment"] = r.report.seconds_segment;
     j["seconds_tile"] = r.report.seconds_tile;
     j["seconds"] = seconds_since(start);
@@ -127,6 +140,10 @@ int run_reconstruct(const ReconstructArgs& a) {
             << (topo.closed ? "closed" : "OPEN") << ", " << (topo.manifold ? "manifold" : "NOT manifold")
             << ", Euler characteristic " << topo.euler_characteristic << ", volume " << std::setprecision(1) << volume
             << " mm^3\n"
+            << "  quality    " << std::setprecision(1) << 100.0 * quality.sliver_area_share
+            << " % of the area in faces with an angle under 10 degrees, " << 100.0 * quality.shelf_area_share
+            << " % in faces within 10 degrees of the slices (caps left out), " << 100.0 * quality.share_without_ids
+            << " % of the vertices without ids\n"
             << "  wrote      " << a.output << " in " << std::setprecision(2) << seconds_since(start) << " s\n";
   return kOk;
 }

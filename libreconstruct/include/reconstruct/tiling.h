@@ -10,6 +10,8 @@
 #include <smooth/progress.h>
 
 #include <cstddef>
+#include <cstdint>
+#include <vector>
 
 namespace contourmesh {
 
@@ -48,8 +50,16 @@ struct TilingStats {
   std::size_t hole_contours = 0;     ///< hole contours meshed
 };
 
+/// What a face of a tiled mesh closes or joins, for quality reports and renders.
+enum class FaceRole : std::uint8_t {
+  Band,    ///< between two contour levels (slice contours, intermediate contours or end copies)
+  Bridge,  ///< the flat fill under a bridge of a mid-plane composite (branching left to Meyers' method)
+  Cap,     ///< closes a contour that ends (an object's end, a cavity's roof or floor): flat by construction
+};
+
 struct TilingResult {
   Mesh mesh;
+  std::vector<FaceRole> face_roles;  ///< one per face of `mesh`
   TilingStats stats;
 };
 
