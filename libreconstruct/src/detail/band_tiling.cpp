@@ -231,15 +231,17 @@ double directed_distance(const Polygon& a, const Polygon& b) {
   const std::size_t n = b.size();
   for (const Eigen::Vector2d& p : a) {
     double best2 = std::numeric_limits<double>::infinity();
+    std::size_t nearest = start;
     for (std::size_t k = 0; k < n; ++k) {
       const std::size_t j = (start + k) % n;
       const double d2 = (b[j] - p).squaredNorm();
       if (d2 < best2) {
         best2 = d2;
-        start = j;
+        nearest = j;
         if (best2 <= worst2) break;
       }
     }
+    start = nearest;
     worst2 = std::max(worst2, best2);
   }
   return std::sqrt(worst2);

@@ -25,8 +25,10 @@ class UnionFind {
 };
 
 bool overlaps(const LevelContour& a, const LevelContour& b, double fraction) {
-  if (!a.box.intersects(b.box)) return false;
-  return overlap_area(a.points, b.points) > fraction * std::min(a.area, b.area);
+  const double needed = fraction * std::min(a.area, b.area);
+  // The regions cannot overlap by more than their boxes do.
+  if (!a.box.intersects(b.box) || a.box.intersection(b.box).volume() <= needed) return false;
+  return overlap_area(a.points, b.points) > needed;
 }
 
 // Share of hole `h` covered by the regions of `outers` of `other` (their holes excluded).

@@ -4,6 +4,7 @@
 #include "detail/branching.h"
 #include "detail/caps.h"
 #include "detail/correspondence.h"
+#include "detail/lifted_transition.h"
 #include "detail/shape_interpolation.h"
 
 #include <algorithm>
@@ -217,13 +218,26 @@ class SlabTiler {
       const std::vector<BandTriangle> band = untwisted_band(lo.points, lower.w, hi.points, upper.w, options_,
                                                             0.5 * (lo.spacing() + hi.spacing()), &pair_twisted);
       const BandQuality q = band_quality(lo.points, lower.w, hi.points, upper.w, band);
-      twisted = twisted || pair_twisted;
+      emit_band(lo, hi, band, direct);
       quality.area += q.area;
       quality.sliver_area += q.sliver_area;
       quality.longest_cross_edge = std::max(quality.longest_cross_edge, q.longest_cross_edge);
-      emit_band(lo, hi, band, direct);
+      twisted = twisted || pair_twisted;
     }
     if (top) direct.stats.one_to_one += pairs.size();
+    if (quality.sliver_share() > options_.max_band_sliver_share) {
+      // A nearly flat band between nested contours: the lifted triangulation of the region between.
+      SlabMesh lifted = out.scratch();
+      if (lifted_transition(restrict_level(lower, group.lower), restrict_level(upper, group.upper), lifted) &&
+          measure_defects(lifted).score() < measure_defects(direct).score()) {
+        if (top) lifted.stats.one_to_one += pairs.size();
+        direct = std::move(lifted);
+        const TilingDefects d = measure_defects(direct);
+        quality.area = d.area;
+        quality.sliver_area = d.sliver_area;
+        twisted = false;
+      }
+    }
     if (twisted && options_.branching == Branching::Interpolated && depth < options_.max_branching_depth) {
       // A topology change in disguise: the halves through the mid-level, if they do better.
       const Level lo = restrict_level(lower, group.lower), hi = restrict_level(upper, group.upper);
@@ -244,7 +258,7 @@ class SlabTiler {
       const Span s = with_interpolation(lo, hi, span, owned);
       const Interpolation::Claims before = s.interpolation->claims();
       if (refine_band(lo, hi, s, steps, depth, refined) &&
-          measure_defects(refined).poor_area < measure_defects(direct).poor_area) {
+          measure_defects(refined).score() < measure_defects(direct).score()) {
         if (top) ++refined.stats.refined_bands;
         out.absorb(std::move(refined));
         return;
@@ -283,6 +297,16 @@ class SlabTiler {
     SlabMesh composite = out.scratch();
     tile_composite(lower, upper, options_, composite);
     TilingDefects best = measure_defects(composite);
+    if (best.poor_area > 0.0) {
+      SlabMesh lifted = out.scratch();
+      if (lifted_transition(lower, upper, lifted)) {
+        const TilingDefects d = measure_defects(lifted);
+        if (d.score() < best.score()) {
+          best = d;
+          composite = std::move(lifted);
+        }
+      }
+    }
     if (options_.branching == Branching::Interpolated && depth < options_.max_branching_depth && best.poor_area > 0.0) {
       SlabMesh halves = out.scratch();
       if (try_halves(lower, upper, span, depth, best, halves)) {
@@ -307,7 +331,7 @@ class SlabTiler {
     for (const Level* level : {&lower, &upper}) {
       for (const LevelContour& c : level->contours) cap_area += c.is_hole ? -c.area : c.area;
     }
-    if (cap_area >= rival.poor_area) return false;
+    if (cap_area >= rival.score()) return false;
     // Only a tiling that joins the levels across far more than they are apart has failed.
     Polygon lower_points, upper_points;
     for (const LevelContour& c : lower.contours) lower_points.insert(lower_points.end(), c.points.begin(), c.points.end());
@@ -340,7 +364,7 @@ class SlabTiler {
       const Level middle = span.interpolation->take(tm, chosen, halves);
       tile(lower, middle, {span.interpolation, span.t0, tm}, depth + 1, true, false, halves);
       tile(middle, upper, {span.interpolation, tm, span.t1}, depth + 1, true, false, halves);
-      if (measure_defects(halves).poor_area < rival.poor_area) {
+      if (measure_defects(halves).score() < rival.score()) {
         out.absorb(std::move(halves));
         return true;
       }

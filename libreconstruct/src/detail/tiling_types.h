@@ -96,6 +96,9 @@ struct TilingDefects {
   double sliver_area = 0.0;
   double poor_area = 0.0;  ///< flat or sliver
   double longest_edge = 0.0;
+  /// What candidate tilings are compared by (less is better): flat and sliver area, a face that is both
+  /// counting twice.
+  [[nodiscard]] double score() const { return flat_area + sliver_area; }
 };
 [[nodiscard]] TilingDefects measure_defects(const SlabMesh& mesh);
 
