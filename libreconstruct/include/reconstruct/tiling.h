@@ -43,7 +43,9 @@ enum class Branching {
 enum class BandRefinement {
   /// A band whose faces include slivers (a surface nearly parallel to the slices: the contours are many
   /// spacings apart in the plane) is tiled again through intermediate contours from the same
-  /// interpolation, about `max_band_aspect` contour spacings apart. Default.
+  /// interpolation, about `max_band_aspect` contour spacings apart, and, where the contours are nested
+  /// in the plane, as a lifted triangulation of the region between them; the tiling with less flat and
+  /// sliver area is kept. Default.
   Interpolated,
   /// Every one-to-one pair is one band of the minimum-area tiling, however thin its triangles.
   None,

@@ -225,7 +225,7 @@ class SlabTiler {
       twisted = twisted || pair_twisted;
     }
     if (top) direct.stats.one_to_one += pairs.size();
-    if (quality.sliver_share() > options_.max_band_sliver_share) {
+    if (options_.band_refinement == BandRefinement::Interpolated && quality.sliver_share() > options_.max_band_sliver_share) {
       // A nearly flat band between nested contours: the lifted triangulation of the region between.
       SlabMesh lifted = out.scratch();
       if (lifted_transition(restrict_level(lower, group.lower), restrict_level(upper, group.upper), lifted) &&
