@@ -15,7 +15,7 @@ namespace contourmesh::cli {
 
 void add_common_options(CLI::App* command, CommonArgs& args) {
   command->add_flag("-q,--quiet", args.quiet, "No progress and no summary; errors are still printed");
-  command->add_option("--threads", args.threads, "Worker threads for the ITK stages (read, segment; 0: every core)")
+  command->add_option("--threads", args.threads, "Worker threads (ITK's read and segment stages, tiling; 0: every core)")
       ->capture_default_str();
 }
 

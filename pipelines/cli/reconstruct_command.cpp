@@ -33,6 +33,7 @@ struct ReconstructArgs {
   double min_area = 2.0;
   bool fill_holes = false;
   std::string end_caps = "half-spacing";
+  std::string branching = "interpolated";
   std::string format = "auto";
   Index max_vertices = kDefaultMaxVertices;
   bool json = false;
@@ -62,6 +63,10 @@ int run_reconstruct(const ReconstructArgs& a) {
   if (a.end_caps == "half-spacing") options.tiling.end_caps = EndCaps::HalfSpacing;
   else if (a.end_caps == "end-slice") options.tiling.end_caps = EndCaps::AtEndSlice;
   else throw InvalidInputError("--end-caps must be half-spacing or end-slice, got '" + a.end_caps + "'");
+  if (a.branching == "interpolated") options.tiling.branching = Branching::Interpolated;
+  else if (a.branching == "mid-plane") options.tiling.branching = Branching::MidPlaneComposite;
+  else throw InvalidInputError("--branching must be interpolated or mid-plane, got '" + a.branching + "'");
+  options.tiling.threads = a.common.threads;
   MeshWriteOptions write_options;
   write_options.format = parse_mesh_format(a.format);
   if (write_options.format == MeshFormat::Auto) (void)format_from_extension(a.output);  // fail before the work
@@ -106,6 +111,11 @@ int run_reconstruct(const ReconstructArgs& a) {
     j["contours"] = r.report.contours;
     j["hole_contours"] = r.report.hole_contours;
     j["branchings"] = r.report.tiling.branchings;
+    j["one_to_one"] = r.report.tiling.one_to_one;
+    j["refined_bands"] = r.report.tiling.refined_bands;
+    j["intermediate_contours"] = r.report.tiling.intermediate_contours;
+    j["composites"] = r.report.tiling.composites;
+    j["partings"] = r.report.tiling.partings;
     j["caps"] = r.report.tiling.caps;
     j["dropped_contours"] = r.report.tiling.dropped_contours;
     j["dropped_components"] = r.report.dropped_components;
@@ -135,6 +145,9 @@ int run_reconstruct(const ReconstructArgs& a) {
             << "  contours   " << r.report.contours << " (" << r.report.hole_contours << " holes) on "
             << r.report.slices_with_contours << " slices, " << r.report.tiling.branchings << " branchings, "
             << r.report.tiling.caps << " caps\n"
+            << "  tiling     " << r.report.tiling.intermediate_contours << " intermediate contours, "
+            << r.report.tiling.refined_bands << " bands refined, " << r.report.tiling.composites << " composites, "
+            << r.report.tiling.partings << " partings\n"
             << "  mesh       " << r.mesh.num_vertices() << " vertices, " << r.mesh.num_faces() << " triangles, "
             << topo.components << " component" << (topo.components == 1 ? "" : "s") << ", "
             << (topo.closed ? "closed" : "OPEN") << ", " << (topo.manifold ? "manifold" : "NOT manifold")
@@ -167,6 +180,10 @@ void add_reconstruct_command(CLI::App& app) {
   cmd->add_flag("--fill-holes", args->fill_holes, "Fill every hole in every slice");
   cmd->add_option("--end-caps", args->end_caps,
                   "Where objects end: half-spacing (half a slice beyond the last contour) | end-slice")
+      ->capture_default_str();
+  cmd->add_option("--branching", args->branching,
+                  "Where contours split, merge or a hole opens: interpolated (shape-based interpolation, mid-plane "
+                  "composites only at the finest level) | mid-plane (composites only)")
       ->capture_default_str();
   cmd->add_option("--format", args->format, "Output format: auto | stl | stl-ascii | ply | vtp | obj")
       ->capture_default_str();
