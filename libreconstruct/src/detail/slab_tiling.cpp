@@ -52,27 +52,37 @@ class Interpolation {
   [[nodiscard]] double w(double t) const { return w0_ + t * (w1_ - w0_); }
 
   // The contours of level t that belong to the piece whose contours are `lower` and `upper` and that
-  // no other piece has taken: outer contours with most of their area in the piece's regions, and their
-  // holes. Empty when the level cannot be made or nothing belongs to the piece.
+  // no other piece has taken: outer contours that meet the piece's outer contours, and their holes. Empty when the level cannot be made or nothing belongs to the piece.
   std::vector<std::size_t> select(double t, const Level& lower, const Level& upper) {
     Extracted& e = level(t);
     std::vector<std::size_t> chosen;
     if (!e.contours) return chosen;
     const auto& contours = *e.contours;
     std::vector<std::uint8_t> is_chosen(contours.size(), 0);
+    // A level's contours lie in the union of the regions of the two levels it comes between, and the
+    // pieces' regions are apart: a contour belongs to the piece when it and one of the piece's outer
+    // contours hold a point of each other.
+    auto meets = [](const Polygon& a, const Eigen::AlignedBox2d& box_a, const LevelContour& b) {
+      if (!box_a.intersects(b.box)) return false;
+      const std::size_t step_a = std::max<std::size_t>(1, a.size() / 8), step_b = std::max<std::size_t>(1, b.points.size() / 8);
+      for (std::size_t i = 0; i < a.size(); i += step_a) {
+        if (b.box.contains(a[i]) && point_in_polygon(b.points, a[i])) return true;
+      }
+      for (std::size_t i = 0; i < b.points.size(); i += step_b) {
+        if (box_a.contains(b.points[i]) && point_in_polygon(a, b.points[i])) return true;
+      }
+      return false;
+    };
     for (std::size_t k = 0; k < contours.size(); ++k) {
       const InterpolatedContour& c = contours[k];
       if (c.is_hole || e.claimed[k]) continue;
       Eigen::AlignedBox2d box;
       for (const Eigen::Vector2d& p : c.points) box.extend(p);
-      const double area = std::abs(signed_area(c.points));
-      double inside = 0.0;
+      bool belongs = false;
       for (const Level* level : {&lower, &upper}) {
-        for (const LevelContour& o : level->contours) {
-          if (!o.is_hole && o.box.intersects(box)) inside += overlap_area(c.points, o.points);
-        }
+        for (const LevelContour& o : level->contours) belongs = belongs || (!o.is_hole && meets(c.points, box, o));
       }
-      if (inside > 0.5 * area) {
+      if (belongs) {
         is_chosen[k] = 1;
         chosen.push_back(k);
       }
@@ -144,6 +154,10 @@ class Interpolation {
   DistancePair fields_;
   std::map<double, Extracted> levels_;
 };
+
+// A candidate tiling whose flat and sliver area (TilingDefects::score) is at most this share of its area
+// is kept without trying the costlier ones.
+constexpr double kGoodEnough = 0.02;
 
 // Where a slab lies in its group's interpolation: levels t0 and t1 of `interpolation`, or, without
 // one, between two slices (t0 = 0, t1 = 1 of the interpolation a group makes when it needs one).
@@ -307,7 +321,10 @@ class SlabTiler {
         }
       }
     }
-    if (options_.branching == Branching::Interpolated && depth < options_.max_branching_depth && best.poor_area > 0.0) {
+    // The halves cost a level of interpolation and the tilings of both; they are tried when the
+    // composite has flat bridges or leaves a noticeable share of its area flat or in slivers.
+    if (options_.branching == Branching::Interpolated && depth < options_.max_branching_depth &&
+        (best.bridge_area > 0.0 || best.score() > kGoodEnough * best.area)) {
       SlabMesh halves = out.scratch();
       if (try_halves(lower, upper, span, depth, best, halves)) {
         best = measure_defects(halves);

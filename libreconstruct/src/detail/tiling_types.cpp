@@ -106,6 +106,7 @@ TilingDefects measure_defects(const SlabMesh& mesh) {
     if (flat) d.flat_area += area;
     if (sliver) d.sliver_area += area;
     if (flat || sliver) d.poor_area += area;
+    if (mesh.roles[f] == FaceRole::Bridge) d.bridge_area += area;
   }
   return d;
 }

@@ -95,6 +95,7 @@ struct TilingDefects {
   double flat_area = 0.0;
   double sliver_area = 0.0;
   double poor_area = 0.0;  ///< flat or sliver
+  double bridge_area = 0.0;  ///< faces of role Bridge
   double longest_edge = 0.0;
   /// What candidate tilings are compared by (less is better): flat and sliver area, a face that is both
   /// counting twice.
