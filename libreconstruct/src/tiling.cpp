@@ -45,6 +45,7 @@ constexpr double kBytesPerTiledVertex = 120.0;
 void check_options(const TilingOptions& o) {
   auto fail = [](const std::string& what) { throw InvalidInputError("tiling: " + what); };
   if (!(o.min_overlap_fraction > 0.0 && o.min_overlap_fraction <= 1.0)) fail("min_overlap_fraction must be in (0, 1]");
+  if (!(o.min_overlap_of_larger >= 0.0 && o.min_overlap_of_larger < 1.0)) fail("min_overlap_of_larger must be in [0, 1)");
   if (o.max_branching_depth < 0) fail("max_branching_depth must be >= 0");
   if (!(o.max_band_sliver_share >= 0.0 && o.max_band_sliver_share <= 1.0)) fail("max_band_sliver_share must be in [0, 1]");
   if (!(o.max_band_aspect > 0.0) || !std::isfinite(o.max_band_aspect)) fail("max_band_aspect must be > 0");
@@ -118,7 +119,7 @@ TilingResult tile_contours(const ContourStack& stack, const TilingOptions& optio
   }
   std::vector<detail::Correspondence> links(S > 0 ? S - 1 : 0);
   run_in_order(links.size(), threads,
-               [&](std::size_t s) { links[s] = detail::correspond(levels[s], levels[s + 1], options.min_overlap_fraction); },
+               [&](std::size_t s) { links[s] = detail::correspond(levels[s], levels[s + 1], options); },
                {});
   // Contours with no partner on either side would be zero-thickness sheets: drop them (their holes too).
   std::vector<std::vector<int>> kept(S);

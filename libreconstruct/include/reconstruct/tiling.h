@@ -73,6 +73,10 @@ struct TilingOptions {
   /// Two contours of adjacent slices correspond when the area of overlap of their regions exceeds this
   /// fraction of the smaller region (outer contours: the filled outline; holes: the hole). In (0, 1].
   double min_overlap_fraction = 0.05;
+  /// ... and this fraction of the larger, in [0, 1): a speck inside a large contour (a pocket in a thin
+  /// wall next to a large cavity, what is left of a bone in a slice where thresholding lost it) does not
+  /// continue it.
+  double min_overlap_of_larger = 0.01;
   /// One-to-one pairs are tiled by the minimum-area dynamic programme of Fuchs, Kedem and Uselton
   /// (1977) over the full m x n grid while m * n is at most this; larger pairs use a band of
   /// +/- `band_fraction` of the contour length around the arc-length diagonal.

@@ -249,7 +249,7 @@ bool tile_nested(const Level& lower, const Level& upper, const std::vector<int>&
 }  // namespace
 
 void tile_composite(const Level& lower, const Level& upper, const TilingOptions& options, SlabMesh& out) {
-  const Correspondence links = correspond(lower, upper, options.min_overlap_fraction);
+  const Correspondence links = correspond(lower, upper, options);
   const std::size_t na = lower.contours.size(), nb = upper.contours.size();
   const double w0 = lower.w, w1 = upper.w;
   const double extension = options.end_caps == EndCaps::HalfSpacing ? 0.5 * (w1 - w0) : 0.0;
@@ -289,7 +289,9 @@ void tile_composite(const Level& lower, const Level& upper, const TilingOptions&
     const LevelContour upper_ring = U.size() > 1 ? composite_of(upper, U, lower, both ? w0 + 2.0 * (w1 - w0) / 3.0 : 0.5 * (w0 + w1), false, out)
                                                  : upper.contours[static_cast<std::size_t>(U[0])];
     const double wu = U.size() > 1 ? (both ? w0 + 2.0 * (w1 - w0) / 3.0 : 0.5 * (w0 + w1)) : w1;
-    emit_band(lower_ring, upper_ring, minimum_area_band(lower_ring.points, wl, upper_ring.points, wu, options), out);
+    emit_band(lower_ring, upper_ring,
+              untwisted_band(lower_ring.points, wl, upper_ring.points, wu, options, 0.5 * (lower_ring.spacing() + upper_ring.spacing())),
+              out);
   }
   // Ends: outer contours with no partner (with their holes), and holes that end inside a continuing
   // outer contour.

@@ -24,8 +24,8 @@ class UnionFind {
   std::vector<std::size_t> parent_;
 };
 
-bool overlaps(const LevelContour& a, const LevelContour& b, double fraction) {
-  const double needed = fraction * std::min(a.area, b.area);
+bool overlaps(const LevelContour& a, const LevelContour& b, double of_smaller, double of_larger) {
+  const double needed = std::max(of_smaller * std::min(a.area, b.area), of_larger * std::max(a.area, b.area));
   // The regions cannot overlap by more than their boxes do.
   if (!a.box.intersects(b.box) || a.box.intersection(b.box).volume() <= needed) return false;
   // A coarse estimate decides unless it is near the threshold (its error is about 1/32 of the common
@@ -52,7 +52,11 @@ double covered_fraction(const LevelContour& h, const Level& other, const std::ve
 
 }  // namespace
 
-Correspondence correspond(const Level& lower, const Level& upper, double min_overlap_fraction) {
+Correspondence correspond(const Level& lower, const Level& upper, const TilingOptions& options) {
+  return correspond(lower, upper, options.min_overlap_fraction, options.min_overlap_of_larger);
+}
+
+Correspondence correspond(const Level& lower, const Level& upper, double of_smaller, double of_larger) {
   const auto& a = lower.contours;
   const auto& b = upper.contours;
   Correspondence c;
@@ -67,7 +71,7 @@ Correspondence correspond(const Level& lower, const Level& upper, double min_ove
   for (std::size_t i = 0; i < a.size(); ++i) {
     if (a[i].is_hole) continue;
     for (std::size_t j = 0; j < b.size(); ++j) {
-      if (!b[j].is_hole && overlaps(a[i], b[j], min_overlap_fraction)) link(i, j);
+      if (!b[j].is_hole && overlaps(a[i], b[j], of_smaller, of_larger)) link(i, j);
     }
   }
   // Holes correspond only when their outer contours do.
@@ -77,7 +81,7 @@ Correspondence correspond(const Level& lower, const Level& upper, double min_ove
     for (std::size_t j = 0; j < b.size(); ++j) {
       if (!b[j].is_hole || b[j].parent < 0) continue;
       if (std::find(parents_up.begin(), parents_up.end(), b[j].parent) == parents_up.end()) continue;
-      if (overlaps(a[i], b[j], min_overlap_fraction)) link(i, j);
+      if (overlaps(a[i], b[j], of_smaller, of_larger)) link(i, j);
     }
   }
   // A hole with no partner whose outer continues either ends (the material on the other side covers it)

@@ -19,9 +19,12 @@ struct Correspondence {
   std::vector<std::uint8_t> opens_down;  ///< per upper contour
 };
 
-/// Two outer contours correspond when their filled regions overlap by more than `min_overlap_fraction`
-/// of the smaller; two holes when their regions overlap so and their outer contours correspond.
-[[nodiscard]] Correspondence correspond(const Level& lower, const Level& upper, double min_overlap_fraction);
+/// Two outer contours correspond when their filled regions overlap by more than `of_smaller` of the
+/// smaller region and `of_larger` of the larger; two holes when their regions overlap so and their outer
+/// contours correspond.
+[[nodiscard]] Correspondence correspond(const Level& lower, const Level& upper, double of_smaller, double of_larger);
+/// The same with the fractions of `options`.
+[[nodiscard]] Correspondence correspond(const Level& lower, const Level& upper, const TilingOptions& options);
 
 /// The contours of one connected piece: outer contours joined by correspondence, with their holes.
 /// Indices into the lower and upper level, increasing.

@@ -174,7 +174,7 @@ class SlabTiler {
   // `depth`: how many times the slab has been halved; `refine`: whether bands may be refined (not
   // inside a refinement); `top`: the slab between two slices, whose groups the statistics count.
   void tile(const Level& lower, const Level& upper, Span span, int depth, bool refine, bool top, SlabMesh& out) {
-    const Correspondence links = correspond(lower, upper, options_.min_overlap_fraction);
+    const Correspondence links = correspond(lower, upper, options_);
     const double extension = options_.end_caps == EndCaps::HalfSpacing ? 0.5 * (upper.w - lower.w) : 0.0;
     for (const ContourGroup& group : contour_groups(lower, upper, links)) {
       std::vector<std::pair<int, int>> pairs;

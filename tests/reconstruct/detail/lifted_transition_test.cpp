@@ -55,6 +55,23 @@ TEST(LiftedTransition, SmallContoursInsideAnAnnulusFaceUpBetweenThem) {
   }
 }
 
+TEST(LiftedTransition, FillsOnBothSidesOfALevelShareNoEdgeInItsPlane) {
+  // A disc, two small discs side by side inside it, the disc again (fuzz_tiling's seed_one_to_two): the
+  // fills below and above the middle level would both join the two small discs across their 0.4 mm gap,
+  // the same edge in the middle plane used by four faces. Such edges are split off the plane.
+  test::TestStack stack;
+  const Level bottom{0.0, {stack.contour(circle_points(0, 0, 10, 12), 0.0)}};
+  const Level middle{2.0, {stack.contour(circle_points(-3.75, 0, 3.5, 12), 2.0), stack.contour(circle_points(3.75, 0, 3.5, 12), 2.0)}};
+  const Level top{4.0, {stack.contour(circle_points(0, 0, 10, 12), 4.0)}};
+  SlabMesh below = stack.slab(), lower = stack.slab(), upper = stack.slab(), above = stack.slab();
+  ASSERT_TRUE(lifted_transition(bottom, middle, lower));
+  ASSERT_TRUE(lifted_transition(middle, top, upper));
+  cap_end(bottom.contours[0], {}, 0.0, 0.0, false, TilingOptions{}, below);
+  cap_end(top.contours[0], {}, 4.0, 0.0, true, TilingOptions{}, above);
+  const test::Topology t = test::topology_of(stack.assemble({&below, &lower, &upper, &above}));
+  EXPECT_TRUE(t.closed && t.manifold) << t.problems;
+}
+
 TEST(LiftedTransition, CrossingContoursOrAnEndAreLeftToTheOthers) {
   test::TestStack stack;
   const Level lower{0.0, {stack.contour(circle_points(0, 0, 5, 30), 0.0)}};
