@@ -86,12 +86,6 @@ CrossSliceResult cross_slice_smooth(const Mesh& mesh, const CrossSliceOptions& o
   const detail::ContourFrame frame = detail::make_contour_frame(mesh);
 
   auto t = std::chrono::steady_clock::now();
-  DetectionOptions detection = options.detection;
-  if (!detection.progress) detection.progress = options.progress;
-  result.detection = detect_features(mesh, frame.adjacency, detection);
-  result.seconds_detect = seconds_since(t);
-
-  t = std::chrono::steady_clock::now();
   const Index n = mesh.num_vertices();
   Eigen::Matrix3Xd displacement = Eigen::Matrix3Xd::Zero(3, n);
   detail::LpaIciOptions lpa;
@@ -126,8 +120,15 @@ CrossSliceResult cross_slice_smooth(const Mesh& mesh, const CrossSliceOptions& o
   result.mesh = mesh;
   result.mesh.positions += displacement;
   result.seconds_smooth = seconds_since(t);
-  result.seconds_total = seconds_since(start);
   if (options.progress && !options.progress("smooth", 1.0)) throw CancelledError("smoothing");
+
+  // 4. Labels.
+  t = std::chrono::steady_clock::now();
+  result.features = detect_creases(result.mesh, frame.adjacency, options.features);
+  result.labels = result.features.labels;
+  result.seconds_detect = seconds_since(t);
+  result.seconds_total = seconds_since(start);
+  if (options.progress && !options.progress("detect", 1.0)) throw CancelledError("feature detection");
   return result;
 }
 

@@ -14,9 +14,11 @@
 //    windows stop at corners (ridges crossing the slices).
 // 3. Contour vertices move along their in-slice normals only, so they stay in their slice planes;
 //    vertices off the slices (caps, branchings) follow the harmonic extension of those displacements.
+// 4. Labels: the creases of the result (detect_creases), edge or corner, in a band along them.
 // With noise-free contours the estimated noise is zero and nothing moves.
 #pragma once
 
+#include "smooth/crease_detection.h"
 #include "smooth/feature_detection.h"
 #include "smooth/mesh.h"
 #include "smooth/progress.h"
@@ -46,15 +48,16 @@ struct CrossSliceOptions {
   CrossSliceStages stages = CrossSliceStages::AcrossThenAlong;
   /// Jacobi iterations of the harmonic extension to vertices off the slices, >= 0.
   int extension_iterations = 30;
-  /// Feature labels reported with the result (DetectionOptions of the paper's Algorithm 2).
-  DetectionOptions detection;
-  /// Stages "detect" and "smooth"; return false to cancel (CancelledError).
+  /// The feature labels of the result: creases of the smoothed mesh (crease_detection.h).
+  CreaseOptions features;
+  /// Stages "smooth" and "detect"; return false to cancel (CancelledError).
   ProgressCallback progress;
 };
 
 struct CrossSliceResult {
   Mesh mesh;                   ///< smoothed, same connectivity and ids
-  FeatureDetection detection;  ///< labels of the input vertices
+  std::vector<VertexLabel> labels;  ///< per vertex: Smooth, Edge, Corner, or Noise (a crease too short)
+  CreaseDetection features;         ///< how the labels were found
   double noise_across = 0.0;   ///< the noise levels used, mm
   double noise_along = 0.0;
   std::size_t profiles = 0;    ///< contour vertices corrected from a cross-slice profile

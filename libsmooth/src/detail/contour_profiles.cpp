@@ -66,9 +66,68 @@ void next_slice(const ContourFrame& f, Index from, bool upward, Out&& out) {
 
 }  // namespace
 
+namespace {
+
+// Where the plane (through `origin`, normal `plane_normal`) crosses the contour of the start vertices:
+// from the start vertex nearest to the plane, along the contour towards the plane, at most `max_steps`
+// edges. Returns false when it does not cross there.
+bool cut_contour(const ContourFrame& f, const Eigen::Matrix3Xd& x, const Index* start, int starts,
+                 const Eigen::Vector3d& origin, const Eigen::Vector3d& plane_normal, Eigen::Vector3d& cut,
+                 Index& edge_a, Index& edge_b) {
+  constexpr int kMaxSteps = 24;
+  Index j = -1;
+  double sj = std::numeric_limits<double>::infinity();
+  for (int k = 0; k < starts; ++k) {
+    const double s = (x.col(start[k]) - origin).dot(plane_normal);
+    if (std::abs(s) < std::abs(sj)) {
+      sj = s;
+      j = start[k];
+    }
+  }
+  if (j < 0) return false;
+  const auto signed_distance = [&](Index v) { return (x.col(v) - origin).dot(plane_normal); };
+  // Of j's two contour neighbours, walk towards the one on the other side of the plane, or nearer to it.
+  const auto& nb = f.contour.of[static_cast<std::size_t>(j)];
+  const double s0 = signed_distance(nb[0]), s1 = signed_distance(nb[1]);
+  const auto crosses = [&](double a, double b) { return (a <= 0.0) != (b <= 0.0); };
+  Index prev = j, cur = -1;
+  double sp = sj, sc = 0.0;
+  if (crosses(sj, s0) && crosses(sj, s1)) {
+    // Both edges cross (j sits on a fold): take the nearer crossing.
+    cur = std::abs(sj / (sj - s0)) <= std::abs(sj / (sj - s1)) ? nb[0] : nb[1];
+    sc = cur == nb[0] ? s0 : s1;
+  } else if (crosses(sj, s0)) {
+    cur = nb[0];
+    sc = s0;
+  } else if (crosses(sj, s1)) {
+    cur = nb[1];
+    sc = s1;
+  } else {
+    // No crossing next to j: walk towards the plane.
+    cur = std::abs(s0) < std::abs(s1) ? nb[0] : nb[1];
+    sc = cur == nb[0] ? s0 : s1;
+    for (int step = 0; step < kMaxSteps && !crosses(sp, sc); ++step) {
+      const auto& nc = f.contour.of[static_cast<std::size_t>(cur)];
+      const Index next = nc[0] == prev ? nc[1] : nc[0];
+      if (next < 0 || next == j) return false;
+      prev = cur;
+      cur = next;
+      sp = sc;
+      sc = signed_distance(cur);
+    }
+    if (!crosses(sp, sc)) return false;
+  }
+  const double t = sp / (sp - sc);
+  cut = x.col(prev) + t * (x.col(cur) - x.col(prev));
+  edge_a = prev;
+  edge_b = cur;
+  return true;
+}
+
+}  // namespace
+
 void cross_slice_profile(const ContourFrame& f, const Eigen::Matrix3Xd& x, Index i, const Eigen::Vector3d& m, int reach,
                          Profile& out) {
-  constexpr int kMaxSteps = 24;
   constexpr int kMaxStarts = 16;
   out.clear();
   out.push(0.0, 0.0);
@@ -78,51 +137,18 @@ void cross_slice_profile(const ContourFrame& f, const Eigen::Matrix3Xd& x, Index
   std::array<Index, kMaxStarts> start{};
   for (const bool upward : {true, false}) {
     int starts = 0;
-    next_slice(f, i, upward, [&](Index j) {
+    const auto add = [&](Index j) {
       if (starts < kMaxStarts) start[static_cast<std::size_t>(starts++)] = j;
-    });
+    };
+    next_slice(f, i, upward, add);
     for (int k = 1; k <= reach && starts > 0; ++k) {
-      double best = std::numeric_limits<double>::infinity();
       Eigen::Vector3d cut = Eigen::Vector3d::Zero();
       Index edge_a = -1, edge_b = -1;
-      for (int s = 0; s < starts; ++s) {
-        const Index j0 = start[static_cast<std::size_t>(s)];
-        const double s0 = (x.col(j0) - v).dot(plane_normal);
-        for (int side = 0; side < 2; ++side) {
-          Index prev = j0, cur = f.contour.of[static_cast<std::size_t>(j0)][static_cast<std::size_t>(side)];
-          double sp = s0;
-          for (int step = 0; step < kMaxSteps && cur >= 0; ++step) {
-            const double sc = (x.col(cur) - v).dot(plane_normal);
-            if ((sp <= 0.0) != (sc <= 0.0)) {
-              const double t = sp / (sp - sc);
-              const Eigen::Vector3d q = x.col(prev) + t * (x.col(cur) - x.col(prev));
-              const Eigen::Vector3d r = q - v;
-              const double off_axis = (r - r.dot(f.axis) * f.axis).squaredNorm();
-              if (off_axis < best) {
-                best = off_axis;
-                cut = q;
-                edge_a = prev;
-                edge_b = cur;
-              }
-              break;
-            }
-            // Walking away from the plane on this side: the crossing is the other way.
-            // (keep walking: a contour may turn back towards the plane)
-            const auto& nb = f.contour.of[static_cast<std::size_t>(cur)];
-            const Index next = nb[0] == prev ? nb[1] : nb[0];
-            prev = cur;
-            cur = next;
-            sp = sc;
-          }
-        }
-      }
-      if (edge_a < 0 || best > max_offset * max_offset) break;
+      if (!cut_contour(f, x, start.data(), starts, v, plane_normal, cut, edge_a, edge_b)) break;
       const Eigen::Vector3d r = cut - v;
+      if ((r - r.dot(f.axis) * f.axis).squaredNorm() > max_offset * max_offset) break;
       if (!out.push(r.dot(f.axis) / f.slice_spacing, r.dot(m))) break;
       starts = 0;
-      const auto add = [&](Index j) {
-        if (starts < kMaxStarts) start[static_cast<std::size_t>(starts++)] = j;
-      };
       next_slice(f, edge_a, upward, add);
       next_slice(f, edge_b, upward, add);
     }
