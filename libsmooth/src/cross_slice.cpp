@@ -44,7 +44,7 @@ std::size_t smooth_profiles(const detail::ContourFrame& frame, const Eigen::Matr
     for (std::size_t k = begin; k < end; ++k) {
       const Index i = static_cast<Index>(k);
       if (!frame.is_contour_vertex(i) || !detail::in_slice_normal(frame, normals.col(i), m)) continue;
-      make_profile(positions, i, m, profile);
+      make_profile(positions, normals, i, m, profile);
       const detail::LpaIciResult r = detail::lpa_ici(profile, lpa);
       if (!r.valid) continue;
       displacement.col(i) += r.value * m;
@@ -97,8 +97,9 @@ CrossSliceResult cross_slice_smooth(const Mesh& mesh, const CrossSliceOptions& o
   lpa.sigma = result.noise_across;
   lpa.max_half_width = options.reach;
   result.profiles = smooth_profiles(frame, mesh.positions, normals, lpa, displacement,
-                                    [&](const Eigen::Matrix3Xd& x, Index i, const Eigen::Vector3d& m, detail::Profile& p) {
-                                      detail::cross_slice_profile(frame, x, i, m, options.reach, p);
+                                    [&](const Eigen::Matrix3Xd& x, const Eigen::Matrix3Xd& nx, Index i,
+                                        const Eigen::Vector3d& m, detail::Profile& p) {
+                                      detail::cross_slice_profile(frame, x, nx, i, m, options.reach, p);
                                     });
   if (options.progress && !options.progress("smooth", 0.5)) throw CancelledError("smoothing");
 
@@ -110,7 +111,8 @@ CrossSliceResult cross_slice_smooth(const Mesh& mesh, const CrossSliceOptions& o
     lpa.sigma = result.noise_along;
     lpa.max_half_width = options.along_reach;
     (void)smooth_profiles(frame, across, across_normals, lpa, displacement,
-                          [&](const Eigen::Matrix3Xd& x, Index i, const Eigen::Vector3d& m, detail::Profile& p) {
+                          [&](const Eigen::Matrix3Xd& x, const Eigen::Matrix3Xd&, Index i, const Eigen::Vector3d& m,
+                              detail::Profile& p) {
                             detail::along_contour_profile(frame, x, i, m, options.along_reach, p);
                           });
   }
