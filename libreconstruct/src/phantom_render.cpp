@@ -4,6 +4,8 @@
 
 #include "reconstruct/volume.h"
 
+#include "detail/contour_noise.h"
+
 #include <smooth/errors.h>
 #include <smooth/limits.h>
 
@@ -17,6 +19,7 @@
 #include <random>
 #include <string>
 #include <thread>
+#include <utility>
 #include <vector>
 
 namespace contourmesh {
@@ -25,8 +28,11 @@ namespace {
 
 using Vec3 = Eigen::Vector3d;
 
+constexpr int kMaxSamples = 16;  // supersamples per voxel along an axis, at most
+
 struct Renderer {
   const ScalarField& sdf;
+  const std::vector<detail::ContourNoiseField>* fields;  // contour noise per slice, or null
   Vec3 origin;  // centre of voxel (0, 0, 0)
   Vec3 spacing;
   std::array<std::int64_t, 3> size;
@@ -60,23 +66,34 @@ struct Renderer {
     return count;
   }
 
+  // The contour noise of one voxel: f at its columns of supersamples (x fastest), and its extremes.
+  struct VoxelNoise {
+    const double* f = nullptr;  // null: no contour noise
+    double low = 0.0;           // min(0, min f)
+    double high = 0.0;          // max(0, max f)
+  };
+
   // Number of supersamples inside the solid among those of `r` (sample indices of the voxel whose
-  // lower corner is `corner`); `d` is the sdf at the centre of the range.
-  int count_inside(const Vec3& corner, const Vec3& step, const Range& r, double d) const {
+  // lower corner is `corner`); `d` is the sdf at the centre of the range. A sample is inside when
+  // sdf - f < 0, with f the voxel's contour noise at the sample's column.
+  int count_inside(const Vec3& corner, const Vec3& step, const Range& r, double d, const VoxelNoise& noise) const {
     const Vec3 lo(r[0], r[2], r[4]);
     const Vec3 hi(r[1], r[3], r[5]);
     const int count = static_cast<int>((r[1] - r[0]) * (r[3] - r[2]) * (r[5] - r[4]));
-    if (count == 1) return d < 0.0 ? 1 : 0;
+    if (count == 1) {
+      const double f = noise.f ? noise.f[r[2] * samples[0] + r[0]] : 0.0;
+      return d - f < 0.0 ? 1 : 0;
+    }
     const double half_diagonal = 0.5 * (hi - lo).cwiseProduct(step).norm();
-    if (d >= half_diagonal) return 0;
-    if (d <= -half_diagonal) return count;
+    if (d >= half_diagonal + noise.high) return 0;
+    if (d <= -half_diagonal + noise.low) return count;
     std::array<Range, 8> parts;
     const int n = split(r, step, parts);
     int inside = 0;
     for (int i = 0; i < n; ++i) {
       const Range& q = parts[static_cast<std::size_t>(i)];
       const Vec3 centre = corner + 0.5 * Vec3(q[0] + q[1], q[2] + q[3], q[4] + q[5]).cwiseProduct(step);
-      inside += count_inside(corner, step, q, sdf(centre));
+      inside += count_inside(corner, step, q, sdf(centre), noise);
     }
     return inside;
   }
@@ -90,28 +107,68 @@ struct Renderer {
     }
   }
 
-  // Renders the voxels of `r`.
+  // Bounds [low, high] of the contour noise f over the voxels of `r`, whose centre is `centre` (both 0
+  // without it). Within one slice: f(centre) -+ lipschitz * (the block's half-diagonal in x, y), clamped
+  // to the field's bound; over several slices, the largest bound.
+  std::pair<double, double> noise_range(const Range& r, const Vec3& centre) const {
+    if (fields == nullptr) return {0.0, 0.0};
+    if (r[5] - r[4] == 1) {
+      const detail::ContourNoiseField& f = (*fields)[static_cast<std::size_t>(r[4])];
+      if (f.bound == 0.0) return {0.0, 0.0};
+      const double half_xy = 0.5 * std::hypot(static_cast<double>(r[1] - r[0]) * spacing.x(),
+                                              static_cast<double>(r[3] - r[2]) * spacing.y());
+      const double value = f(centre.x(), centre.y());
+      const double slack = f.lipschitz * half_xy + 1e-9;  // the constant covers rounding
+      return {std::max(-f.bound, value - slack), std::min(f.bound, value + slack)};
+    }
+    double bound = 0.0;
+    for (std::int64_t z = r[4]; z < r[5]; ++z) bound = std::max(bound, (*fields)[static_cast<std::size_t>(z)].bound);
+    return {-bound, bound};
+  }
+
+  // Renders the voxels of `r`. The culling margins grow by the range of the contour noise, so that a
+  // block filled whole is whole after the displacement too.
   void block(const Range& r) const {
     const Vec3 lo(r[0], r[2], r[4]);
     const Vec3 hi(r[1], r[3], r[5]);
     const Vec3 centre = origin + (0.5 * (lo + hi) - Vec3::Constant(0.5)).cwiseProduct(spacing);
     const double half_diagonal = 0.5 * (hi - lo).cwiseProduct(spacing).norm();
     const double d = sdf(centre);
-    if (d >= half_diagonal) return fill(r, tissue);
-    if (d <= -half_diagonal) return fill(r, bone);
-    if (r[1] - r[0] == 1 && r[3] - r[2] == 1 && r[5] - r[4] == 1) {
-      const Vec3 step = spacing.cwiseQuotient(Vec3(samples[0], samples[1], samples[2]));
-      const Vec3 corner = centre - 0.5 * spacing;
-      const Range all{0, samples[0], 0, samples[1], 0, samples[2]};
-      const int total = samples[0] * samples[1] * samples[2];
-      const double fraction = static_cast<double>(count_inside(corner, step, all, d)) / total;
-      buffer[(r[4] * size[1] + r[2]) * size[0] + r[0]] =
-          static_cast<float>(tissue + (static_cast<double>(bone) - tissue) * fraction);
-      return;
-    }
+    const auto [low, high] = noise_range(r, centre);
+    if (d >= half_diagonal + high) return fill(r, tissue);
+    if (d <= -half_diagonal + low) return fill(r, bone);
+    if (r[1] - r[0] == 1 && r[3] - r[2] == 1 && r[5] - r[4] == 1) return voxel(r, centre, d);
     std::array<Range, 8> parts;
     const int n = split(r, spacing, parts);
     for (int i = 0; i < n; ++i) block(parts[static_cast<std::size_t>(i)]);
+  }
+
+  // Renders one voxel that the surface may cross, by supersampling. Every supersample uses the contour
+  // noise of the voxel's own slice, as a segmentation of that slice would.
+  void voxel(const Range& r, const Vec3& centre, double d) const {
+    const Vec3 step = spacing.cwiseQuotient(Vec3(samples[0], samples[1], samples[2]));
+    const Vec3 corner = centre - 0.5 * spacing;
+    const Range all{0, samples[0], 0, samples[1], 0, samples[2]};
+    const int total = samples[0] * samples[1] * samples[2];
+    VoxelNoise noise;
+    std::array<double, kMaxSamples * kMaxSamples> f{};
+    const detail::ContourNoiseField* field = fields ? &(*fields)[static_cast<std::size_t>(r[4])] : nullptr;
+    if (field != nullptr && field->bound > 0.0) {
+      for (int j = 0; j < samples[1]; ++j) {
+        for (int i = 0; i < samples[0]; ++i) {
+          const double x = corner.x() + 0.5 * (2 * i + 1) * step.x();
+          const double y = corner.y() + 0.5 * (2 * j + 1) * step.y();
+          const double value = (*field)(x, y);
+          f[static_cast<std::size_t>(j * samples[0] + i)] = value;
+          noise.low = std::min(noise.low, value);
+          noise.high = std::max(noise.high, value);
+        }
+      }
+      noise.f = f.data();
+    }
+    const double fraction = static_cast<double>(count_inside(corner, step, all, d, noise)) / total;
+    buffer[(r[4] * size[1] + r[2]) * size[0] + r[0]] =
+        static_cast<float>(tissue + (static_cast<double>(bone) - tissue) * fraction);
   }
 };
 
@@ -132,6 +189,9 @@ CtImage::Pointer render_phantom(const Phantom& phantom, const PhantomVolumeOptio
   check_option(std::isfinite(options.margin) && options.margin >= 0.0, "margin must be a finite number >= 0 mm");
   check_option(std::isfinite(options.blur) && options.blur >= 0.0, "blur must be a finite sigma >= 0 mm");
   check_option(std::isfinite(options.noise) && options.noise >= 0.0, "noise must be a finite sigma >= 0 HU");
+  check_option(std::isfinite(options.contour_noise) && options.contour_noise >= 0.0 &&
+                   options.contour_noise <= kMaxContourNoise,
+               "contour noise must be an RMS in [0, " + std::to_string(static_cast<int>(kMaxContourNoise)) + "] mm");
   check_option(std::isfinite(options.bone_hu) && std::isfinite(options.tissue_hu), "bone and tissue HU must be finite");
 
   const Vec3 lo = phantom.bounds.min() - Vec3::Constant(options.margin);
@@ -177,9 +237,18 @@ CtImage::Pointer render_phantom(const Phantom& phantom, const PhantomVolumeOptio
   std::array<int, 3> samples{};
   for (int a = 0; a < 3; ++a) {
     samples[static_cast<std::size_t>(a)] =
-        std::clamp(static_cast<int>(std::ceil(options.spacing[a] / 0.25 - 1e-9)), 4, 16);
+        std::clamp(static_cast<int>(std::ceil(options.spacing[a] / 0.25 - 1e-9)), 4, kMaxSamples);
+  }
+  // The contour noise of each slice, drawn on the slice's true boundary.
+  std::vector<detail::ContourNoiseField> fields;
+  if (options.contour_noise > 0.0) {
+    std::vector<double> slice_z(static_cast<std::size_t>(size[2]));
+    for (std::size_t k = 0; k < slice_z.size(); ++k) slice_z[k] = origin.z() + static_cast<double>(k) * options.spacing.z();
+    fields = detail::contour_noise_fields(phantom.sdf, phantom.bounds, slice_z, options.spacing.z(),
+                                          options.contour_noise, options.seed);
   }
   const Renderer renderer{phantom.sdf,
+                          fields.empty() ? nullptr : &fields,
                           origin,
                           options.spacing,
                           size,

@@ -69,11 +69,26 @@ struct PhantomVolumeOptions {
   double tissue_hu = 40.0;                 ///< value outside (soft tissue)
   double blur = 0.0;                       ///< Gaussian blur sigma in mm (partial-volume / scanner PSF), >= 0
   double noise = 0.0;                      ///< Gaussian noise sigma in HU, >= 0
-  std::uint64_t seed = 1;                  ///< noise seed: same seed, same volume
+  /// Contour noise, the RMS in mm of a per-slice displacement of the boundary along its normal, in
+  /// [0, kMaxContourNoise]: a segmentation error that perturbs single contours (Xu et al. 2006, section 3),
+  /// as a hand-drawn contour has. Each voxel slice k gets its own field f_k(x, y), independent from
+  /// slice to slice: four plane waves (wavelengths 20-60 mm, random directions and phases) plus one
+  /// Gaussian bump (sigma 1.5-4 mm, random sign) per 50 mm of the slice's boundary, centred on it. Before
+  /// the final scaling the waves carry 3/4 of the mean square and the bumps 1/4; f_k is then scaled so
+  /// that its RMS over the true boundary of the phantom's section by the slice's centre plane is exactly
+  /// `contour_noise`. Every supersample of a voxel of slice k is inside when sdf(p) - f_k(p.x, p.y) < 0,
+  /// so the solid grows by f_k along its normal. The Phantom itself (the truth) is not changed.
+  /// Details: docs/reconstruction.md, "Contour noise". 0 (the default) renders the unperturbed solid.
+  double contour_noise = 0.0;
+  std::uint64_t seed = 1;  ///< seed of both noises (independent streams): same seed, same volume
 };
 
+/// The largest contour noise RMS that render_phantom accepts, in mm.
+inline constexpr double kMaxContourNoise = 10.0;
+
 /// Renders the phantom: each voxel gets tissue + (bone - tissue) * (fraction of the voxel inside the
-/// solid, by supersampling), then blur, then noise. Throws InvalidInputError for options out of range
+/// solid, by supersampling; the solid displaced by the contour noise of the voxel's slice), then blur,
+/// then noise. Throws InvalidInputError for options out of range
 /// or a volume over 2^31 voxels.
 [[nodiscard]] CtImage::Pointer render_phantom(const Phantom& phantom, const PhantomVolumeOptions& options = {});
 
