@@ -18,7 +18,7 @@ using detail::Box3;
 using detail::ShapeBuild;
 using detail::Vec3;
 
-constexpr std::array<std::pair<PhantomShape, std::string_view>, 7> kShapeNames = {{
+constexpr std::array<std::pair<PhantomShape, std::string_view>, 10> kShapeNames = {{
     {PhantomShape::RidgeBox, "ridge-box"},
     {PhantomShape::Femur, "femur"},
     {PhantomShape::Pelvis, "pelvis"},
@@ -26,6 +26,9 @@ constexpr std::array<std::pair<PhantomShape, std::string_view>, 7> kShapeNames =
     {PhantomShape::Branch, "branch"},
     {PhantomShape::TwoObjects, "two-objects"},
     {PhantomShape::Cavity, "cavity"},
+    {PhantomShape::TiltedBox, "tilted-box"},
+    {PhantomShape::InSliceRidge, "in-slice-ridge"},
+    {PhantomShape::EndFaceOnSlice, "end-face-on-slice"},
 }};
 
 
@@ -76,6 +79,15 @@ Phantom make_phantom(PhantomShape shape) {
       break;
     case PhantomShape::Cavity:
       s = detail::build_cavity();
+      break;
+    case PhantomShape::TiltedBox:
+      s = detail::build_tilted_box();
+      break;
+    case PhantomShape::InSliceRidge:
+      s = detail::build_in_slice_ridge();
+      break;
+    case PhantomShape::EndFaceOnSlice:
+      s = detail::build_end_face_on_slice();
       break;
     default:
       throw InvalidInputError("make_phantom: unknown shape " + std::to_string(static_cast<int>(shape)));

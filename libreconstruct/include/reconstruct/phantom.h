@@ -16,6 +16,9 @@
 
 namespace contourmesh {
 
+/// The built-in phantoms. The first seven are bone-like; the last three isolate the failure classes of
+/// contour stacks. The slice-alignment claims hold for the default PhantomVolumeOptions (0.7 x 0.7 x 2 mm,
+/// 6 mm margin); docs/reconstruction.md ("Phantoms") gives each shape's dimensions.
 enum class PhantomShape {
   RidgeBox,    ///< "ridge-box": a block with a roof ridge running along the slice axis, sharp edges and corners
   Femur,       ///< "femur": shaft with a sharp posterior ridge, neck and head, two condyles
@@ -24,13 +27,22 @@ enum class PhantomShape {
   Branch,      ///< "branch": a trunk that splits into two limbs along the slice axis
   TwoObjects,  ///< "two-objects": two separate bones side by side in the same slices
   Cavity,      ///< "cavity": a solid with an internal cavity, so slices hold hole contours
+  /// "tilted-box": a 70 x 50 x 20 mm slab whose large faces are 4 degrees off the slice planes, bevelled
+  /// at one end by a face 15 degrees off them; every edge oblique to the slices
+  TiltedBox,
+  /// "in-slice-ridge": a prism lying across the slice axis whose two roof ridges run within slice
+  /// planes: ridge A (z = 10) on a slice centre, ridge B (z = 15, the top) half-way between slices
+  InSliceRidge,
+  /// "end-face-on-slice": a cylinder whose flat end faces (z = -15 and 13) lie exactly on slice centres,
+  /// beside a box whose end faces (z = +-20) lie half-way between slices
+  EndFaceOnSlice,
 };
 
 /// The CLI name ("ridge-box", "femur", ...).
 [[nodiscard]] std::string_view to_string(PhantomShape shape);
 /// Inverse of to_string; throws InvalidInputError listing the valid names.
 [[nodiscard]] PhantomShape parse_phantom_shape(std::string_view name);
-/// Every shape, in declaration order.
+/// Every shape, in declaration order (all ten: what `contourmesh compare --phantom all` runs).
 [[nodiscard]] std::vector<PhantomShape> all_phantom_shapes();
 
 /// The analytic truth of a phantom. Lengths in millimetres, centred near the origin, slice axis z.

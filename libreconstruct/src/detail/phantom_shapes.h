@@ -27,4 +27,9 @@ ShapeBuild build_branch();
 ShapeBuild build_two_objects();
 ShapeBuild build_cavity();
 
+// The failure classes of contour stacks (phantom_slice_shapes.cpp).
+ShapeBuild build_tilted_box();
+ShapeBuild build_in_slice_ridge();
+ShapeBuild build_end_face_on_slice();
+
 }  // namespace contourmesh::detail
