@@ -66,6 +66,16 @@ struct Renderer {
     return count;
   }
 
+  // |grad sdf| projected on the slice plane, by central differences: how much of a displacement of
+  // the contour within the slice moves the surface along its normal (1 on a wall parallel to the slice
+  // axis, 0 on a face parallel to the slices).
+  double in_plane_slope(const Vec3& p) const {
+    constexpr double h = 1e-3;
+    const double gx = sdf(p + Vec3(h, 0.0, 0.0)) - sdf(p - Vec3(h, 0.0, 0.0));
+    const double gy = sdf(p + Vec3(0.0, h, 0.0)) - sdf(p - Vec3(0.0, h, 0.0));
+    return std::min(1.0, std::sqrt(gx * gx + gy * gy) / (2.0 * h));
+  }
+
   // The contour noise of one voxel: f at its columns of supersamples (x fastest), and its extremes.
   struct VoxelNoise {
     const double* f = nullptr;  // null: no contour noise
@@ -74,15 +84,23 @@ struct Renderer {
   };
 
   // Number of supersamples inside the solid among those of `r` (sample indices of the voxel whose
-  // lower corner is `corner`); `d` is the sdf at the centre of the range. A sample is inside when
-  // sdf - f < 0, with f the voxel's contour noise at the sample's column.
-  int count_inside(const Vec3& corner, const Vec3& step, const Range& r, double d, const VoxelNoise& noise) const {
+  // lower corner is `corner`); `d` is the sdf at `at`, the centre of the range. With contour noise a
+  // sample p is inside when sdf(p) < f g(p), f the voxel's field at the sample's column and g(p) the
+  // length of grad sdf projected on the slice plane: to first order, the section's contour moves by f
+  // along its normal within the slice (the whole of f on a wall parallel to the slice axis, nothing on
+  // a face parallel to the slices).
+  int count_inside(const Vec3& corner, const Vec3& step, const Range& r, const Vec3& at, double d,
+                   const VoxelNoise& noise) const {
     const Vec3 lo(r[0], r[2], r[4]);
     const Vec3 hi(r[1], r[3], r[5]);
     const int count = static_cast<int>((r[1] - r[0]) * (r[3] - r[2]) * (r[5] - r[4]));
     if (count == 1) {
-      const double f = noise.f ? noise.f[r[2] * samples[0] + r[0]] : 0.0;
-      return d - f < 0.0 ? 1 : 0;
+      if (noise.f == nullptr) return d < 0.0 ? 1 : 0;
+      const double f = noise.f[r[2] * samples[0] + r[0]];
+      // Inside when sdf < f g, g = |grad_xy sdf| in [0, 1]: decided without g unless sdf lies between 0 and f.
+      if (d < std::min(0.0, f)) return 1;
+      if (d >= std::max(0.0, f)) return 0;
+      return d < f * in_plane_slope(at) ? 1 : 0;
     }
     const double half_diagonal = 0.5 * (hi - lo).cwiseProduct(step).norm();
     if (d >= half_diagonal + noise.high) return 0;
@@ -93,7 +111,7 @@ struct Renderer {
     for (int i = 0; i < n; ++i) {
       const Range& q = parts[static_cast<std::size_t>(i)];
       const Vec3 centre = corner + 0.5 * Vec3(q[0] + q[1], q[2] + q[3], q[4] + q[5]).cwiseProduct(step);
-      inside += count_inside(corner, step, q, sdf(centre), noise);
+      inside += count_inside(corner, step, q, centre, sdf(centre), noise);
     }
     return inside;
   }
@@ -107,9 +125,10 @@ struct Renderer {
     }
   }
 
-  // Bounds [low, high] of the contour noise f over the voxels of `r`, whose centre is `centre` (both 0
-  // without it). Within one slice: f(centre) -+ lipschitz * (the block's half-diagonal in x, y), clamped
-  // to the field's bound; over several slices, the largest bound.
+  // Bounds [low, high] of the displacement f g (g in [0, 1], see count_inside) over the voxels of `r`,
+  // whose centre is `centre`; low <= 0 <= high (both 0 without contour noise). Within one slice f lies in
+  // f(centre) -+ lipschitz * (the block's half-diagonal in x, y), clamped to the field's bound; over
+  // several slices, within the largest bound.
   std::pair<double, double> noise_range(const Range& r, const Vec3& centre) const {
     if (fields == nullptr) return {0.0, 0.0};
     if (r[5] - r[4] == 1) {
@@ -119,7 +138,7 @@ struct Renderer {
                                               static_cast<double>(r[3] - r[2]) * spacing.y());
       const double value = f(centre.x(), centre.y());
       const double slack = f.lipschitz * half_xy + 1e-9;  // the constant covers rounding
-      return {std::max(-f.bound, value - slack), std::min(f.bound, value + slack)};
+      return {std::min(0.0, std::max(-f.bound, value - slack)), std::max(0.0, std::min(f.bound, value + slack))};
     }
     double bound = 0.0;
     for (std::int64_t z = r[4]; z < r[5]; ++z) bound = std::max(bound, (*fields)[static_cast<std::size_t>(z)].bound);
@@ -166,7 +185,7 @@ struct Renderer {
       }
       noise.f = f.data();
     }
-    const double fraction = static_cast<double>(count_inside(corner, step, all, d, noise)) / total;
+    const double fraction = static_cast<double>(count_inside(corner, step, all, centre, d, noise)) / total;
     buffer[(r[4] * size[1] + r[2]) * size[0] + r[0]] =
         static_cast<float>(tissue + (static_cast<double>(bone) - tissue) * fraction);
   }

@@ -144,6 +144,45 @@ TEST(PhantomContourNoise, BoundaryDisplacementHasTheRequestedRmsAndAdjacentSlice
   EXPECT_LT(std::abs(sum / pairs), 0.25) << "mean correlation of adjacent slices";
 }
 
+// The contour moves within the slice plane: walls parallel to the slice axis move, faces parallel to
+// the slices do not. The cylinder of end-face-on-slice ends exactly on slice centres, so its end slices
+// are half bone inside the rim, with or without contour noise (a displacement of the face along z would
+// change them, and punch holes in them where f < 0).
+TEST(PhantomContourNoise, FacesParallelToTheSlicesStayWallsMove) {
+  const Phantom phantom = make_phantom(PhantomShape::EndFaceOnSlice);
+  PhantomVolumeOptions options;
+  options.contour_noise = 0.8;
+  options.seed = 2;
+  const CtImage::Pointer image = render_phantom(phantom, options);
+  const CtImage::Pointer clean = render_phantom(phantom, PhantomVolumeOptions{});
+  const float iso = static_cast<float>(0.5 * (options.bone_hu + options.tissue_hu));
+  auto index_of = [&](double x, double y, double z) {
+    CtImage::PointType point;
+    point[0] = x;
+    point[1] = y;
+    point[2] = z;
+    CtImage::IndexType index;
+    EXPECT_TRUE(image->TransformPhysicalPointToIndex(point, index));
+    return index;
+  };
+  int face = 0, wall_moved = 0;
+  for (double z : {-15.0, 13.0}) {
+    for (double x = -30.0; x <= -10.0; x += 0.7) {
+      for (double y = -10.0; y <= 10.0; y += 0.7) {
+        if (std::hypot(x + 20.0, y) > 10.0) continue;  // 4 mm inside the rim, clear of the moving wall
+        EXPECT_EQ(image->GetPixel(index_of(x, y, z)), iso) << x << " " << y << " " << z;
+        ++face;
+      }
+    }
+  }
+  for (double t = 0.0; t < 2.0 * kPi; t += 0.05) {
+    const auto index = index_of(-20.0 + 14.0 * std::cos(t), 14.0 * std::sin(t), 1.0);
+    wall_moved += image->GetPixel(index) != clean->GetPixel(index) ? 1 : 0;
+  }
+  EXPECT_GT(face, 300);
+  EXPECT_GT(wall_moved, 100);
+}
+
 TEST(PhantomContourNoise, SameSeedSameVolumeOtherSeedOtherVolume) {
   const Phantom phantom = make_phantom(PhantomShape::RidgeBox);
   PhantomVolumeOptions options;

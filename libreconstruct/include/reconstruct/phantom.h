@@ -88,9 +88,12 @@ struct PhantomVolumeOptions {
   /// Gaussian bump (sigma 1.5-4 mm, random sign) per 50 mm of the slice's boundary, centred on it. Before
   /// the final scaling the waves carry 3/4 of the mean square and the bumps 1/4; f_k is then scaled so
   /// that its RMS over the true boundary of the phantom's section by the slice's centre plane is exactly
-  /// `contour_noise`. Every supersample of a voxel of slice k is inside when sdf(p) - f_k(p.x, p.y) < 0,
-  /// so the solid grows by f_k along its normal. The Phantom itself (the truth) is not changed.
-  /// Details: docs/reconstruction.md, "Contour noise". 0 (the default) renders the unperturbed solid.
+  /// `contour_noise`. Every supersample p of a voxel of slice k is inside when
+  /// sdf(p) < f_k(p.x, p.y) |grad_xy sdf(p)|: to first order the section's contour moves by f_k along its
+  /// normal within the slice plane, as a drawn or segmented contour errs. A wall parallel to the slice
+  /// axis moves by f_k; a face parallel to the slices does not move (an end slice gets no holes). The
+  /// Phantom itself (the truth) is not changed. Details: docs/reconstruction.md, "Contour noise".
+  /// 0 (the default) renders the unperturbed solid, bit for bit.
   double contour_noise = 0.0;
   std::uint64_t seed = 1;  ///< seed of both noises (independent streams): same seed, same volume
 };

@@ -1,7 +1,8 @@
 // Private: the per-slice contour noise of render_phantom, the paper's noise model (a segmentation error
 // perturbs single contours). Each voxel slice gets its own displacement field f(x, y) in mm, positive
-// outward: a few random plane waves of centimetres plus a few Gaussian bumps of a few mm placed on the
-// slice's true boundary, scaled to a given RMS over that boundary. The model and its numbers are in
+// outward, of the contour along its normal within the slice: a few random plane waves of centimetres
+// plus a few Gaussian bumps of a few mm placed on the slice's true boundary, scaled to a given RMS over
+// that boundary. The renderer applies it (phantom_render.cpp); the model and its numbers are in
 // docs/reconstruction.md ("Contour noise").
 #pragma once
 
