@@ -66,14 +66,16 @@ struct Renderer {
     return count;
   }
 
-  // |grad sdf| projected on the slice plane, by central differences: how much of a displacement of
-  // the contour within the slice moves the surface along its normal (1 on a wall parallel to the slice
-  // axis, 0 on a face parallel to the slices).
-  double in_plane_slope(const Vec3& p) const {
-    constexpr double h = 1e-3;
-    const double gx = sdf(p + Vec3(h, 0.0, 0.0)) - sdf(p - Vec3(h, 0.0, 0.0));
-    const double gy = sdf(p + Vec3(0.0, h, 0.0)) - sdf(p - Vec3(0.0, h, 0.0));
-    return std::min(1.0, std::sqrt(gx * gx + gy * gy) / (2.0 * h));
+  // Whether g(p) = |grad sdf(p)| projected on the slice plane exceeds t in [0, 1), by forward
+  // differences from d = sdf(p) (the x derivative alone often decides). g is how much of a
+  // displacement of the contour within the slice moves the surface along its normal: 1 on a wall
+  // parallel to the slice axis, 0 on a face parallel to the slices.
+  bool in_plane_slope_exceeds(const Vec3& p, double d, double t) const {
+    constexpr double h = 1e-4;
+    const double gx = (sdf(p + Vec3(h, 0.0, 0.0)) - d) / h;
+    if (gx * gx > t * t) return true;
+    const double gy = (sdf(p + Vec3(0.0, h, 0.0)) - d) / h;
+    return gx * gx + gy * gy > t * t;
   }
 
   // The contour noise of one voxel: f at its columns of supersamples (x fastest), and its extremes.
@@ -97,10 +99,12 @@ struct Renderer {
     if (count == 1) {
       if (noise.f == nullptr) return d < 0.0 ? 1 : 0;
       const double f = noise.f[r[2] * samples[0] + r[0]];
-      // Inside when sdf < f g, g = |grad_xy sdf| in [0, 1]: decided without g unless sdf lies between 0 and f.
+      // Inside when sdf < f g, g = |grad_xy sdf| in [0, 1]: decided without g unless sdf lies between 0
+      // and f. There, with t = sdf / f in [0, 1): inside when g > t for f > 0, when g < t for f < 0.
       if (d < std::min(0.0, f)) return 1;
       if (d >= std::max(0.0, f)) return 0;
-      return d < f * in_plane_slope(at) ? 1 : 0;
+      const bool steeper = in_plane_slope_exceeds(at, d, d / f);
+      return (f > 0.0) == steeper ? 1 : 0;
     }
     const double half_diagonal = 0.5 * (hi - lo).cwiseProduct(step).norm();
     if (d >= half_diagonal + noise.high) return 0;
