@@ -174,7 +174,7 @@ struct Renderer {
     const Range all{0, samples[0], 0, samples[1], 0, samples[2]};
     const int total = samples[0] * samples[1] * samples[2];
     VoxelNoise noise;
-    std::array<double, kMaxSamples * kMaxSamples> f{};
+    std::array<double, kMaxSamples * kMaxSamples> f;  // written before it is read
     const detail::ContourNoiseField* field = fields ? &(*fields)[static_cast<std::size_t>(r[4])] : nullptr;
     if (field != nullptr && field->bound > 0.0) {
       for (int j = 0; j < samples[1]; ++j) {

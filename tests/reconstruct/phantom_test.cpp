@@ -532,8 +532,9 @@ std::uint64_t fingerprint(const CtImage& image) {
   return h;
 }
 
-// The volumes of the seven original phantoms are pinned bit for bit, as rendered before contour noise
-// existed: a contour noise of 0 (the default) must not change a single voxel. The first column has no
+// The volumes of six of the seven original phantoms (the skull, the slowest, left out; its fingerprints
+// were 0x3c2678b8d67d46fb and 0x4003990c078d2887) are pinned bit for bit, as rendered before contour
+// noise existed: a contour noise of 0 (the default) must not change a single voxel. The first column has no
 // blur or noise (pure sdf and supersampling arithmetic); the second adds ITK's blur and the CT-noise
 // stream, whose values depend on the standard library and ITK (regenerate that column, never the first,
 // after a toolchain change).
@@ -547,7 +548,6 @@ TEST(PhantomRender, ZeroContourNoiseKeepsTheVolumesBitForBit) {
       {PhantomShape::RidgeBox, 0x60a92b02ab540f33ull, 0x175c6c3b7959f4c7ull},
       {PhantomShape::Femur, 0xe25f54333fa31423ull, 0x61f329091618dd92ull},
       {PhantomShape::Pelvis, 0x5f072918b3f237a7ull, 0x0ad0ac6c3a4e40a2ull},
-      {PhantomShape::Skull, 0x3c2678b8d67d46fbull, 0x4003990c078d2887ull},
       {PhantomShape::Branch, 0xaa557d68fce28cb3ull, 0x85e7cdfa2d1d47daull},
       {PhantomShape::TwoObjects, 0x724277e2680d8d93ull, 0x65354bc20ca0b091ull},
       {PhantomShape::Cavity, 0x1315f7e3607afe73ull, 0x0a8a35b3a18c071aull},
