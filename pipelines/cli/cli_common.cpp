@@ -92,7 +92,7 @@ void add_max_vertices_option(CLI::App* command, Index& max_vertices) {
 CLI::Option* add_contour_noise_option(CLI::App* command, double& contour_noise) {
   return command
       ->add_option("--contour-noise", contour_noise,
-                   "Phantom contour noise: RMS in mm of each slice's own random displacement of the boundary "
+                   "Phantom contour noise: RMS in mm of each slice's own random displacement of its contours "
                    "(waves of centimetres plus bumps of a few mm; the paper's noise model), 0 to 10")
       ->capture_default_str();
 }
