@@ -125,7 +125,7 @@ int run_run(const RunArgs& a) {
 
   // 3. Smooth.
   t = std::chrono::steady_clock::now();
-  Mesh result = mesh;
+  Mesh result;
   std::optional<FeatureSmoothingResult> paper;
   if (a.method == "paper") {
     FeatureSmoothingOptions o;
@@ -138,13 +138,16 @@ int run_run(const RunArgs& a) {
     } catch (const LimitError& e) {
       throw LimitError(source + ": " + e.what());
     }
-    result = paper->mesh;
+    result = std::move(paper->mesh);
   } else {
     SmoothingOptions o;
     o.method = baseline;
     o.progress = progress.callback();
     if (a.iterations) o.iterations = *a.iterations;
     result.positions = smooth(mesh, o);
+    result.triangles = mesh.triangles;
+    result.slice_ids = mesh.slice_ids;
+    result.contour_ids = mesh.contour_ids;
   }
   const double seconds_smooth = seconds_since(t);
 
