@@ -67,46 +67,6 @@ double otsu_threshold(CtImage* image) {
   return static_cast<double>(filter->GetThreshold());
 }
 
-// Keeps only the largest 6-connected component of a binary volume (x fastest).
-void keep_largest_component(std::vector<std::uint8_t>& mask, const std::array<std::size_t, 3>& size) {
-  const std::size_t nx = size[0], ny = size[1], nz = size[2];
-  std::vector<std::int32_t> label(mask.size(), 0);
-  std::vector<std::size_t> stack;
-  std::int32_t best_label = 0;
-  std::size_t best_size = 0;
-  std::int32_t next = 0;
-  for (std::size_t start = 0; start < mask.size(); ++start) {
-    if (!mask[start] || label[start]) continue;
-    ++next;
-    std::size_t count = 0;
-    stack.push_back(start);
-    label[start] = next;
-    while (!stack.empty()) {
-      const std::size_t v = stack.back();
-      stack.pop_back();
-      ++count;
-      const std::size_t x = v % nx, y = (v / nx) % ny, z = v / (nx * ny);
-      auto visit = [&](std::size_t w) {
-        if (mask[w] && !label[w]) {
-          label[w] = next;
-          stack.push_back(w);
-        }
-      };
-      if (x > 0) visit(v - 1);
-      if (x + 1 < nx) visit(v + 1);
-      if (y > 0) visit(v - nx);
-      if (y + 1 < ny) visit(v + nx);
-      if (z > 0) visit(v - nx * ny);
-      if (z + 1 < nz) visit(v + nx * ny);
-    }
-    if (count > best_size) {
-      best_size = count;
-      best_label = next;
-    }
-  }
-  for (std::size_t v = 0; v < mask.size(); ++v) mask[v] = label[v] == best_label && best_label != 0;
-}
-
 // A pixel bounding box, inclusive; empty while x1 < 0.
 struct Box {
   int x0 = std::numeric_limits<int>::max(), y0 = std::numeric_limits<int>::max(), x1 = -1, y1 = -1;
@@ -421,7 +381,7 @@ SegmentationResult segment_contours(const CtImage& input, const SegmentationOpti
     volume_mask.resize(result.voxels);
     threshold_pixels(values, volume_mask.data(), volume_mask.size(), thr);
     result.foreground_voxels = static_cast<std::size_t>(std::count(volume_mask.begin(), volume_mask.end(), std::uint8_t{1}));
-    keep_largest_component(volume_mask, size);
+    detail::keep_largest_component(volume_mask, nx, ny, static_cast<int>(size[2]));
   }
 
   // The slice frame.

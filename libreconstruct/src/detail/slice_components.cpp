@@ -110,4 +110,62 @@ int label_runs(std::vector<PixelRun>& runs, Connectivity connectivity, std::vect
   return count;
 }
 
+void keep_largest_component(std::vector<std::uint8_t>& mask, int nx, int ny, int nz) {
+  const std::size_t slice = static_cast<std::size_t>(nx) * static_cast<std::size_t>(ny);
+  // Every run of the volume, slice by slice (runs are numbered in raster order), and where each row's
+  // runs start.
+  std::vector<PixelRun> runs, slice_runs;
+  std::vector<std::size_t> row_begin(static_cast<std::size_t>(nz) * ny + 1, 0);
+  for (int z = 0; z < nz; ++z) {
+    find_runs(mask.data() + static_cast<std::size_t>(z) * slice, nx, ny, slice_runs);
+    for (const PixelRun& r : slice_runs) {
+      ++row_begin[static_cast<std::size_t>(z) * ny + r.y + 1];
+      runs.push_back(r);
+    }
+  }
+  for (std::size_t k = 1; k < row_begin.size(); ++k) row_begin[k] += row_begin[k - 1];
+  std::vector<int> parent(runs.size());
+  for (std::size_t k = 0; k < runs.size(); ++k) parent[k] = static_cast<int>(k);
+  // Joins the overlapping runs of two rows (6-connectivity: runs share an edge when their x ranges
+  // overlap).
+  auto join_rows = [&](std::size_t a, std::size_t b) {
+    std::size_t i = row_begin[a], j = row_begin[b];
+    while (i < row_begin[a + 1] && j < row_begin[b + 1]) {
+      if (runs[i].x0 < runs[j].x1 && runs[j].x0 < runs[i].x1) unite(parent, static_cast<int>(i), static_cast<int>(j));
+      if (runs[i].x1 < runs[j].x1) ++i;
+      else ++j;
+    }
+  };
+  for (int z = 0; z < nz; ++z) {
+    for (int y = 0; y < ny; ++y) {
+      const std::size_t row = static_cast<std::size_t>(z) * ny + y;
+      if (y > 0) join_rows(row, row - 1);
+      if (z > 0) join_rows(row, row - ny);
+    }
+  }
+  // The largest component; its root is its first run (unite keeps the smaller index), so the first
+  // root of the largest size is the first component in raster order.
+  std::vector<std::size_t> size(runs.size(), 0);
+  for (std::size_t k = 0; k < runs.size(); ++k) {
+    size[find_root(parent, static_cast<int>(k))] += static_cast<std::size_t>(runs[k].x1 - runs[k].x0);
+  }
+  std::size_t best = runs.size();
+  for (std::size_t k = 0; k < runs.size(); ++k) {
+    if (size[k] > 0 && (best == runs.size() || size[k] > size[best])) best = k;
+  }
+  std::fill(mask.begin(), mask.end(), std::uint8_t{0});
+  if (best == runs.size()) return;
+  for (int z = 0, k = 0; z < nz; ++z) {
+    for (int y = 0; y < ny; ++y) {
+      const std::size_t row = static_cast<std::size_t>(z) * ny + y;
+      for (; static_cast<std::size_t>(k) < row_begin[row + 1]; ++k) {
+        if (find_root(parent, k) != static_cast<int>(best)) continue;
+        std::fill_n(mask.begin() + static_cast<std::ptrdiff_t>(static_cast<std::size_t>(z) * slice +
+                                                              static_cast<std::size_t>(y) * nx + runs[k].x0),
+                    runs[k].x1 - runs[k].x0, std::uint8_t{1});
+      }
+    }
+  }
+}
+
 }  // namespace contourmesh::detail

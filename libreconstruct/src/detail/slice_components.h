@@ -33,4 +33,10 @@ void complement_runs(const std::vector<PixelRun>& runs, int nx, int ny, std::vec
 /// pixel in raster order. Union-find over the runs; `scratch` keeps its buffer between calls.
 int label_runs(std::vector<PixelRun>& runs, Connectivity connectivity, std::vector<int>& scratch);
 
+/// Keeps, of a binary volume (nx x ny x nz, x fastest, bytes 0 or 1), only the largest 6-connected
+/// component of the 1s; the first in raster order (z, then y, then x of its first voxel) among
+/// equally large ones. Union-find over the runs of every row: linear in the voxels, fast when runs
+/// are long.
+void keep_largest_component(std::vector<std::uint8_t>& mask, int nx, int ny, int nz);
+
 }  // namespace contourmesh::detail

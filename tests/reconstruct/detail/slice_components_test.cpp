@@ -118,5 +118,56 @@ TEST(SliceComponents, DiagonalPixelsAndEmptyRows) {
   EXPECT_NE(eight[1].label, eight[2].label);
 }
 
+// The reference: 6-connected flood fill in raster order, the first of the largest components kept.
+std::vector<std::uint8_t> largest_by_flood(const std::vector<std::uint8_t>& mask, int nx, int ny, int nz) {
+  std::vector<int> label(mask.size(), 0), stack;
+  int next = 0, best = 0;
+  std::size_t best_size = 0;
+  for (int start = 0; start < nx * ny * nz; ++start) {
+    if (!mask[start] || label[start]) continue;
+    label[start] = ++next;
+    stack.push_back(start);
+    std::size_t count = 0;
+    while (!stack.empty()) {
+      const int v = stack.back();
+      stack.pop_back();
+      ++count;
+      const int x = v % nx, y = (v / nx) % ny, z = v / (nx * ny);
+      const int d[6][3] = {{-1, 0, 0}, {1, 0, 0}, {0, -1, 0}, {0, 1, 0}, {0, 0, -1}, {0, 0, 1}};
+      for (const auto& o : d) {
+        const int xx = x + o[0], yy = y + o[1], zz = z + o[2];
+        if (xx < 0 || yy < 0 || zz < 0 || xx >= nx || yy >= ny || zz >= nz) continue;
+        const int w = (zz * ny + yy) * nx + xx;
+        if (mask[w] && !label[w]) {
+          label[w] = next;
+          stack.push_back(w);
+        }
+      }
+    }
+    if (count > best_size) best_size = count, best = next;
+  }
+  std::vector<std::uint8_t> out(mask.size(), 0);
+  for (std::size_t v = 0; v < mask.size(); ++v) out[v] = best != 0 && label[v] == best;
+  return out;
+}
+
+TEST(SliceComponents, KeepLargestComponentMatchesAFloodFillTiesIncluded) {
+  std::mt19937 rng(5);
+  for (int trial = 0; trial < 40; ++trial) {
+    const int nx = 2 + trial % 13, ny = 1 + trial % 7, nz = 1 + trial % 5;
+    auto mask = random_mask(rng, nx, ny * nz, 0.25 + 0.1 * (trial % 4));
+    const auto expected = largest_by_flood(mask, nx, ny, nz);
+    keep_largest_component(mask, nx, ny, nz);
+    EXPECT_EQ(mask, expected) << "trial " << trial;
+  }
+  // Two single voxels: equally large, the first in raster order stays.
+  std::vector<std::uint8_t> two = {0, 1, 0, 0, 0, 0, 0, 1};
+  keep_largest_component(two, 2, 2, 2);
+  EXPECT_EQ(two, (std::vector<std::uint8_t>{0, 1, 0, 0, 0, 0, 0, 0}));
+  std::vector<std::uint8_t> none(8, 0);
+  keep_largest_component(none, 2, 2, 2);
+  EXPECT_EQ(none, std::vector<std::uint8_t>(8, 0));
+}
+
 }  // namespace
 }  // namespace contourmesh::detail
