@@ -4,6 +4,7 @@
 #include <smooth/errors.h>
 
 #include <CLI/CLI.hpp>
+#include <vtkMultiThreader.h>
 
 #include <unistd.h>
 
@@ -23,10 +24,12 @@ void add_common_options(CLI::App* command, CommonArgs& args) {
 
 void apply_common_options(const CommonArgs& args) {
   if (args.threads < 0) throw InvalidInputError("--threads must be >= 0, got " + std::to_string(args.threads));
-  // One subcommand runs per process: the limit lasts until the process exits.
+  // One subcommand runs per process: the limit lasts until the process exits. VTK's image filters
+  // thread with their own vtkMultiThreader (0: no cap), not with TBB.
   static std::optional<ThreadLimit> limit;
   limit.reset();
   limit.emplace(args.threads);
+  vtkMultiThreader::SetGlobalMaximumNumberOfThreads(args.threads);
 }
 
 ProgressDisplay::ProgressDisplay(std::string command, bool quiet)
