@@ -118,6 +118,9 @@ std::size_t contour_route(const Case& c, StageTimes& times) {
   times.add("tile", {rec.report.seconds_tile, NAN});
   times.add("checks + components", {std::max(0.0, whole.wall - rec.report.seconds_segment - rec.report.seconds_tile), NAN});
   times.add("reconstruct() in all", whole);
+  // Segmentation once more on its own, for its process CPU time (how many cores it kept busy).
+  const Sample alone = measure([&] { (void)segment_contours(*c.image, ro.segmentation); });
+  times.add("segment_contours() alone", alone);
   FeatureSmoothingResult smoothed;
   const Sample smooth = measure([&] { smoothed = feature_preserving_smooth(rec.mesh, FeatureSmoothingOptions{}); });
   times.add("smooth (default)", smooth);
