@@ -183,8 +183,6 @@ void check_options(const SegmentationOptions& o) {
   if (!(o.min_contour_length >= 0.0)) throw InvalidInputError("segmentation: min_contour_length must be >= 0 mm");
 }
 
-
-
 // The values a region's contour is interpolated from (marching squares at the threshold t, linear
 // interpolation along pixel edges). The region's own pixels are raised to t + 1 where smoothing left
 // them below (a region is what the mask says), pixels of the holes it fills are t + 1, and the rest is
@@ -343,6 +341,35 @@ void threshold_pixels(const float* values, std::uint8_t* mask, std::size_t count
   for (std::size_t p = 0; p < count; ++p) mask[p] = values[p] >= threshold;
 }
 
+// What every slice shares.
+struct SliceSetup {
+  int nx, ny;
+  double sx, sy, sampling;
+  IsoLevels iso;
+  const SegmentationOptions& options;
+};
+
+struct SliceOutput {
+  std::vector<Contour> contours;
+  std::size_t dropped = 0;     // regions dropped as too small or too short
+  std::size_t foreground = 0;  // pixels at or above the threshold
+};
+
+// One slice: its regions and holes, their contours, resampled. `mask` = the slice's part of the 3-D
+// component selection, or null to threshold `values` here.
+void segment_slice(const SliceSetup& setup, const float* values, const std::uint8_t* mask, SliceRegions& s,
+                   SliceOutput& out) {
+  const std::size_t pixels = static_cast<std::size_t>(setup.nx) * static_cast<std::size_t>(setup.ny);
+  s.mask.resize(pixels);
+  if (mask) std::copy_n(mask, pixels, s.mask.begin());
+  else threshold_pixels(values, s.mask.data(), pixels, setup.iso.threshold);
+  out.dropped = find_regions(setup.nx, setup.ny, setup.sx * setup.sy, setup.options, s);
+  for (const detail::PixelRun& r : s.fg) out.foreground += static_cast<std::size_t>(r.x1 - r.x0);
+  out.contours = separated(
+      region_contours(values, setup.nx, setup.ny, setup.sx, setup.sy, setup.iso, setup.options, s, out.dropped),
+      setup.sampling);
+}
+
 // The voxel values, x fastest. ITK's buffer when it holds the whole image (always, for images that
 // come out of a reader or a filter).
 const float* dense_values(const CtImage& image) {
@@ -364,14 +391,18 @@ SegmentationResult segment_contours(const CtImage& input, const SegmentationOpti
   const int ny = static_cast<int>(size[1]);
   const std::size_t slice_pixels = size[0] * size[1];
   const auto spacing = input.GetSpacing();
-  const double sx = spacing[0], sy = spacing[1], sz = spacing[2];
-  const double pixel_area = sx * sy;
 
   const CtImage::Pointer image = smoothed(input, options.smoothing);
   SegmentationResult result;
   result.threshold = options.threshold_method == ThresholdMethod::Otsu ? otsu_threshold(image) : options.threshold;
-  const IsoLevels iso(static_cast<float>(result.threshold));
-  const float thr = iso.threshold;
+  const SliceSetup setup{nx,
+                         ny,
+                         spacing[0],
+                         spacing[1],
+                         options.sampling > 0.0 ? options.sampling
+                                                : std::min({spacing[0], spacing[1], SegmentationOptions::kMaxDefaultSampling}),
+                         IsoLevels(static_cast<float>(result.threshold)),
+                         options};
   const float* values = dense_values(*image);
   result.voxels = slice_pixels * size[2];
 
@@ -379,7 +410,7 @@ SegmentationResult segment_contours(const CtImage& input, const SegmentationOpti
   std::vector<std::uint8_t> volume_mask;
   if (options.components == ComponentSelection::KeepLargest) {
     volume_mask.resize(result.voxels);
-    threshold_pixels(values, volume_mask.data(), volume_mask.size(), thr);
+    threshold_pixels(values, volume_mask.data(), volume_mask.size(), setup.iso.threshold);
     result.foreground_voxels = static_cast<std::size_t>(std::count(volume_mask.begin(), volume_mask.end(), std::uint8_t{1}));
     detail::keep_largest_component(volume_mask, nx, ny, static_cast<int>(size[2]));
   }
@@ -393,34 +424,19 @@ SegmentationResult segment_contours(const CtImage& input, const SegmentationOpti
   stack.axis_v = Eigen::Vector3d(dir[0][1], dir[1][1], dir[2][1]).normalized();
   stack.axis_w = Eigen::Vector3d(dir[0][2], dir[1][2], dir[2][2]).normalized();
   stack.slices.resize(size[2]);
-  const double sampling =
-      options.sampling > 0.0 ? options.sampling : std::min({sx, sy, SegmentationOptions::kMaxDefaultSampling});
 
   // Slices are independent: each is segmented on its own, on every core the caller allows. Progress is
   // reported (and cancellation asked) from the calling thread only, as ProgressCallback promises.
-  std::vector<std::size_t> dropped(size[2], 0), foreground(size[2], 0);
+  std::vector<SliceOutput> slices(size[2]);
   tbb::enumerable_thread_specific<SliceRegions> scratch;
   const std::thread::id caller = std::this_thread::get_id();
   std::atomic<std::size_t> done{0};
   std::atomic<bool> cancelled{false};
   tbb::parallel_for(tbb::blocked_range<std::size_t>(0, size[2], 1), [&](const tbb::blocked_range<std::size_t>& range) {
-    SliceRegions& s = scratch.local();
     for (std::size_t z = range.begin(); z != range.end(); ++z) {
       if (cancelled.load(std::memory_order_relaxed)) return;
-      const float* val = values + z * slice_pixels;
-      s.mask.resize(slice_pixels);
-      if (volume_mask.empty()) {
-        threshold_pixels(val, s.mask.data(), slice_pixels, thr);
-      } else {
-        std::copy_n(volume_mask.begin() + static_cast<std::ptrdiff_t>(z * slice_pixels), slice_pixels, s.mask.begin());
-      }
-      dropped[z] = find_regions(nx, ny, pixel_area, options, s);
-      if (volume_mask.empty()) {
-        for (const detail::PixelRun& r : s.fg) foreground[z] += static_cast<std::size_t>(r.x1 - r.x0);
-      }
-      SliceContours& out = stack.slices[z];
-      out.w = static_cast<double>(z) * sz;
-      out.contours = separated(region_contours(val, nx, ny, sx, sy, iso, options, s, dropped[z]), sampling);
+      segment_slice(setup, values + z * slice_pixels, volume_mask.empty() ? nullptr : volume_mask.data() + z * slice_pixels,
+                    scratch.local(), slices[z]);
       const std::size_t finished = done.fetch_add(1) + 1;
       if (progress && std::this_thread::get_id() == caller &&
           !progress("segment", static_cast<double>(finished) / static_cast<double>(size[2]))) {
@@ -430,9 +446,11 @@ SegmentationResult segment_contours(const CtImage& input, const SegmentationOpti
   });
   if (!cancelled && progress && !progress("segment", 1.0)) cancelled = true;
   if (cancelled) throw CancelledError("segmentation");
-  for (std::size_t z = 0; z < size[2]; ++z) result.dropped_regions += dropped[z];
-  if (volume_mask.empty()) {
-    for (std::size_t z = 0; z < size[2]; ++z) result.foreground_voxels += foreground[z];
+  for (std::size_t z = 0; z < size[2]; ++z) {
+    stack.slices[z].w = static_cast<double>(z) * spacing[2];
+    stack.slices[z].contours = std::move(slices[z].contours);
+    result.dropped_regions += slices[z].dropped;
+    if (volume_mask.empty()) result.foreground_voxels += slices[z].foreground;
   }
   return result;
 }
