@@ -1,29 +1,35 @@
 #include "progress_display.h"
 
+#include <reconstruct/threads.h>
 #include <smooth/errors.h>
 
 #include <CLI/CLI.hpp>
-#include <itkMultiThreaderBase.h>
+#include <vtkMultiThreader.h>
 
 #include <unistd.h>
 
 #include <algorithm>
 #include <cstdio>
 #include <iostream>
+#include <optional>
 
 namespace contourmesh::cli {
 
 void add_common_options(CLI::App* command, CommonArgs& args) {
   command->add_flag("-q,--quiet", args.quiet, "No progress and no summary; errors are still printed");
-  command->add_option("--threads", args.threads, "Worker threads for the ITK stages (read, segment; 0: every core)")
+  command->add_option("--threads", args.threads,
+                      "Threads for every parallel stage (segmentation, ITK and VTK filters; 0: every core)")
       ->capture_default_str();
 }
 
 void apply_common_options(const CommonArgs& args) {
   if (args.threads < 0) throw InvalidInputError("--threads must be >= 0, got " + std::to_string(args.threads));
-  if (args.threads > 0) {
-    itk::MultiThreaderBase::SetGlobalDefaultNumberOfThreads(static_cast<itk::ThreadIdType>(args.threads));
-  }
+  // One subcommand runs per process: the limit lasts until the process exits. VTK's image filters
+  // thread with their own vtkMultiThreader (0: no cap), not with TBB.
+  static std::optional<ThreadLimit> limit;
+  limit.reset();
+  limit.emplace(args.threads);
+  vtkMultiThreader::SetGlobalMaximumNumberOfThreads(args.threads);
 }
 
 ProgressDisplay::ProgressDisplay(std::string command, bool quiet)

@@ -21,8 +21,9 @@ struct CommonArgs {
 /// Registers --quiet / -q and --threads on a subcommand.
 void add_common_options(CLI::App* command, CommonArgs& args);
 
-/// Validates --threads (>= 0; InvalidInputError otherwise) and gives ITK that many worker
-/// threads. libsmooth itself is single-threaded.
+/// Validates --threads (>= 0; InvalidInputError otherwise) and caps every parallel stage at that many
+/// threads for the rest of the process (ThreadLimit: TBB loops, ITK filters, VTK's SMP tools; and
+/// vtkMultiThreader, which VTK's image filters use).
 void apply_common_options(const CommonArgs& args);
 
 /// Stage-by-stage progress on stderr. On a terminal: one line redrawn in place with the stage name, a

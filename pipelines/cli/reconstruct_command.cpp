@@ -5,6 +5,7 @@
 #include <pipelines/atomic_file.h>
 #include <pipelines/mesh_io.h>
 #include <reconstruct/reconstruction.h>
+#include <reconstruct/threads.h>
 #include <reconstruct/volume.h>
 #include <smooth/errors.h>
 #include <smooth/limits.h>
@@ -13,6 +14,7 @@
 
 #include <CLI/CLI.hpp>
 
+#include <future>
 #include <iomanip>
 #include <iostream>
 #include <memory>
@@ -79,10 +81,14 @@ int run_reconstruct(const ReconstructArgs& a) {
   } catch (const InvalidInputError& e) {
     throw InvalidInputError(a.input + ": " + e.what());
   }
+  // The summary's topology is computed while the file is written, when a second thread is allowed.
+  std::future<TopologySummary> topology =
+      std::async(available_threads() > 1 ? std::launch::async : std::launch::deferred,
+                 [&r] { return summarize_topology(r.mesh); });
   progress.stage("write");
   write_mesh(r.mesh, a.output, write_options);
   progress.finish();
-  const TopologySummary topo = summarize_topology(r.mesh);
+  const TopologySummary topo = topology.get();
   const double volume = enclosed_volume(r.mesh);
   const auto size = image->GetLargestPossibleRegion().GetSize();
   const auto spacing = image->GetSpacing();

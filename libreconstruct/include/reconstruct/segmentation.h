@@ -1,6 +1,6 @@
-// Segmentation of a CT volume into ordered contours per slice (SPEC 1 and 4): optional denoising,
-// threshold in HU (or Otsu), connected components, per-slice hole handling, sub-pixel contours with
-// itk::ContourExtractor2DImageFilter, orientation, and resampling to a target in-plane spacing.
+// Segmentation of a CT volume into ordered contours per slice (docs/reconstruction.md): optional
+// denoising, threshold in HU (or Otsu), connected components, per-slice hole handling, sub-pixel
+// contours by marching squares, orientation, and resampling to a target in-plane spacing.
 #pragma once
 
 #include "reconstruct/contours.h"
@@ -62,8 +62,10 @@ struct SegmentationResult {
 
 /// Segments every slice (index axis 2) of `image` and extracts its contours in the slice frame
 /// (origin, axes and w from the image's origin, direction and spacing). Outer contours are
-/// counter-clockwise, holes clockwise with `parent` set. Throws InvalidInputError for an empty image
-/// or options out of range; CancelledError when `progress` (stage "segment") returns false.
+/// counter-clockwise, holes clockwise with `parent` set. Slices are segmented in parallel on the
+/// threads a ThreadLimit (threads.h) allows, every core by default; the result does not depend on
+/// their number. Throws InvalidInputError for an empty image or options out of range; CancelledError
+/// when `progress` (stage "segment", called from the calling thread) returns false.
 [[nodiscard]] SegmentationResult segment_contours(const CtImage& image, const SegmentationOptions& options = {},
                                                   const ProgressCallback& progress = {});
 
