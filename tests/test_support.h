@@ -9,6 +9,9 @@
 #include <filesystem>
 #include <string>
 
+#include <unistd.h>
+#include <string>
+
 namespace contourmesh::test {
 
 /// A fresh directory named after the running test, removed at scope exit.
@@ -16,7 +19,8 @@ class ScopedTempDir {
  public:
   explicit ScopedTempDir(const std::string& prefix)
       : path_(std::filesystem::temp_directory_path() /
-              (prefix + "_" + ::testing::UnitTest::GetInstance()->current_test_info()->test_suite_name() + "_" +
+              (prefix + "_" + std::to_string(::getpid()) + "_" +
+               ::testing::UnitTest::GetInstance()->current_test_info()->test_suite_name() + "_" +
                ::testing::UnitTest::GetInstance()->current_test_info()->name())) {
     std::filesystem::remove_all(path_);
     std::filesystem::create_directories(path_);
