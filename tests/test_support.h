@@ -10,7 +10,6 @@
 #include <string>
 
 #include <unistd.h>
-#include <string>
 
 namespace contourmesh::test {
 
