@@ -1,0 +1,583 @@
+#include "reconstruct/planar_contours.h"
+
+#include <smooth/errors.h>
+
+#include <Eigen/Geometry>
+
+#include <algorithm>
+#include <cmath>
+#include <iomanip>
+#include <limits>
+#include <map>
+#include <numbers>
+#include <numeric>
+#include <sstream>
+
+namespace contourmesh {
+
+namespace {
+
+using Polygon = std::vector<Eigen::Vector2d>;
+
+std::string mm(double v) {
+  std::ostringstream s;
+  s << std::fixed << std::setprecision(2) << v;
+  return s.str();
+}
+
+void check_options(const PlanarStackOptions& o) {
+  if (!(o.planarity_tolerance > 0.0) || !std::isfinite(o.planarity_tolerance)) {
+    throw InvalidInputError("the planarity tolerance must be a finite number > 0 mm");
+  }
+  if (!(o.slice_tolerance > 0.0) || !std::isfinite(o.slice_tolerance)) {
+    throw InvalidInputError("the slice tolerance must be a finite number > 0 mm");
+  }
+  if (!(o.gap_factor > 1.0)) throw InvalidInputError("the gap factor must be > 1");
+  if (!(o.min_area >= 0.0) || !std::isfinite(o.min_area)) {
+    throw InvalidInputError("the minimum contour area must be a finite number >= 0 mm^2");
+  }
+  if (o.slice_axis && (!o.slice_axis->allFinite() || !(o.slice_axis->norm() > 0.0))) {
+    throw InvalidInputError("the slice axis must be a finite non-zero vector");
+  }
+}
+
+// Area vector of a closed 3-D polygon (Newell): normal times area.
+Eigen::Vector3d area_vector(const std::vector<Eigen::Vector3d>& p) {
+  Eigen::Vector3d n = Eigen::Vector3d::Zero();
+  if (p.size() < 3) return n;
+  const Eigen::Vector3d& o = p.front();
+  for (std::size_t i = 1; i + 1 < p.size(); ++i) n += (p[i] - o).cross(p[i + 1] - o);
+  return 0.5 * n;
+}
+
+// The axis pointing so that its largest component is positive; snapped to a coordinate axis when
+// within 1e-6 rad of one.
+Eigen::Vector3d canonical_axis(Eigen::Vector3d w) {
+  w.normalize();
+  Eigen::Index k = 0;
+  w.cwiseAbs().maxCoeff(&k);
+  if (w[k] < 0.0) w = -w;
+  if (std::abs(w[k] - 1.0) < 0.5e-12 || (w - Eigen::Vector3d::Unit(k)).norm() < 1e-6) w = Eigen::Vector3d::Unit(k);
+  return w;
+}
+
+// Right-handed frame around w: the next two coordinate axes when w is one of them.
+void frame_for(const Eigen::Vector3d& w, ContourStack& stack) {
+  stack.origin = Eigen::Vector3d::Zero();
+  stack.axis_w = w;
+  for (int k = 0; k < 3; ++k) {
+    if (w == Eigen::Vector3d::Unit(k)) {
+      stack.axis_u = Eigen::Vector3d::Unit((k + 1) % 3);
+      stack.axis_v = Eigen::Vector3d::Unit((k + 2) % 3);
+      return;
+    }
+  }
+  // The coordinate axis least aligned with w, made orthogonal to it.
+  Eigen::Index k = 0;
+  w.cwiseAbs().minCoeff(&k);
+  Eigen::Vector3d u = Eigen::Vector3d::Unit(k);
+  u = (u - u.dot(w) * w).normalized();
+  stack.axis_u = u;
+  stack.axis_v = w.cross(u);
+}
+
+std::string axis_label(const ContourStack& stack) {
+  if (stack.axis_w == Eigen::Vector3d::UnitX()) return "x";
+  if (stack.axis_w == Eigen::Vector3d::UnitY()) return "y";
+  if (stack.axis_w == Eigen::Vector3d::UnitZ()) return "z";
+  return "w";
+}
+
+// One contour of a slice on its way through normalisation.
+struct Work {
+  Polygon points;
+  std::size_t source = 0;
+  std::string name;   // full name for messages, "<what>: contour 12 (z = 3.00 mm)"
+  std::string label;  // short name, "contour 12"
+  double area = 0.0;
+};
+
+// Drops consecutive repeated points; returns how many. A closing point equal to the first (the usual
+// way to write a closed polyline) is dropped too but not counted.
+std::size_t drop_repeated(Polygon& p) {
+  // Points closer than this are the same point: far below any drawing or scanner resolution.
+  constexpr double kSame = 1e-9;
+  Polygon out;
+  out.reserve(p.size());
+  std::size_t repeated = 0;
+  for (const Eigen::Vector2d& q : p) {
+    if (out.empty() || (q - out.back()).norm() > kSame) {
+      out.push_back(q);
+    } else {
+      ++repeated;
+    }
+  }
+  bool closing = true;  // the first trailing copy of the first point closes the polyline
+  while (out.size() > 1 && (out.back() - out.front()).norm() <= kSame) {
+    out.pop_back();
+    if (!closing) ++repeated;
+    closing = false;
+  }
+  p = std::move(out);
+  return repeated;
+}
+
+// Cleans, checks, nests and orients the contours of one slice; degenerate contours are dropped with a
+// warning. Returns the slice's contours, `sources` their entries of `work`.
+std::vector<Contour> normalize_slice(std::vector<Work>& work, const PlanarStackOptions& options,
+                                     PlanarStackReport& report, std::vector<std::string>& repeated_names,
+                                     std::vector<std::size_t>& sources) {
+  std::vector<Work> kept;
+  for (Work& k : work) {
+    for (std::size_t i = 0; i < k.points.size(); ++i) {
+      if (!k.points[i].allFinite()) throw InvalidInputError(k.name + ": point " + std::to_string(i + 1) + " is not finite");
+    }
+    const std::size_t removed = drop_repeated(k.points);
+    if (removed > 0) {
+      report.repeated_points += removed;
+      repeated_names.push_back(k.name);
+    }
+    k.area = k.points.size() >= 3 ? signed_area(k.points) : 0.0;
+    if (k.points.size() < 3 || !(std::abs(k.area) > options.min_area)) {
+      ++report.dropped_contours;
+      report.warnings.push_back(k.name + " has " +
+                                (k.points.size() < 3 ? std::to_string(k.points.size()) + " distinct point" +
+                                                           (k.points.size() == 1 ? "" : "s")
+                                                     : "no area (" + mm(std::abs(k.area)) + " mm^2)") +
+                                ": skipped");
+      continue;
+    }
+    if (const auto x = find_self_intersection(k.points)) {
+      std::ostringstream msg;
+      msg << k.name << " intersects itself: its segments " << x->first + 1 << " and " << x->second + 1
+          << " meet at (" << mm(x->where.x()) << ", " << mm(x->where.y()) << ") mm in its plane";
+      throw InvalidInputError(msg.str());
+    }
+    kept.push_back(std::move(k));
+  }
+  work = std::move(kept);
+  const std::size_t n = work.size();
+  if (n > 1) {
+    std::vector<Polygon> outlines;
+    outlines.reserve(n);
+    for (const Work& k : work) outlines.push_back(k.points);
+    if (const auto x = find_polygon_crossing(outlines)) {
+      std::ostringstream msg;
+      msg << work[x->first].name << " and " << work[x->second].label << " meet at (" << mm(x->where.x()) << ", "
+          << mm(x->where.y()) << ") mm: the contours of one slice must bound separate regions";
+      throw InvalidInputError(msg.str());
+    }
+  }
+  // Nesting: with no crossings, one vertex tells whether a contour lies inside another. The parent is
+  // the smallest contour that contains it.
+  std::vector<Eigen::AlignedBox2d> boxes(n);
+  for (std::size_t i = 0; i < n; ++i) {
+    for (const auto& p : work[i].points) boxes[i].extend(p);
+  }
+  std::vector<Contour> out(n);
+  sources.resize(n);
+  for (std::size_t i = 0; i < n; ++i) {
+    int depth = 0;
+    int parent = -1;
+    double smallest = std::numeric_limits<double>::infinity();
+    for (std::size_t j = 0; j < n; ++j) {
+      if (i == j || !boxes[j].contains(work[i].points[0]) || !point_in_polygon(work[j].points, work[i].points[0])) {
+        continue;
+      }
+      ++depth;
+      if (std::abs(work[j].area) < smallest) {
+        smallest = std::abs(work[j].area);
+        parent = static_cast<int>(j);
+      }
+    }
+    Contour& c = out[i];
+    c.is_hole = depth % 2 == 1;
+    c.parent = c.is_hole ? parent : -1;
+    c.points = std::move(work[i].points);
+    if ((c.is_hole && work[i].area > 0.0) || (!c.is_hole && work[i].area < 0.0)) {
+      std::reverse(c.points.begin(), c.points.end());
+      ++report.reversed;
+    }
+    report.hole_contours += c.is_hole ? 1 : 0;
+    sources[i] = work[i].source;
+  }
+  report.contours += n;
+  return out;
+}
+
+void report_repeated(PlanarStackReport& report, const std::vector<std::string>& names, const std::string& what) {
+  if (names.empty()) return;
+  std::ostringstream msg;
+  msg << what << ": dropped " << report.repeated_points << " repeated point" << (report.repeated_points == 1 ? "" : "s")
+      << " (consecutive copies) from " << names.size() << " contour" << (names.size() == 1 ? "" : "s") << ": ";
+  for (std::size_t i = 0; i < names.size() && i < 5; ++i) msg << (i ? "; " : "") << names[i];
+  if (names.size() > 5) msg << "; ...";
+  report.warnings.push_back(msg.str());
+}
+
+// Median spacing, largest gap and the gap warnings of an ordered stack.
+void check_spacing(const ContourStack& stack, const PlanarStackOptions& options, const std::string& what,
+                   PlanarStackReport& report) {
+  const auto& sl = stack.slices;
+  if (sl.size() < 2) return;
+  std::vector<double> gaps;
+  for (std::size_t s = 1; s < sl.size(); ++s) gaps.push_back(sl[s].w - sl[s - 1].w);
+  std::vector<double> sorted = gaps;
+  std::nth_element(sorted.begin(), sorted.begin() + static_cast<std::ptrdiff_t>(sorted.size() / 2), sorted.end());
+  double median = sorted[sorted.size() / 2];
+  if (sorted.size() % 2 == 0) {
+    median = 0.5 * (median + *std::max_element(sorted.begin(), sorted.begin() + static_cast<std::ptrdiff_t>(sorted.size() / 2)));
+  }
+  report.typical_spacing = median;
+  report.largest_gap = *std::max_element(gaps.begin(), gaps.end());
+  const std::string axis = axis_label(stack);
+  for (std::size_t s = 1; s < sl.size(); ++s) {
+    if (gaps[s - 1] > options.gap_factor * median) {
+      report.warnings.push_back(what + ": slices " + std::to_string(s - 1) + " (" + axis + " = " + mm(sl[s - 1].w) +
+                                " mm) and " + std::to_string(s) + " (" + axis + " = " + mm(sl[s].w) + " mm) are " +
+                                mm(gaps[s - 1]) + " mm apart, more than " + mm(options.gap_factor) +
+                                " x the typical spacing " + mm(median) + " mm: tiled across the gap");
+    }
+  }
+}
+
+// Sign of the contours' common normal: each area vector flipped to agree with the largest one.
+Eigen::Vector3d common_normal(const std::vector<Eigen::Vector3d>& areas) {
+  std::size_t largest = 0;
+  for (std::size_t i = 1; i < areas.size(); ++i) {
+    if (areas[i].norm() > areas[largest].norm()) largest = i;
+  }
+  Eigen::Vector3d sum = Eigen::Vector3d::Zero();
+  for (const Eigen::Vector3d& a : areas) sum += a.dot(areas[largest]) < 0.0 ? -a : a;
+  return sum;
+}
+
+}  // namespace
+
+PlanarStack build_contour_stack(const std::vector<PlanarContour>& contours, const std::string& what,
+                                const PlanarStackOptions& options) {
+  check_options(options);
+  PlanarStack out;
+  PlanarStackReport& report = out.report;
+  ContourStack& stack = out.stack;
+  report.input_contours = contours.size();
+  if (contours.empty()) throw InvalidInputError(what + ": no contours");
+  auto name_of = [&](std::size_t i) {
+    return contours[i].name.empty() ? "contour " + std::to_string(i + 1) : contours[i].name;
+  };
+  for (std::size_t i = 0; i < contours.size(); ++i) {
+    for (std::size_t k = 0; k < contours[i].points.size(); ++k) {
+      if (!contours[i].points[k].allFinite()) {
+        throw InvalidInputError(what + ": " + name_of(i) + ": point " + std::to_string(k + 1) + " is not finite");
+      }
+    }
+  }
+  const bool by_id = std::all_of(contours.begin(), contours.end(), [](const PlanarContour& c) { return c.slice_id.has_value(); });
+
+  // 1. The slice axis and the frame.
+  Eigen::Vector3d axis;
+  if (options.slice_axis) {
+    axis = *options.slice_axis;
+  } else {
+    std::vector<Eigen::Vector3d> areas;
+    areas.reserve(contours.size());
+    for (const PlanarContour& c : contours) areas.push_back(area_vector(c.points));
+    axis = common_normal(areas);
+    if (!(axis.norm() > 0.0) || !axis.allFinite()) {
+      throw InvalidInputError(what + ": the contours enclose no area, so they define no slice plane");
+    }
+  }
+  frame_for(canonical_axis(axis), stack);
+  const std::string axis_name = axis_label(stack);
+
+  // 2. Slice coordinates, and each contour's position along the axis.
+  const std::size_t n = contours.size();
+  std::vector<Polygon> uv(n);
+  std::vector<double> mean_w(n, 0.0);
+  for (std::size_t i = 0; i < n; ++i) {
+    const auto& p = contours[i].points;
+    uv[i].reserve(p.size());
+    for (const Eigen::Vector3d& q : p) {
+      uv[i].emplace_back(q.dot(stack.axis_u), q.dot(stack.axis_v));
+      mean_w[i] += q.dot(stack.axis_w);
+    }
+    if (!p.empty()) mean_w[i] /= static_cast<double>(p.size());
+  }
+
+  // 3. Slices: by id, or by position along the axis.
+  std::vector<std::vector<std::size_t>> groups;
+  if (by_id) {
+    std::map<long long, std::vector<std::size_t>> by;
+    for (std::size_t i = 0; i < n; ++i) by[*contours[i].slice_id].push_back(i);
+    for (auto& [id, members] : by) groups.push_back(std::move(members));
+  } else {
+    std::vector<std::size_t> order(n);
+    std::iota(order.begin(), order.end(), 0);
+    std::stable_sort(order.begin(), order.end(), [&](std::size_t a, std::size_t b) { return mean_w[a] < mean_w[b]; });
+    for (std::size_t i : order) {
+      if (groups.empty() || mean_w[i] - mean_w[groups.back().front()] > options.slice_tolerance) groups.emplace_back();
+      groups.back().push_back(i);
+    }
+  }
+  struct Slice {
+    double w;
+    std::vector<std::size_t> members;
+  };
+  std::vector<Slice> slices;
+  for (auto& g : groups) {
+    double w = 0.0, weight = 0.0;
+    for (std::size_t i : g) {
+      const double a = static_cast<double>(contours[i].points.size());
+      w += a * mean_w[i];
+      weight += a;
+    }
+    slices.push_back({weight > 0.0 ? w / weight : mean_w[g.front()], std::move(g)});
+  }
+  std::stable_sort(slices.begin(), slices.end(), [](const Slice& a, const Slice& b) { return a.w < b.w; });
+  if (by_id) {
+    for (std::size_t s = 1; s < slices.size(); ++s) {
+      if (slices[s].w - slices[s - 1].w <= options.slice_tolerance) {
+        throw InvalidInputError(what + ": slices " + std::to_string(*contours[slices[s - 1].members.front()].slice_id) +
+                                " and " + std::to_string(*contours[slices[s].members.front()].slice_id) +
+                                " lie in the same plane (" + axis_name + " = " + mm(slices[s].w) + " mm)");
+      }
+    }
+  }
+
+  // 4. Planarity: every point within the tolerance of its slice plane.
+  for (const Slice& sl : slices) {
+    for (std::size_t i : sl.members) {
+      double worst = 0.0;
+      for (const Eigen::Vector3d& q : contours[i].points) worst = std::max(worst, std::abs(q.dot(stack.axis_w) - sl.w));
+      if (worst <= options.planarity_tolerance) continue;
+      std::ostringstream msg;
+      msg << what << ": " << name_of(i) << " (" << axis_name << " = " << mm(mean_w[i]) << " mm) is ";
+      const Eigen::Vector3d own = area_vector(contours[i].points);
+      double own_spread = std::numeric_limits<double>::infinity();
+      if (own.norm() > 0.0) {
+        const Eigen::Vector3d nrm = own.normalized();
+        double lo = std::numeric_limits<double>::infinity(), hi = -lo;
+        for (const Eigen::Vector3d& q : contours[i].points) {
+          lo = std::min(lo, q.dot(nrm));
+          hi = std::max(hi, q.dot(nrm));
+        }
+        own_spread = hi - lo;
+      }
+      if (own_spread <= 2.0 * options.planarity_tolerance) {
+        const double angle = std::acos(std::min(1.0, std::abs(own.normalized().dot(stack.axis_w)))) * 180.0 / std::numbers::pi;
+        msg << "planar but tilted " << mm(angle) << " degrees from the slice planes of the others";
+      } else {
+        msg << "not planar: its points lie up to " << mm(worst) << " mm from its slice plane (tolerance "
+            << options.planarity_tolerance << " mm)";
+      }
+      throw InvalidInputError(msg.str());
+    }
+  }
+
+  // 5. Per slice: clean, check, nest, orient.
+  std::vector<std::string> repeated_names;
+  for (const Slice& sl : slices) {
+    std::vector<Work> work;
+    for (std::size_t i : sl.members) {
+      work.push_back({std::move(uv[i]), i, what + ": " + name_of(i) + " (" + axis_name + " = " + mm(sl.w) + " mm)",
+                      name_of(i), 0.0});
+    }
+    std::vector<std::size_t> sources;
+    std::vector<Contour> cs = normalize_slice(work, options, report, repeated_names, sources);
+    if (cs.empty()) continue;
+    stack.slices.push_back({sl.w, std::move(cs)});
+    report.source.push_back(std::move(sources));
+  }
+  report_repeated(report, repeated_names, what);
+  report.slices = stack.slices.size();
+  if (stack.slices.empty()) throw InvalidInputError(what + ": every contour is degenerate (no area)");
+  check_spacing(stack, options, what, report);
+  return out;
+}
+
+PlanarStackReport normalize_contour_stack(ContourStack& stack, const std::string& what,
+                                          const PlanarStackOptions& options) {
+  check_options(options);
+  PlanarStackReport report;
+  const std::string axis_name = axis_label(stack);
+  std::vector<std::string> repeated_names;
+  for (std::size_t s = 0; s < stack.slices.size(); ++s) {
+    SliceContours& sl = stack.slices[s];
+    if (!std::isfinite(sl.w)) throw InvalidInputError(what + ": slice " + std::to_string(s) + " has no finite position");
+    if (s > 0 && !(sl.w > stack.slices[s - 1].w)) {
+      throw InvalidInputError(what + ": slice " + std::to_string(s) + " (" + axis_name + " = " + mm(sl.w) +
+                              " mm) is not above slice " + std::to_string(s - 1) + " (" + axis_name + " = " +
+                              mm(stack.slices[s - 1].w) + " mm): slices must be ordered by increasing position");
+    }
+    report.input_contours += sl.contours.size();
+    std::vector<Work> work;
+    for (std::size_t c = 0; c < sl.contours.size(); ++c) {
+      const std::string label = "contour " + std::to_string(c) + " of slice " + std::to_string(s);
+      work.push_back({std::move(sl.contours[c].points), c,
+                      what + ": " + label + " (" + axis_name + " = " + mm(sl.w) + " mm)", label, 0.0});
+    }
+    std::vector<std::size_t> sources;
+    sl.contours = normalize_slice(work, options, report, repeated_names, sources);
+    report.source.push_back(std::move(sources));
+  }
+  report_repeated(report, repeated_names, what);
+  report.slices = stack.slices.size();
+  check_spacing(stack, options, what, report);
+  return report;
+}
+
+std::vector<Eigen::Vector2d> resample_drawn(const std::vector<Eigen::Vector2d>& polygon, double spacing,
+                                           double tolerance) {
+  if (!(spacing > 0.0) || !std::isfinite(spacing)) throw InvalidInputError("resampling: the spacing must be > 0 mm");
+  if (!(tolerance >= 0.0) || !std::isfinite(tolerance)) throw InvalidInputError("resampling: the tolerance must be >= 0 mm");
+  const std::size_t n = polygon.size();
+  if (n < 3) throw InvalidInputError("resampling: a polygon needs at least 3 points");
+  // Start at the sharpest corner, which any simplification keeps.
+  std::size_t start = 0;
+  double sharpest = 2.0;
+  for (std::size_t i = 0; i < n; ++i) {
+    const Eigen::Vector2d a = polygon[i] - polygon[(i + n - 1) % n];
+    const Eigen::Vector2d b = polygon[(i + 1) % n] - polygon[i];
+    if (!(a.norm() > 0.0) || !(b.norm() > 0.0)) continue;
+    const double c = a.normalized().dot(b.normalized());
+    if (c < sharpest) {
+      sharpest = c;
+      start = i;
+    }
+  }
+  auto at = [&](std::size_t k) -> const Eigen::Vector2d& { return polygon[(start + k) % n]; };
+  // Greedy chords: from an anchor, extend while the chord stays short and every skipped point close.
+  std::vector<std::size_t> kept{0};
+  std::size_t anchor = 0;
+  while (anchor < n) {
+    std::size_t best = anchor + 1;
+    for (std::size_t j = anchor + 2; j <= n; ++j) {
+      const Eigen::Vector2d& a = at(anchor);
+      const Eigen::Vector2d& b = at(j);  // j == n is the start again
+      const Eigen::Vector2d d = b - a;
+      const double len = d.norm();
+      if (len > spacing) break;
+      bool close = len > 0.0;
+      for (std::size_t k = anchor + 1; k < j && close; ++k) {
+        const Eigen::Vector2d q = at(k) - a;
+        const double t = q.dot(d) / (len * len);
+        close = t > 0.0 && t < 1.0 && std::abs(d.x() * q.y() - d.y() * q.x()) / len <= tolerance;
+      }
+      if (!close) break;
+      best = j;
+    }
+    if (best < n) kept.push_back(best);
+    anchor = best;
+  }
+  if (kept.size() < 3) {  // a contour smaller than the spacing: keep its shape as drawn
+    kept.resize(n);
+    std::iota(kept.begin(), kept.end(), 0);
+  }
+  std::vector<Eigen::Vector2d> out;
+  for (std::size_t i = 0; i < kept.size(); ++i) {
+    const Eigen::Vector2d& a = at(kept[i]);
+    const Eigen::Vector2d& b = at(i + 1 < kept.size() ? kept[i + 1] : 0);
+    const auto pieces = static_cast<std::size_t>(std::max(1.0, std::ceil((b - a).norm() / spacing - 1e-9)));
+    for (std::size_t k = 0; k < pieces; ++k) out.push_back(a + (b - a) * (static_cast<double>(k) / static_cast<double>(pieces)));
+  }
+  return out;
+}
+
+namespace {
+
+// Splits every edge of `p` longer than `limit` into ceil(length / piece) equal parts.
+void split_long_edges(Polygon& p, double limit, double piece) {
+  Polygon out;
+  out.reserve(p.size());
+  for (std::size_t i = 0; i < p.size(); ++i) {
+    const Eigen::Vector2d& a = p[i];
+    const Eigen::Vector2d& b = p[(i + 1) % p.size()];
+    const double len = (b - a).norm();
+    out.push_back(a);
+    if (len <= limit) continue;
+    const auto pieces = static_cast<std::size_t>(std::ceil(len / piece));
+    for (std::size_t k = 1; k < pieces; ++k) out.push_back(a + (b - a) * (static_cast<double>(k) / static_cast<double>(pieces)));
+  }
+  p = std::move(out);
+}
+
+double longest_edge(const Polygon& p) {
+  double m = 0.0;
+  for (std::size_t i = 0; i < p.size(); ++i) m = std::max(m, (p[(i + 1) % p.size()] - p[i]).norm());
+  return m;
+}
+
+}  // namespace
+
+ResamplingReport resample_drawn_stack(ContourStack& stack, double spacing, double tolerance) {
+  ResamplingReport report;
+  for (SliceContours& slice : stack.slices) {
+    auto& cs = slice.contours;
+    std::vector<Polygon> simplified(cs.size());
+    for (std::size_t c = 0; c < cs.size(); ++c) {
+      report.points_before += cs[c].points.size();
+      simplified[c] = resample_drawn(cs[c].points, spacing, tolerance);
+    }
+    // Simplification moves a contour by up to `tolerance`: where that makes contours meet, keep
+    // every drawn point (subdividing only).
+    auto exact = [&](std::size_t c) {
+      simplified[c] = resample_drawn(cs[c].points, spacing, 0.0);
+      ++report.exact_fallbacks;
+    };
+    for (std::size_t c = 0; c < cs.size(); ++c) {
+      if (find_self_intersection(simplified[c])) exact(c);
+    }
+    if (tolerance > 0.0 && cs.size() > 1 && find_polygon_crossing(simplified)) {
+      for (std::size_t c = 0; c < cs.size(); ++c) exact(c);
+    }
+    // Even sampling within each outer contour and its holes.
+    for (std::size_t o = 0; o < cs.size(); ++o) {
+      if (cs[o].is_hole) continue;
+      std::vector<std::size_t> group{o};
+      for (std::size_t h = 0; h < cs.size(); ++h) {
+        if (cs[h].is_hole && cs[h].parent == static_cast<int>(o)) group.push_back(h);
+      }
+      for (int pass = 0; pass < 32; ++pass) {
+        const double mean = perimeter(simplified[o]) / static_cast<double>(simplified[o].size());
+        double longest = 0.0;
+        for (std::size_t c : group) longest = std::max(longest, longest_edge(simplified[c]));
+        if (longest <= 1.4 * mean) break;
+        for (std::size_t c : group) split_long_edges(simplified[c], 1.4 * mean, mean);
+      }
+    }
+    for (std::size_t c = 0; c < cs.size(); ++c) {
+      cs[c].points = std::move(simplified[c]);
+      report.points_after += cs[c].points.size();
+    }
+  }
+  return report;
+}
+
+std::vector<double> slice_thicknesses(const ContourStack& stack) {
+  const auto& sl = stack.slices;
+  const std::size_t n = sl.size();
+  std::vector<double> t(n, 0.0);
+  if (n < 2) return t;
+  for (std::size_t s = 0; s < n; ++s) {
+    const double below = s > 0 ? sl[s].w - sl[s - 1].w : sl[1].w - sl[0].w;
+    const double above = s + 1 < n ? sl[s + 1].w - sl[s].w : sl[n - 1].w - sl[n - 2].w;
+    t[s] = 0.5 * (below + above);
+  }
+  return t;
+}
+
+double slicewise_volume(const ContourStack& stack) {
+  const std::vector<double> t = slice_thicknesses(stack);
+  double v = 0.0;
+  for (std::size_t s = 0; s < stack.slices.size(); ++s) {
+    double area = 0.0;
+    for (const Contour& c : stack.slices[s].contours) {
+      const double a = std::abs(signed_area(c.points));
+      area += c.is_hole ? -a : a;
+    }
+    v += area * t[s];
+  }
+  return v;
+}
+
+}  // namespace contourmesh
