@@ -325,6 +325,7 @@ PlanarStack build_contour_stack(const std::vector<PlanarContour>& contours, cons
   };
   std::vector<Slice> slices;
   for (auto& g : groups) {
+    std::sort(g.begin(), g.end());  // a slice's contours in input order
     double w = 0.0, weight = 0.0;
     for (std::size_t i : g) {
       const double a = static_cast<double>(contours[i].points.size());

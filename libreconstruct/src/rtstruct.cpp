@@ -418,6 +418,24 @@ RoiStack roi_contour_stack(const RtRoi& roi, const PlanarStackOptions& options) 
   return out;
 }
 
+std::optional<double> structure_set_slice_spacing(const RtStructureSet& set) {
+  std::vector<double> w;
+  for (const RtRoi& roi : set.rois) {
+    const std::vector<double> more = closed_contour_positions(roi);
+    w.insert(w.end(), more.begin(), more.end());
+  }
+  std::sort(w.begin(), w.end());
+  std::vector<double> planes;
+  for (const double x : w) {
+    if (planes.empty() || x - planes.back() > 0.1) planes.push_back(x);
+  }
+  if (planes.size() < 2) return std::nullopt;
+  std::vector<double> gaps;
+  for (std::size_t i = 1; i < planes.size(); ++i) gaps.push_back(planes[i] - planes[i - 1]);
+  std::nth_element(gaps.begin(), gaps.begin() + static_cast<std::ptrdiff_t>(gaps.size() / 2), gaps.end());
+  return gaps[gaps.size() / 2];
+}
+
 std::string roi_file_stem(const RtRoi& roi) {
   std::string out;
   bool gap = false;

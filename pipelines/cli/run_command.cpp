@@ -2,11 +2,14 @@
 // smooth -> export. With no input it runs on a built-in phantom with noise, and reports accuracy
 // against the phantom's analytic surface.
 #include "cli_common.h"
+#include "contour_input.h"
 #include "feature_options.h"
 #include "progress_display.h"
 
 #include <pipelines/atomic_file.h>
 #include <pipelines/mesh_io.h>
+#include <reconstruct/contour_deviation.h>
+#include <reconstruct/contour_reconstruction.h>
 #include <reconstruct/phantom.h>
 #include <reconstruct/reconstruction.h>
 #include <reconstruct/volume.h>
@@ -48,13 +51,64 @@ struct RunArgs {
   std::string labels_out;
   Index max_vertices = kDefaultMaxVertices;
   bool json = false;
+  std::optional<double> sampling;
   FeatureArgs detection;
+  ContourArgs contour;
   CommonArgs common;
 };
 
+// The smoothing stage, the same for every input: the paper's method (default) or a baseline.
+struct Smoothed {
+  Mesh mesh;
+  std::optional<FeatureSmoothingResult> paper;
+  double seconds = 0.0;
+};
+
+Smoothed smooth_reconstruction(const Mesh& mesh, const RunArgs& a, ProgressDisplay& progress, const std::string& source) {
+  const auto t = std::chrono::steady_clock::now();
+  Smoothed out;
+  out.mesh = mesh;
+  if (a.method == "paper") {
+    FeatureSmoothingOptions o;
+    o.detection = detection_options(a.detection);
+    o.progress = progress.callback();
+    if (a.iterations) o.iterations = *a.iterations;
+    o.limits.max_vertices = a.max_vertices;
+    try {
+      out.paper = feature_preserving_smooth(mesh, o);
+    } catch (const LimitError& e) {
+      throw LimitError(source + ": " + e.what());
+    }
+    out.mesh = out.paper->mesh;
+  } else {
+    SmoothingOptions o;
+    o.method = parse_smoothing_method(a.method);
+    o.progress = progress.callback();
+    if (a.iterations) o.iterations = *a.iterations;
+    out.mesh.positions = smooth(mesh, o);
+  }
+  out.seconds = seconds_since(t);
+  return out;
+}
+
+void add_paper_json(nlohmann::json& j, const Smoothed& s) {
+  if (!s.paper) return;
+  j["edge_vertices"] = s.paper->detection.edges;
+  j["corner_vertices"] = s.paper->detection.corners;
+  j["noise_vertices"] = s.paper->detection.noise;
+  j["subdivided_vertices"] = s.paper->subdivided_vertices;
+  j["seconds_detect"] = s.paper->seconds.detect;
+  j["seconds_subdivide"] = s.paper->seconds.subdivide;
+}
+
+const std::vector<std::string> kVolumeOnly{"--shape", "--spacing", "--noise", "--blur", "--seed", "--threshold",
+                                           "--feature-radius"};
+const std::vector<std::string> kContourOnly{"--roi", "--align", "--single-slice", "--slab-thickness",
+                                            "--planarity-tolerance", "--sampling-tolerance", "--sampling"};
+
 int run_run(const RunArgs& a) {
   const auto start = std::chrono::steady_clock::now();
-  const SmoothingMethod baseline = a.method == "paper" ? SmoothingMethod::None : parse_smoothing_method(a.method);
+  if (a.method != "paper") (void)parse_smoothing_method(a.method);  // fail before the work
   // Fail on bad options and output paths before the work.
   MeshWriteOptions write_options;
   write_options.format = parse_mesh_format(a.format);
@@ -124,29 +178,10 @@ int run_run(const RunArgs& a) {
   const Mesh& mesh = rec.mesh;
 
   // 3. Smooth.
-  t = std::chrono::steady_clock::now();
-  Mesh result = mesh;
-  std::optional<FeatureSmoothingResult> paper;
-  if (a.method == "paper") {
-    FeatureSmoothingOptions o;
-    o.detection = detection_options(a.detection);
-    o.progress = progress.callback();
-    if (a.iterations) o.iterations = *a.iterations;
-    o.limits.max_vertices = a.max_vertices;
-    try {
-      paper = feature_preserving_smooth(mesh, o);
-    } catch (const LimitError& e) {
-      throw LimitError(source + ": " + e.what());
-    }
-    result = paper->mesh;
-  } else {
-    SmoothingOptions o;
-    o.method = baseline;
-    o.progress = progress.callback();
-    if (a.iterations) o.iterations = *a.iterations;
-    result.positions = smooth(mesh, o);
-  }
-  const double seconds_smooth = seconds_since(t);
+  const Smoothed smoothed = smooth_reconstruction(mesh, a, progress, source);
+  const Mesh& result = smoothed.mesh;
+  const std::optional<FeatureSmoothingResult>& paper = smoothed.paper;
+  const double seconds_smooth = smoothed.seconds;
 
   // 4. Export.
   t = std::chrono::steady_clock::now();
@@ -185,14 +220,7 @@ int run_run(const RunArgs& a) {
   j["seconds_tile"] = rec.report.seconds_tile;
   j["seconds_smooth"] = seconds_smooth;
   j["seconds_write"] = seconds_write;
-  if (paper) {
-    j["edge_vertices"] = paper->detection.edges;
-    j["corner_vertices"] = paper->detection.corners;
-    j["noise_vertices"] = paper->detection.noise;
-    j["subdivided_vertices"] = paper->subdivided_vertices;
-    j["seconds_detect"] = paper->seconds.detect;
-    j["seconds_subdivide"] = paper->seconds.subdivide;
-  }
+  add_paper_json(j, smoothed);
   DistanceStats before, after, feature_before, feature_after;
   if (phantom) {
     std::vector<Index> feature_vertices;
@@ -242,13 +270,187 @@ int run_run(const RunArgs& a) {
   return kOk;
 }
 
+// The contour route: drawn contours (an RT Structure Set ROI, or all of them, or a contour file) ->
+// tiling -> the same smoothing -> export.
+int run_contours(const RunArgs& a, InputKind kind, bool output_given) {
+  const auto start = std::chrono::steady_clock::now();
+  if (a.method != "paper") (void)parse_smoothing_method(a.method);
+  if (!a.labels_out.empty() && a.method != "paper") {
+    throw InvalidInputError("--labels-out needs --method paper (the labels come from its detection)");
+  }
+  EndCaps end_caps = EndCaps::HalfSpacing;
+  if (a.end_caps == "end-slice") end_caps = EndCaps::AtEndSlice;
+  else if (a.end_caps != "half-spacing") throw InvalidInputError("--end-caps must be half-spacing or end-slice");
+  MeshWriteOptions write_options;
+  write_options.format = parse_mesh_format(a.format);
+  apply_common_options(a.common);
+  ProgressDisplay progress("run", a.common.quiet);
+  progress.stage("read");
+  ContourInputs loaded = load_contour_inputs(a.input, kind, a.contour);
+  print_warnings("run", loaded.warnings);
+  print_warnings("run", loaded.skipped);
+  // Without -o: out/<ROI>.stl, or the directory out/ for --roi all.
+  const std::string output = output_given ? a.output : (loaded.all ? std::string("out") : "out/" + loaded.inputs[0].stem + ".stl");
+  const std::string extension = write_options.format == MeshFormat::Auto || write_options.format == MeshFormat::StlBinary ||
+                                        write_options.format == MeshFormat::StlAscii
+                                    ? ".stl"
+                                    : "." + std::string(to_string(write_options.format));
+  std::vector<std::filesystem::path> outputs, labels;
+  for (const ContourInput& in : loaded.inputs) {
+    outputs.push_back(roi_output_path(output, in, loaded.all, extension));
+    labels.push_back(a.labels_out.empty() ? std::filesystem::path() : roi_output_path(a.labels_out, in, loaded.all, "_labels.vtp"));
+    for (const auto& p : {outputs.back(), labels.back()}) {
+      if (p.empty()) continue;
+      ensure_parent_directory(p);
+      check_output_path(p);
+    }
+    if (write_options.format == MeshFormat::Auto) (void)format_from_extension(outputs.back());
+    if (!labels.back().empty() && !format_keeps_contour_ids(format_from_extension(labels.back()))) {
+      throw InvalidInputError(labels.back().string() + ": labels need a .vtp or .ply file");
+    }
+  }
+
+  nlohmann::json rois = nlohmann::json::array();
+  std::size_t failed = 0;
+  for (std::size_t i = 0; i < loaded.inputs.size(); ++i) {
+    const ContourInput& in = loaded.inputs[i];
+    const auto t0 = std::chrono::steady_clock::now();
+    auto fail = [&](const std::string& message) {
+      if (!loaded.all) throw InvalidInputError(a.input + ": " + message);
+      std::cerr << "contourmesh run: error: " << a.input << ": " << message << "\n";
+      ++failed;
+      nlohmann::json j{{"status", "failed"}, {"error", message}};
+      describe_input(j, in);
+      rois.push_back(j);
+    };
+    if (!in.error.empty()) {
+      fail(in.error);
+      continue;
+    }
+    print_warnings("run", in.warnings);
+    ContourReconstruction rec;
+    Smoothed smoothed;
+    try {
+      rec = reconstruct_from_contours(in.stack, in.what, contour_options(a.contour, in, a.sampling, end_caps, a.max_vertices),
+                                      progress.callback());
+      print_warnings("run", rec.report.warnings);
+      smoothed = smooth_reconstruction(rec.mesh, a, progress, in.what);
+    } catch (const LimitError& e) {
+      if (!loaded.all) throw LimitError(a.input + ": " + e.what());
+      fail(e.what());
+      continue;
+    } catch (const InvalidInputError& e) {
+      fail(e.what());
+      continue;
+    }
+    auto t = std::chrono::steady_clock::now();
+    progress.stage("write");
+    write_mesh(smoothed.mesh, outputs[i], write_options);
+    if (smoothed.paper && !labels[i].empty()) {
+      MeshWriteOptions label_options;
+      label_options.point_scalars = detection_arrays(smoothed.paper->detection);
+      write_mesh(rec.mesh, labels[i], label_options);
+    }
+    const double seconds_write = seconds_since(t);
+    const TopologySummary topo = summarize_topology(smoothed.mesh);
+    const double v0 = enclosed_volume(rec.mesh);
+    const double v1 = enclosed_volume(smoothed.mesh);
+    const ContourDeviation before = contour_deviation(rec.mesh, in.stack);
+    const ContourDeviation after = contour_deviation(smoothed.mesh, in.stack);
+    nlohmann::json j;
+    j["status"] = "ok";
+    describe_input(j, in);
+    j["output"] = outputs[i].string();
+    if (!labels[i].empty()) j["labels_out"] = labels[i].string();
+    j["method"] = a.method;
+    j["slices"] = rec.report.slices;
+    j["contours"] = rec.report.contours;
+    j["hole_contours"] = rec.report.hole_contours;
+    j["points_drawn"] = rec.report.points_drawn;
+    j["slabs"] = rec.report.slabs;
+    j["vertices"] = smoothed.mesh.num_vertices();
+    j["faces"] = smoothed.mesh.num_faces();
+    j["components"] = topo.components;
+    j["is_closed"] = topo.closed;
+    j["is_manifold"] = topo.manifold;
+    j["euler_characteristic"] = topo.euler_characteristic;
+    j["slicewise_volume"] = rec.report.slicewise_volume;
+    j["volume_before"] = v0;
+    j["volume_after"] = v1;
+    j["volume_change_percent"] = 100.0 * (v1 - v0) / v0;
+    j["contour_deviation_before_mean"] = before.mean;
+    j["contour_deviation_before_max"] = before.max;
+    j["contour_deviation_after_mean"] = after.mean;
+    j["contour_deviation_after_rms"] = after.rms;
+    j["contour_deviation_after_max"] = after.max;
+    j["slices_without_section_after"] = after.slices_without_section;
+    j["seconds_tile"] = rec.report.seconds_tile;
+    j["seconds_smooth"] = smoothed.seconds;
+    j["seconds_write"] = seconds_write;
+    add_paper_json(j, smoothed);
+    j["seconds"] = seconds_since(t0);
+    rois.push_back(j);
+    if (a.json || a.common.quiet) continue;
+    std::cout << std::fixed << std::setprecision(2) << "ContourMesh: " << in.what
+              << (kind == InputKind::StructureSet ? " of " + a.input : "") << "\n"
+              << "  contours    " << rec.report.contours << " on " << rec.report.slices << " slices ("
+              << rec.report.hole_contours << " holes, " << rec.report.tiling.branchings << " branchings, "
+              << rec.report.slabs << " single-slice slabs)\n"
+              << "  mesh        " << smoothed.mesh.num_vertices() << " vertices, " << smoothed.mesh.num_faces()
+              << " triangles, " << (topo.closed ? "closed" : "OPEN") << ", " << (topo.manifold ? "manifold" : "NOT manifold")
+              << ", Euler characteristic " << topo.euler_characteristic << "\n";
+    if (smoothed.paper) {
+      std::cout << "  features    " << smoothed.paper->detection.edges << " edge, " << smoothed.paper->detection.corners
+                << " corner, " << smoothed.paper->detection.noise << " noise vertices; "
+                << smoothed.paper->subdivided_vertices << " subdivided\n";
+    }
+    std::cout << "  smoothing   " << a.method << ": volume " << std::setprecision(1) << v0 << " -> " << v1 << " mm^3 ("
+              << std::setprecision(2) << 100.0 * (v1 - v0) / v0 << " %; slice-wise " << std::setprecision(1)
+              << rec.report.slicewise_volume << ")\n"
+              << std::setprecision(3) << "  contours    in-plane distance to the drawn contours: mean " << before.mean
+              << " -> " << after.mean << " mm, largest " << before.max << " -> " << after.max << " mm\n"
+              << std::setprecision(2) << "  seconds     tile " << rec.report.seconds_tile << ", smooth " << smoothed.seconds
+              << ", write " << seconds_write << ", total " << seconds_since(t0) << "\n"
+              << "  wrote       " << outputs[i].string() << (labels[i].empty() ? "" : " and " + labels[i].string()) << "\n";
+  }
+  progress.finish();
+  if (a.json) {
+    nlohmann::json j;
+    if (loaded.all) {
+      j["rois"] = rois;
+      j["skipped"] = loaded.skipped;
+      j["failed"] = failed;
+    } else {
+      j = rois.at(0);
+    }
+    j["command"] = "run";
+    j["input"] = a.input;
+    j["seconds"] = seconds_since(start);
+    print_json(j);
+  }
+  if (failed > 0 && !a.json) std::cerr << "contourmesh run: " << failed << " of " << loaded.inputs.size() << " ROIs failed\n";
+  return failed > 0 ? kBadInput : kOk;
+}
+
+int run_any(const RunArgs& a, const CLI::App* cmd) {
+  const InputKind kind = a.input.empty() ? InputKind::Volume : input_kind(a.input);
+  if (kind == InputKind::Volume) {
+    reject_options(cmd, kContourOnly, "applies to contours (an RT Structure Set or a .json contour file)");
+    return run_run(a);
+  }
+  reject_options(cmd, kVolumeOnly, "applies to CT volumes and phantoms, not to contours");
+  return run_contours(a, kind, cmd->count("--output") > 0);
+}
+
 }  // namespace
 
 void add_run_command(CLI::App& app) {
   auto args = std::make_shared<RunArgs>();
   CLI::App* cmd = app.add_subcommand(
       "run", "The whole pipeline: volume (or a built-in phantom) -> contours -> mesh -> smoothing -> file");
-  cmd->add_option("input", args->input, "CT volume or DICOM directory; none: the built-in phantom --shape");
+  cmd->add_option("input", args->input,
+                  "CT volume or DICOM directory, RT Structure Set (with --roi) or contour file (.json); none: the "
+                  "built-in phantom --shape");
   cmd->add_option("-o,--output", args->output, "Output mesh (.stl .ply .vtp .obj); format from the extension unless --format")
       ->capture_default_str();
   cmd->add_option("--format", args->format, "Output format: auto | stl | stl-ascii | ply | vtp | obj")
@@ -271,11 +473,14 @@ void add_run_command(CLI::App& app) {
   cmd->add_option("--feature-radius", args->feature_radius,
                   "Phantom: vertices this close to a sharp edge form the feature region, mm")
       ->capture_default_str();
+  cmd->add_option("--sampling", args->sampling, "Contours: largest distance between contour points, mm (0: as drawn)")
+      ->default_str("1");
+  add_contour_options(cmd, args->contour);
   add_detection_options(cmd, args->detection);
   add_common_options(cmd, args->common);
   add_max_vertices_option(cmd, args->max_vertices);
   cmd->add_flag("--json", args->json, "Print one JSON object on stdout instead of the summary");
-  cmd->callback([args] { set_exit_code(run_guarded("run", [&] { return run_run(*args); })); });
+  cmd->callback([args, cmd] { set_exit_code(run_guarded("run", [&] { return run_any(*args, cmd); })); });
 }
 
 }  // namespace contourmesh::cli

@@ -93,6 +93,11 @@ struct RoiStack {
 /// it has no contours, no closed planar contour, or a contour build_contour_stack refuses.
 [[nodiscard]] RoiStack roi_contour_stack(const RtRoi& roi, const PlanarStackOptions& options = {});
 
+/// The distance between adjacent contour planes of the whole set (the median over the planes of every
+/// ROI's closed contours): the CT slice spacing the structures were drawn on. nullopt with fewer than
+/// two planes.
+[[nodiscard]] std::optional<double> structure_set_slice_spacing(const RtStructureSet& set);
+
 /// The name as a file name: letters, digits, '.', '-' and '_' kept, every other run of characters
 /// (blanks, '/', non-ASCII) one '_', no leading or trailing '_' or '.'; "roi<number>" when nothing is
 /// left.
