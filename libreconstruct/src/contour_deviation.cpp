@@ -107,7 +107,7 @@ void measure(const std::vector<SectionSegment>& from, const SegmentGrid& to, dou
 
 }  // namespace
 
-std::vector<SectionSegment> cross_section(const Mesh& mesh, const ContourStack& frame, double w) {
+std::vector<SectionSegment> cross_section(const Mesh& mesh, const ContourStack& frame, double w, bool just_above) {
   std::vector<SectionSegment> out;
   const auto& P = mesh.positions;
   auto height = [&](Index i) { return (P.col(i) - frame.origin).dot(frame.axis_w) - w; };
@@ -116,13 +116,14 @@ std::vector<SectionSegment> cross_section(const Mesh& mesh, const ContourStack& 
   };
   for (const Triangle& t : mesh.triangles) {
     const std::array<double, 3> d{height(t[0]), height(t[1]), height(t[2])};
-    const int above = (d[0] >= 0.0) + (d[1] >= 0.0) + (d[2] >= 0.0);
+    const auto up = [&](int k) { return just_above ? d[k] > 0.0 : d[k] >= 0.0; };
+    const int above = up(0) + up(1) + up(2);
     if (above == 0 || above == 3) continue;
     std::array<Eigen::Vector3d, 2> ends;
     int found = 0;
     for (int k = 0; k < 3; ++k) {
       const int a = k, b = (k + 1) % 3;
-      if ((d[a] >= 0.0) == (d[b] >= 0.0)) continue;
+      if (up(a) == up(b)) continue;
       const double s = d[a] / (d[a] - d[b]);
       ends[found++] = P.col(t[a]) + s * (P.col(t[b]) - P.col(t[a]));
     }
@@ -157,7 +158,8 @@ ContourDeviation contour_deviation(const Mesh& mesh, const ContourStack& contour
       for (std::size_t i = 0; i < c.points.size(); ++i) drawn.push_back({c.points[i], c.points[(i + 1) % c.points.size()]});
     }
     if (drawn.empty()) continue;
-    const std::vector<SectionSegment> section = cross_section(mesh, contours, slice.w);
+    std::vector<SectionSegment> section = cross_section(mesh, contours, slice.w);
+    if (section.empty()) section = cross_section(mesh, contours, slice.w, true);
     if (section.empty()) {
       ++out.slices_without_section;
       out.slice_max[s] = std::numeric_limits<double>::infinity();

@@ -122,6 +122,22 @@ std::size_t drop_repeated(Polygon& p) {
   return repeated;
 }
 
+// All points on one line (a contour drawn as a stroke), within a nanometre.
+bool collinear(const Polygon& p) {
+  std::size_t far = 0;
+  for (std::size_t i = 1; i < p.size(); ++i) {
+    if ((p[i] - p[0]).squaredNorm() > (p[far] - p[0]).squaredNorm()) far = i;
+  }
+  const Eigen::Vector2d d = p[far] - p[0];
+  const double len = d.norm();
+  if (!(len > 0.0)) return true;
+  for (const Eigen::Vector2d& q : p) {
+    const Eigen::Vector2d r = q - p[0];
+    if (std::abs(d.x() * r.y() - d.y() * r.x()) / len > 1e-6) return false;
+  }
+  return true;
+}
+
 // Cleans, checks, nests and orients the contours of one slice; degenerate contours are dropped with a
 // warning. Returns the slice's contours, `sources` their entries of `work`.
 std::vector<Contour> normalize_slice(std::vector<Work>& work, const PlanarStackOptions& options,
@@ -138,7 +154,8 @@ std::vector<Contour> normalize_slice(std::vector<Work>& work, const PlanarStackO
       repeated_names.push_back(k.name);
     }
     k.area = k.points.size() >= 3 ? signed_area(k.points) : 0.0;
-    if (k.points.size() < 3 || !(std::abs(k.area) > options.min_area)) {
+    const auto crossing = k.points.size() >= 3 ? find_self_intersection(k.points) : std::nullopt;
+    if (k.points.size() < 3 || (!(std::abs(k.area) > options.min_area) && (!crossing || collinear(k.points)))) {
       ++report.dropped_contours;
       report.warnings.push_back(k.name + " has " +
                                 (k.points.size() < 3 ? std::to_string(k.points.size()) + " distinct point" +
@@ -147,10 +164,10 @@ std::vector<Contour> normalize_slice(std::vector<Work>& work, const PlanarStackO
                                 ": skipped");
       continue;
     }
-    if (const auto x = find_self_intersection(k.points)) {
+    if (crossing) {
       std::ostringstream msg;
-      msg << k.name << " intersects itself: its segments " << x->first + 1 << " and " << x->second + 1
-          << " meet at (" << mm(x->where.x()) << ", " << mm(x->where.y()) << ") mm in its plane";
+      msg << k.name << " intersects itself: its segments " << crossing->first + 1 << " and " << crossing->second + 1
+          << " meet at (" << mm(crossing->where.x()) << ", " << mm(crossing->where.y()) << ") mm in its plane";
       throw InvalidInputError(msg.str());
     }
     kept.push_back(std::move(k));
@@ -174,25 +191,26 @@ std::vector<Contour> normalize_slice(std::vector<Work>& work, const PlanarStackO
   for (std::size_t i = 0; i < n; ++i) {
     for (const auto& p : work[i].points) boxes[i].extend(p);
   }
-  std::vector<Contour> out(n);
-  sources.resize(n);
+  std::vector<int> depth(n, 0), parent(n, -1);
   for (std::size_t i = 0; i < n; ++i) {
-    int depth = 0;
-    int parent = -1;
     double smallest = std::numeric_limits<double>::infinity();
     for (std::size_t j = 0; j < n; ++j) {
       if (i == j || !boxes[j].contains(work[i].points[0]) || !point_in_polygon(work[j].points, work[i].points[0])) {
         continue;
       }
-      ++depth;
+      ++depth[i];
       if (std::abs(work[j].area) < smallest) {
         smallest = std::abs(work[j].area);
-        parent = static_cast<int>(j);
+        parent[i] = static_cast<int>(j);
       }
     }
+  }
+  std::vector<Contour> out(n);
+  sources.resize(n);
+  for (std::size_t i = 0; i < n; ++i) {
     Contour& c = out[i];
-    c.is_hole = depth % 2 == 1;
-    c.parent = c.is_hole ? parent : -1;
+    c.is_hole = depth[i] % 2 == 1;
+    c.parent = c.is_hole ? parent[i] : -1;
     c.points = std::move(work[i].points);
     if ((c.is_hole && work[i].area > 0.0) || (!c.is_hole && work[i].area < 0.0)) {
       std::reverse(c.points.begin(), c.points.end());
@@ -241,14 +259,31 @@ void check_spacing(const ContourStack& stack, const PlanarStackOptions& options,
   }
 }
 
-// Sign of the contours' common normal: each area vector flipped to agree with the largest one.
+// The contours' common normal: the direction shared (within 1 degree) by the largest total area,
+// averaged over the contours that share it. One tilted contour among axial ones does not tilt the axis.
 Eigen::Vector3d common_normal(const std::vector<Eigen::Vector3d>& areas) {
-  std::size_t largest = 0;
-  for (std::size_t i = 1; i < areas.size(); ++i) {
-    if (areas[i].norm() > areas[largest].norm()) largest = i;
+  const double cos_limit = std::cos(std::numbers::pi / 180.0);
+  std::size_t best = 0;
+  double best_support = -1.0;
+  for (std::size_t i = 0; i < areas.size(); ++i) {
+    const double ni = areas[i].norm();
+    if (!(ni > 0.0)) continue;
+    double support = 0.0;
+    for (const Eigen::Vector3d& a : areas) {
+      const double na = a.norm();
+      if (na > 0.0 && std::abs(a.dot(areas[i])) >= cos_limit * na * ni) support += na;
+    }
+    if (support > best_support) {
+      best_support = support;
+      best = i;
+    }
   }
   Eigen::Vector3d sum = Eigen::Vector3d::Zero();
-  for (const Eigen::Vector3d& a : areas) sum += a.dot(areas[largest]) < 0.0 ? -a : a;
+  const double nb = areas.empty() ? 0.0 : areas[best].norm();
+  for (const Eigen::Vector3d& a : areas) {
+    const double na = a.norm();
+    if (na > 0.0 && std::abs(a.dot(areas[best])) >= cos_limit * na * nb) sum += a.dot(areas[best]) < 0.0 ? -a : a;
+  }
   return sum;
 }
 
@@ -538,12 +573,19 @@ ResamplingReport resample_drawn_stack(ContourStack& stack, double spacing, doubl
       for (std::size_t h = 0; h < cs.size(); ++h) {
         if (cs[h].is_hole && cs[h].parent == static_cast<int>(o)) group.push_back(h);
       }
+      // A cap spaces its interior vertices by the mean edge of its outer polygon: the outer contour's,
+      // or a hole's own when the hole is capped (it ends inside material, or becomes a hollow slab).
+      auto mean_edge = [&](std::size_t c) { return perimeter(simplified[c]) / static_cast<double>(simplified[c].size()); };
       for (int pass = 0; pass < 32; ++pass) {
-        const double mean = perimeter(simplified[o]) / static_cast<double>(simplified[o].size());
-        double longest = 0.0;
-        for (std::size_t c : group) longest = std::max(longest, longest_edge(simplified[c]));
-        if (longest <= 1.4 * mean) break;
-        for (std::size_t c : group) split_long_edges(simplified[c], 1.4 * mean, mean);
+        bool changed = false;
+        const double outer_mean = mean_edge(o);
+        for (std::size_t c : group) {
+          const double piece = std::min(outer_mean, mean_edge(c));
+          if (longest_edge(simplified[c]) <= 1.4 * piece) continue;
+          split_long_edges(simplified[c], 1.4 * piece, piece);
+          changed = true;
+        }
+        if (!changed) break;
       }
     }
     for (std::size_t c = 0; c < cs.size(); ++c) {

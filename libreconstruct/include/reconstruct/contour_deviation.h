@@ -19,10 +19,11 @@ namespace contourmesh {
 using SectionSegment = std::array<Eigen::Vector2d, 2>;
 
 /// The cross-section of a triangle mesh with the plane w = `w` of `frame` (its origin and axes; the
-/// slices are not used). A vertex exactly in the plane counts as above it, so a mesh whose vertices lie
-/// on the plane (a tiled mesh at its slice positions) is cut once, along its edges in the plane, as if
-/// the plane were an infinitesimal step below.
-[[nodiscard]] std::vector<SectionSegment> cross_section(const Mesh& mesh, const ContourStack& frame, double w);
+/// slices are not used). A vertex exactly in the plane counts as above it (below it with
+/// `just_above`), so a mesh whose vertices lie on the plane (a tiled mesh at its slice positions) is cut
+/// once, along its edges in the plane, as if the plane were an infinitesimal step below (above).
+[[nodiscard]] std::vector<SectionSegment> cross_section(const Mesh& mesh, const ContourStack& frame, double w,
+                                                        bool just_above = false);
 
 /// Area enclosed by a cross-section, mm^2 (outer boundaries count positive, holes negative).
 [[nodiscard]] double section_area(const std::vector<SectionSegment>& section);
@@ -52,7 +53,8 @@ struct ContourDeviation {
 /// Compares `mesh` with every slice of `contours` that holds contours: the mesh is cut with the slice
 /// plane (cross_section) and distances are measured both ways in that plane. For a tiled mesh this
 /// checks that tiling kept the contours; after smoothing it is the in-plane deviation from the drawn
-/// contours. Throws InvalidInputError for a sample step <= 0.
+/// contours. A slice whose plane cuts nothing just below is cut just above (a cap in the plane of the
+/// lowest slice). Throws InvalidInputError for a sample step <= 0.
 [[nodiscard]] ContourDeviation contour_deviation(const Mesh& mesh, const ContourStack& contours,
                                                  const ContourDeviationOptions& options = {});
 
