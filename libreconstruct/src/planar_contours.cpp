@@ -240,12 +240,10 @@ void check_spacing(const ContourStack& stack, const PlanarStackOptions& options,
   if (sl.size() < 2) return;
   std::vector<double> gaps;
   for (std::size_t s = 1; s < sl.size(); ++s) gaps.push_back(sl[s].w - sl[s - 1].w);
+  // The lower median: structures skip slices, which makes gaps larger, never smaller.
   std::vector<double> sorted = gaps;
-  std::nth_element(sorted.begin(), sorted.begin() + static_cast<std::ptrdiff_t>(sorted.size() / 2), sorted.end());
-  double median = sorted[sorted.size() / 2];
-  if (sorted.size() % 2 == 0) {
-    median = 0.5 * (median + *std::max_element(sorted.begin(), sorted.begin() + static_cast<std::ptrdiff_t>(sorted.size() / 2)));
-  }
+  std::sort(sorted.begin(), sorted.end());
+  const double median = sorted[(sorted.size() - 1) / 2];
   report.typical_spacing = median;
   report.largest_gap = *std::max_element(gaps.begin(), gaps.end());
   const std::string axis = axis_label(stack);
@@ -372,7 +370,7 @@ PlanarStack build_contour_stack(const std::vector<PlanarContour>& contours, cons
   std::stable_sort(slices.begin(), slices.end(), [](const Slice& a, const Slice& b) { return a.w < b.w; });
   if (by_id) {
     for (std::size_t s = 1; s < slices.size(); ++s) {
-      if (slices[s].w - slices[s - 1].w <= options.slice_tolerance) {
+      if (!(slices[s].w - slices[s - 1].w > 1e-9)) {
         throw InvalidInputError(what + ": slices " + std::to_string(*contours[slices[s - 1].members.front()].slice_id) +
                                 " and " + std::to_string(*contours[slices[s].members.front()].slice_id) +
                                 " lie in the same plane (" + axis_name + " = " + mm(slices[s].w) + " mm)");

@@ -199,9 +199,10 @@ TEST(PlanarContours, SliceIdsGroupContoursWhatEverTheirPositions) {
   ASSERT_EQ(s.stack.slices.size(), 2u);
   EXPECT_EQ(s.stack.slices[0].contours.size(), 2u);
   // Two ids in one plane are refused.
-  cs[2] = contour(square3(20, 0, 4, 0.0));
-  cs[2].slice_id = 7;
-  EXPECT_NE(error_of(cs).find("same plane"), std::string::npos) << error_of(cs);
+  std::vector<PlanarContour> same{contour(square3(0, 0, 4, 1.0)), contour(square3(20, 0, 4, 1.0))};
+  same[0].slice_id = 5;
+  same[1].slice_id = 7;
+  EXPECT_NE(error_of(same).find("same plane"), std::string::npos) << error_of(same);
 }
 
 TEST(PlanarContours, NoContoursIsAnError) { EXPECT_NE(error_of({}).find("no contours"), std::string::npos); }

@@ -34,8 +34,8 @@ struct PlanarStackOptions {
   /// Contours whose mean positions along the axis differ by less than this (mm) share a slice, > 0.
   /// Ignored when every contour has a slice id.
   double slice_tolerance = 0.1;
-  /// A gap between consecutive slices larger than this times the median spacing is reported as a
-  /// warning (the slices are tiled across it anyway); > 1.
+  /// A gap between consecutive slices larger than this times the typical spacing (the lower median of
+  /// the gaps) is reported as a warning (the slices are tiled across it anyway); > 1.
   double gap_factor = 1.5;
   /// Contours enclosing less than this area (mm^2) are dropped with a warning (points or lines drawn
   /// by accident), >= 0.
@@ -51,7 +51,7 @@ struct PlanarStackReport {
   std::size_t reversed = 0;        ///< contours whose orientation was reversed
   std::size_t repeated_points = 0; ///< consecutive repeated points dropped (and closing points)
   std::size_t dropped_contours = 0;///< degenerate contours dropped (fewer than 3 distinct points, no area)
-  double typical_spacing = 0.0;    ///< median distance between consecutive slices, mm (0 with one slice)
+  double typical_spacing = 0.0;    ///< lower median distance between consecutive slices, mm (0 with one slice)
   double largest_gap = 0.0;        ///< largest distance between consecutive slices, mm
   std::vector<std::string> warnings;  ///< one line each, naming the contours or slices
   /// source[s][c]: index in the input of contour c of slice s of the stack.
@@ -77,7 +77,7 @@ struct PlanarStack {
 /// - Nesting: a contour inside an odd number of others of its slice is a hole of the smallest one that
 ///   contains it (`parent`), otherwise an outer contour (islands inside holes included). Outer contours
 ///   are made counter-clockwise and holes clockwise seen from +w.
-/// - Slice spacing: a gap above `gap_factor` times the median spacing is a warning.
+/// - Slice spacing: a gap above `gap_factor` times the typical spacing is a warning.
 ///
 /// `what` prefixes every message (for example "ROI 5 'Heart'"). Throws InvalidInputError, naming
 /// `what` and the contour, for: no contour, a non-finite point, a non-planar or tilted contour, a
