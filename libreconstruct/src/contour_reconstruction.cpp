@@ -339,13 +339,15 @@ ContourReconstruction reconstruct_from_contours(const ContourStack& input, const
     for (const Mesh& part : cavity_parts) append(out.mesh, part);
     report.slabs += cavities;
     if (report.slabs > 0) {
-      report.warnings.push_back(what + ": " + std::to_string(report.slabs) + " contour" +
-                                (report.slabs == 1 ? " has" : "s have") + " no partner on an adjacent slice (" +
-                                std::to_string(cavities) + " of them holes): made slab" +
-                                (report.slabs == 1 ? "" : "s") +
-                                " reaching half-way to the adjacent slices (hollow for a hole" +
-                                (thinned > 0 ? "; " + std::to_string(thinned) + " thinner, to stay inside the surface around" : "") +
-                                ")");
+      std::string text = what + ": " + std::to_string(report.slabs) + " contour" + (report.slabs == 1 ? "" : "s") +
+                         " drawn on one slice only (no partner on an adjacent slice): made " +
+                         (report.slabs == 1 ? "a slab" : "slabs") + " reaching half-way to the adjacent slices";
+      if (cavities > 0) {
+        text += "; " + std::to_string(cavities) + (cavities == report.slabs ? " (all holes)" : " of them holes") +
+                " made hollow";
+        if (thinned > 0) text += ", " + std::to_string(thinned) + " thinner to stay inside the surface around";
+      }
+      report.warnings.push_back(text);
     }
     if (dropped > 0) {
       report.warnings.push_back(what + ": " + std::to_string(dropped) + " contour" + (dropped == 1 ? "" : "s") +

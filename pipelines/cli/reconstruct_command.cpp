@@ -276,7 +276,7 @@ int run_reconstruct_contours(const ReconstructArgs& a, InputKind kind) {
     if (a.json || a.common.quiet) continue;
     std::cout << std::fixed << std::setprecision(2) << "reconstructed " << in.what
               << (kind == InputKind::StructureSet ? " of " + a.input : "") << "\n"
-              << "  contours   " << r.report.contours << " (" << r.report.hole_contours << " holes) on "
+              << "  contours   " << r.report.contours << " (" << r.report.hole_contours << (r.report.hole_contours == 1 ? " hole) on " : " holes) on ")
               << r.report.slices << " slices, " << r.report.points_drawn << " points drawn, " << r.report.points_tiled
               << " tiled; " << r.report.tiling.branchings << " branchings, " << r.report.tiling.caps << " caps, "
               << r.report.slabs << " single-slice slabs\n"

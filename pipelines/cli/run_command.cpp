@@ -394,7 +394,7 @@ int run_contours(const RunArgs& a, InputKind kind, bool output_given) {
     std::cout << std::fixed << std::setprecision(2) << "ContourMesh: " << in.what
               << (kind == InputKind::StructureSet ? " of " + a.input : "") << "\n"
               << "  contours    " << rec.report.contours << " on " << rec.report.slices << " slices ("
-              << rec.report.hole_contours << " holes, " << rec.report.tiling.branchings << " branchings, "
+              << rec.report.hole_contours << (rec.report.hole_contours == 1 ? " hole, " : " holes, ") << rec.report.tiling.branchings << " branchings, "
               << rec.report.slabs << " single-slice slabs)\n"
               << "  mesh        " << smoothed.mesh.num_vertices() << " vertices, " << smoothed.mesh.num_faces()
               << " triangles, " << (topo.closed ? "closed" : "OPEN") << ", " << (topo.manifold ? "manifold" : "NOT manifold")
