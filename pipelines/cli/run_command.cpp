@@ -447,7 +447,7 @@ int run_any(const RunArgs& a, const CLI::App* cmd) {
 void add_run_command(CLI::App& app) {
   auto args = std::make_shared<RunArgs>();
   CLI::App* cmd = app.add_subcommand(
-      "run", "The whole pipeline: volume (or a built-in phantom) -> contours -> mesh -> smoothing -> file");
+      "run", "The whole pipeline: volume (or a built-in phantom, or drawn contours) -> contours -> mesh -> smoothing -> file");
   cmd->add_option("input", args->input,
                   "CT volume or DICOM directory, RT Structure Set (with --roi) or contour file (.json); none: the "
                   "built-in phantom --shape");
