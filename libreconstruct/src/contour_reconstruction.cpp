@@ -1,6 +1,7 @@
 #include "reconstruct/contour_reconstruction.h"
 
 #include "reconstruct/contour_deviation.h"
+#include "reconstruct/contour_resampling.h"
 #include "reconstruct/planar_contours.h"
 
 #include <smooth/errors.h>
@@ -11,6 +12,7 @@
 #include <chrono>
 #include <cmath>
 #include <iomanip>
+#include <optional>
 #include <set>
 #include <sstream>
 #include <utility>
@@ -211,6 +213,139 @@ bool inside_section(const Polygon& polygon, const std::vector<SectionSegment>& s
 
 }  // namespace
 
+namespace {
+
+// Half-gaps below and above slice s (an end slice reaches as far beyond as its one gap).
+std::pair<double, double> half_gaps(const ContourStack& stack, std::size_t s) {
+  const auto& sl = stack.slices;
+  const double below = s > 0 ? sl[s].w - sl[s - 1].w : sl[s + 1].w - sl[s].w;
+  const double above = s + 1 < sl.size() ? sl[s + 1].w - sl[s].w : below;
+  return {0.5 * below, 0.5 * above};
+}
+
+// Every contour in one plane: slabs of the given thickness, or an error.
+void one_slice(ContourReconstruction& out, std::size_t s, const std::string& what,
+               const ContourReconstructionOptions& options) {
+  const ContourStack& stack = out.contours;
+  if (!(options.slab_thickness > 0.0)) {
+    const std::string axis = stack.axis_w == Eigen::Vector3d::UnitZ() ? "z" : "w";
+    throw InvalidInputError(what + ": every contour lies in one slice (" + axis + " = " + mm(stack.slices[s].w) +
+                            " mm): a surface needs contours on two slices, or a slab thickness");
+  }
+  const double half = 0.5 * options.slab_thickness;
+  out.mesh = Mesh{};
+  out.mesh.positions.resize(3, 0);
+  for (std::size_t c = 0; c < stack.slices[s].contours.size(); ++c) {
+    if (stack.slices[s].contours[c].is_hole) continue;
+    append(out.mesh, slab(stack, s, c, half, half, options.tiling));
+    ++out.report.slabs;
+  }
+  out.report.warnings.push_back(what + ": every contour lies in one slice: made a slab " + mm(options.slab_thickness) +
+                                " mm thick");
+}
+
+// tile_contours, in drift-aligned coordinates when asked (see DriftAlignment::Centroids).
+void tile(ContourReconstruction& out, const ContourReconstructionOptions& options, const ProgressCallback& progress) {
+  const ContourStack& stack = out.contours;
+  std::vector<Eigen::Vector2d> offset;
+  ContourStack aligned;
+  const ContourStack* to_tile = &stack;
+  if (options.alignment == DriftAlignment::Centroids) {
+    offset = drift_offsets(stack, options.tiling.min_overlap_fraction, out.report.aligned_gaps);
+    if (out.report.aligned_gaps > 0) {
+      aligned = stack;
+      for (std::size_t s = 0; s < aligned.slices.size(); ++s) {
+        for (Contour& c : aligned.slices[s].contours) {
+          for (Eigen::Vector2d& p : c.points) p -= offset[s];
+        }
+      }
+      to_tile = &aligned;
+    }
+  }
+  TilingResult tiled = tile_contours(*to_tile, options.tiling, progress);
+  out.report.tiling = tiled.stats;
+  out.mesh = std::move(tiled.mesh);
+  if (out.report.aligned_gaps > 0) shear_back(out.mesh, stack, offset);
+}
+
+// A hollow slab for hole c of slice s, thinner (1/2, 1/4, 1/10) where the full one would cross the
+// surface around it (the material narrowing towards the next slice); nothing when none fits.
+std::optional<Mesh> fitting_cavity(const Mesh& surface, const ContourStack& stack, std::size_t s, std::size_t c,
+                                   const TilingOptions& tiling, bool& thinned) {
+  const auto [below, above] = half_gaps(stack, s);
+  const double w = stack.slices[s].w;
+  for (const double f : {1.0, 0.5, 0.25, 0.1}) {
+    bool fits = true;
+    for (const double at : {w - 0.998 * f * below, w - 0.5 * f * below, w + 0.5 * f * above, w + 0.998 * f * above}) {
+      fits = fits && inside_section(stack.slices[s].contours[c].points, cross_section(surface, stack, at));
+    }
+    if (!fits) continue;
+    thinned = f < 1.0;
+    return cavity(stack, s, c, f * below, f * above, tiling);
+  }
+  return std::nullopt;
+}
+
+// Contours the tiler dropped (no partner on either adjacent slice): slabs, hollow slabs for holes, or
+// a warning naming them.
+void single_slice_contours(ContourReconstruction& out, const std::string& what,
+                           const ContourReconstructionOptions& options) {
+  const ContourStack& stack = out.contours;
+  ContourReconstructionReport& report = out.report;
+  std::set<std::pair<std::int32_t, std::int32_t>> meshed;
+  for (Index i = 0; i < out.mesh.num_vertices(); ++i) meshed.insert({out.mesh.slice_ids[i], out.mesh.contour_ids[i]});
+  auto is_meshed = [&](std::size_t s, int c) { return meshed.count({static_cast<std::int32_t>(s), c}) != 0; };
+  const bool make_slabs =
+      options.single_slice == SingleSliceContours::Slab && options.tiling.end_caps == EndCaps::HalfSpacing;
+  std::size_t dropped = 0, cavities = 0, thinned = 0;
+  std::string names;
+  std::vector<Mesh> cavity_parts;  // appended after the checks, which cut the tiled surface
+  for (std::size_t s = 0; s < stack.slices.size(); ++s) {
+    const auto& cs = stack.slices[s].contours;
+    for (std::size_t c = 0; c < cs.size(); ++c) {
+      if (is_meshed(s, static_cast<int>(c))) continue;
+      if (make_slabs && !cs[c].is_hole) {
+        const auto [below, above] = half_gaps(stack, s);
+        append(out.mesh, slab(stack, s, c, below, above, options.tiling));
+        ++report.slabs;
+        continue;
+      }
+      if (make_slabs && !is_meshed(s, cs[c].parent)) continue;  // a hole of a slab: inside it
+      if (make_slabs) {
+        bool thin = false;
+        if (auto part = fitting_cavity(out.mesh, stack, s, c, options.tiling, thin)) {
+          cavity_parts.push_back(std::move(*part));
+          ++cavities;
+          thinned += thin ? 1 : 0;
+          continue;
+        }
+      }
+      ++dropped;
+      if (dropped <= 5) names += (names.empty() ? "" : ", ") + std::to_string(c) + " of slice " + std::to_string(s);
+    }
+  }
+  for (const Mesh& part : cavity_parts) append(out.mesh, part);
+  report.slabs += cavities;
+  if (report.slabs > 0) {
+    std::string text = what + ": " + std::to_string(report.slabs) + " contour" + (report.slabs == 1 ? "" : "s") +
+                       " drawn on one slice only (no partner on an adjacent slice): made " +
+                       (report.slabs == 1 ? "a slab" : "slabs") + " reaching half-way to the adjacent slices";
+    if (cavities > 0) {
+      text += "; " + std::to_string(cavities) + (cavities == report.slabs ? " (all holes)" : " of them holes") +
+              " made hollow";
+      if (thinned > 0) text += ", " + std::to_string(thinned) + " thinner to stay inside the surface around";
+    }
+    report.warnings.push_back(text);
+  }
+  if (dropped > 0) {
+    report.warnings.push_back(what + ": " + std::to_string(dropped) + " contour" + (dropped == 1 ? "" : "s") +
+                              " with no partner on an adjacent slice not meshed (contour " + names +
+                              (dropped > 5 ? ", ..." : "") + ")");
+  }
+}
+
+}  // namespace
+
 ContourReconstruction reconstruct_from_contours(const ContourStack& input, const std::string& what,
                                                 const ContourReconstructionOptions& options,
                                                 const ProgressCallback& progress) {
@@ -218,10 +353,9 @@ ContourReconstruction reconstruct_from_contours(const ContourStack& input, const
   ContourReconstruction out;
   ContourReconstructionReport& report = out.report;
   out.contours = input;
-  ContourStack& stack = out.contours;
   std::vector<std::size_t> occupied;
-  for (std::size_t s = 0; s < stack.slices.size(); ++s) {
-    const auto& cs = stack.slices[s].contours;
+  for (std::size_t s = 0; s < input.slices.size(); ++s) {
+    const auto& cs = input.slices[s].contours;
     if (!cs.empty()) occupied.push_back(s);
     report.contours += cs.size();
     for (const Contour& c : cs) {
@@ -233,127 +367,15 @@ ContourReconstruction reconstruct_from_contours(const ContourStack& input, const
   if (report.contours == 0) throw InvalidInputError(what + ": no contours");
   report.slicewise_volume = slicewise_volume(input);
   const auto t0 = std::chrono::steady_clock::now();
-
-  if (options.sampling > 0.0) resample_drawn_stack(stack, options.sampling, options.sampling_tolerance);
-  for (const SliceContours& s : stack.slices) {
+  if (options.sampling > 0.0) resample_drawn_stack(out.contours, options.sampling, options.sampling_tolerance);
+  for (const SliceContours& s : out.contours.slices) {
     for (const Contour& c : s.contours) report.points_tiled += c.points.size();
   }
-
   if (occupied.size() == 1) {
-    // Every contour in one plane: a slab of the given thickness, or nothing.
-    if (!(options.slab_thickness > 0.0)) {
-      const std::string axis = stack.axis_w == Eigen::Vector3d::UnitZ() ? "z" : "w";
-      throw InvalidInputError(what + ": every contour lies in one slice (" + axis + " = " +
-                              mm(stack.slices[occupied[0]].w) +
-                              " mm): a surface needs contours on two slices, or a slab thickness");
-    }
-    const std::size_t s = occupied[0];
-    const double half = 0.5 * options.slab_thickness;
-    for (std::size_t c = 0; c < stack.slices[s].contours.size(); ++c) {
-      if (stack.slices[s].contours[c].is_hole) continue;
-      if (out.mesh.num_vertices() == 0) {
-        out.mesh = slab(stack, s, c, half, half, options.tiling);
-      } else {
-        append(out.mesh, slab(stack, s, c, half, half, options.tiling));
-      }
-      ++report.slabs;
-    }
-    report.warnings.push_back(what + ": every contour lies in one slice: made a slab " + mm(options.slab_thickness) +
-                              " mm thick");
-    report.seconds_tile = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
-    return out;
-  }
-
-  // Tile, in drift-aligned coordinates when asked.
-  std::vector<Eigen::Vector2d> offset;
-  ContourStack aligned_stack;
-  const ContourStack* to_tile = &stack;
-  if (options.alignment == DriftAlignment::Centroids) {
-    offset = drift_offsets(stack, options.tiling.min_overlap_fraction, report.aligned_gaps);
-    if (report.aligned_gaps > 0) {
-      aligned_stack = stack;
-      for (std::size_t s = 0; s < aligned_stack.slices.size(); ++s) {
-        for (Contour& c : aligned_stack.slices[s].contours) {
-          for (Eigen::Vector2d& p : c.points) p -= offset[s];
-        }
-      }
-      to_tile = &aligned_stack;
-    }
-  }
-  TilingResult tiled = tile_contours(*to_tile, options.tiling, progress);
-  report.tiling = tiled.stats;
-  out.mesh = std::move(tiled.mesh);
-  if (report.aligned_gaps > 0) shear_back(out.mesh, stack, offset);
-
-  // Contours the tiler dropped (no partner on either side): slabs, or a warning.
-  if (tiled.stats.dropped_contours > 0) {
-    std::set<std::pair<std::int32_t, std::int32_t>> meshed;
-    for (Index i = 0; i < out.mesh.num_vertices(); ++i) meshed.insert({out.mesh.slice_ids[i], out.mesh.contour_ids[i]});
-    const bool make_slabs =
-        options.single_slice == SingleSliceContours::Slab && options.tiling.end_caps == EndCaps::HalfSpacing;
-    std::size_t dropped = 0, cavities = 0, thinned = 0;
-    std::string names;
-    std::vector<Mesh> cavity_parts;  // appended after the checks, which cut the tiled surface
-    for (std::size_t s = 0; s < stack.slices.size(); ++s) {
-      const auto& cs = stack.slices[s].contours;
-      for (std::size_t c = 0; c < cs.size(); ++c) {
-        if (meshed.count({static_cast<std::int32_t>(s), static_cast<std::int32_t>(c)}) != 0) continue;
-        const bool parent_meshed =
-            cs[c].is_hole && meshed.count({static_cast<std::int32_t>(s), static_cast<std::int32_t>(cs[c].parent)}) != 0;
-        if (make_slabs && !cs[c].is_hole) {
-          const auto& sl = stack.slices;
-          const double below = s > 0 ? sl[s].w - sl[s - 1].w : sl[s + 1].w - sl[s].w;
-          const double above = s + 1 < sl.size() ? sl[s + 1].w - sl[s].w : below;
-          append(out.mesh, slab(stack, s, c, 0.5 * below, 0.5 * above, options.tiling));
-          ++report.slabs;
-          continue;
-        }
-        if (make_slabs && !parent_meshed) continue;  // a hole of a slab: inside it
-        if (make_slabs) {
-          // A cavity seen on one slice, inside material that continues: a hollow slab, if it fits.
-          const auto& sl = stack.slices;
-          const double below = s > 0 ? sl[s].w - sl[s - 1].w : sl[s + 1].w - sl[s].w;
-          const double above = s + 1 < sl.size() ? sl[s + 1].w - sl[s].w : below;
-          // Where the full slab would cross the surrounding surface (the material narrows towards the
-          // next slice), a thinner one keeps the drawn hole in its slice.
-          bool placed = false;
-          for (const double f : {1.0, 0.5, 0.25, 0.1}) {
-            bool fits = true;
-            for (const double w : {sl[s].w - 0.499 * f * below, sl[s].w - 0.25 * f * below, sl[s].w + 0.25 * f * above,
-                                   sl[s].w + 0.499 * f * above}) {
-              fits = fits && inside_section(cs[c].points, cross_section(out.mesh, stack, w));
-            }
-            if (!fits) continue;
-            cavity_parts.push_back(cavity(stack, s, c, 0.5 * f * below, 0.5 * f * above, options.tiling));
-            ++cavities;
-            thinned += f < 1.0 ? 1 : 0;
-            placed = true;
-            break;
-          }
-          if (placed) continue;
-        }
-        ++dropped;
-        if (dropped <= 5) names += (names.empty() ? "" : ", ") + std::to_string(c) + " of slice " + std::to_string(s);
-      }
-    }
-    for (const Mesh& part : cavity_parts) append(out.mesh, part);
-    report.slabs += cavities;
-    if (report.slabs > 0) {
-      std::string text = what + ": " + std::to_string(report.slabs) + " contour" + (report.slabs == 1 ? "" : "s") +
-                         " drawn on one slice only (no partner on an adjacent slice): made " +
-                         (report.slabs == 1 ? "a slab" : "slabs") + " reaching half-way to the adjacent slices";
-      if (cavities > 0) {
-        text += "; " + std::to_string(cavities) + (cavities == report.slabs ? " (all holes)" : " of them holes") +
-                " made hollow";
-        if (thinned > 0) text += ", " + std::to_string(thinned) + " thinner to stay inside the surface around";
-      }
-      report.warnings.push_back(text);
-    }
-    if (dropped > 0) {
-      report.warnings.push_back(what + ": " + std::to_string(dropped) + " contour" + (dropped == 1 ? "" : "s") +
-                                " with no partner on an adjacent slice not meshed (contour " + names +
-                                (dropped > 5 ? ", ..." : "") + ")");
-    }
+    one_slice(out, occupied[0], what, options);
+  } else {
+    tile(out, options, progress);
+    if (report.tiling.dropped_contours > 0) single_slice_contours(out, what, options);
   }
   report.seconds_tile = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
   if (out.mesh.num_faces() == 0) throw InvalidInputError(what + ": no contour continues into an adjacent slice: nothing to tile");

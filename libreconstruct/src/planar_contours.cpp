@@ -287,6 +287,105 @@ Eigen::Vector3d common_normal(const std::vector<Eigen::Vector3d>& areas) {
 
 }  // namespace
 
+namespace {
+
+// One slice of the input: its position and its contours (input indices, in input order).
+struct InputSlice {
+  double w = 0.0;
+  std::vector<std::size_t> members;
+};
+
+// The slice axis: the given one, or the contours' common normal.
+Eigen::Vector3d slice_axis(const std::vector<PlanarContour>& contours, const std::string& what,
+                           const PlanarStackOptions& options) {
+  if (options.slice_axis) return *options.slice_axis;
+  std::vector<Eigen::Vector3d> areas;
+  areas.reserve(contours.size());
+  for (const PlanarContour& c : contours) areas.push_back(area_vector(c.points));
+  const Eigen::Vector3d axis = common_normal(areas);
+  if (!(axis.norm() > 0.0) || !axis.allFinite()) {
+    throw InvalidInputError(what + ": the contours enclose no area, so they define no slice plane");
+  }
+  return axis;
+}
+
+// Contours grouped into slices (by id when every contour has one, else by position), ordered by w.
+std::vector<InputSlice> group_slices(const std::vector<PlanarContour>& contours, const std::vector<double>& mean_w,
+                                     const std::string& what, const std::string& axis_name,
+                                     const PlanarStackOptions& options) {
+  const std::size_t n = contours.size();
+  const bool by_id =
+      std::all_of(contours.begin(), contours.end(), [](const PlanarContour& c) { return c.slice_id.has_value(); });
+  std::vector<std::vector<std::size_t>> groups;
+  if (by_id) {
+    std::map<long long, std::vector<std::size_t>> by;
+    for (std::size_t i = 0; i < n; ++i) by[*contours[i].slice_id].push_back(i);
+    for (auto& [id, members] : by) groups.push_back(std::move(members));
+  } else {
+    std::vector<std::size_t> order(n);
+    std::iota(order.begin(), order.end(), 0);
+    std::stable_sort(order.begin(), order.end(), [&](std::size_t a, std::size_t b) { return mean_w[a] < mean_w[b]; });
+    for (std::size_t i : order) {
+      if (groups.empty() || mean_w[i] - mean_w[groups.back().front()] > options.slice_tolerance) groups.emplace_back();
+      groups.back().push_back(i);
+    }
+  }
+  std::vector<InputSlice> slices;
+  for (auto& g : groups) {
+    std::sort(g.begin(), g.end());  // a slice's contours in input order
+    double w = 0.0, weight = 0.0;
+    for (std::size_t i : g) {
+      const double a = static_cast<double>(contours[i].points.size());
+      w += a * mean_w[i];
+      weight += a;
+    }
+    slices.push_back({weight > 0.0 ? w / weight : mean_w[g.front()], std::move(g)});
+  }
+  std::stable_sort(slices.begin(), slices.end(), [](const InputSlice& a, const InputSlice& b) { return a.w < b.w; });
+  if (by_id) {
+    for (std::size_t s = 1; s < slices.size(); ++s) {
+      if (!(slices[s].w - slices[s - 1].w > 1e-9)) {
+        throw InvalidInputError(what + ": slices " + std::to_string(*contours[slices[s - 1].members.front()].slice_id) +
+                                " and " + std::to_string(*contours[slices[s].members.front()].slice_id) +
+                                " lie in the same plane (" + axis_name + " = " + mm(slices[s].w) + " mm)");
+      }
+    }
+  }
+  return slices;
+}
+
+// Every point within the planarity tolerance of its slice plane; otherwise an error saying whether the
+// contour is bent or tilted.
+void check_planarity(const PlanarContour& contour, const std::string& name, double slice_w, double mean_w,
+                     const ContourStack& stack, const std::string& what, const PlanarStackOptions& options) {
+  double worst = 0.0;
+  for (const Eigen::Vector3d& q : contour.points) worst = std::max(worst, std::abs(q.dot(stack.axis_w) - slice_w));
+  if (worst <= options.planarity_tolerance) return;
+  std::ostringstream msg;
+  msg << what << ": " << name << " (" << axis_label(stack) << " = " << mm(mean_w) << " mm) is ";
+  const Eigen::Vector3d own = area_vector(contour.points);
+  double own_spread = std::numeric_limits<double>::infinity();
+  if (own.norm() > 0.0) {
+    const Eigen::Vector3d nrm = own.normalized();
+    double lo = std::numeric_limits<double>::infinity(), hi = -lo;
+    for (const Eigen::Vector3d& q : contour.points) {
+      lo = std::min(lo, q.dot(nrm));
+      hi = std::max(hi, q.dot(nrm));
+    }
+    own_spread = hi - lo;
+  }
+  if (own_spread <= 2.0 * options.planarity_tolerance) {
+    const double angle = std::acos(std::min(1.0, std::abs(own.normalized().dot(stack.axis_w)))) * 180.0 / std::numbers::pi;
+    msg << "planar but tilted " << mm(angle) << " degrees from the slice planes of the others";
+  } else {
+    msg << "not planar: its points lie up to " << mm(worst) << " mm from its slice plane (tolerance "
+        << options.planarity_tolerance << " mm)";
+  }
+  throw InvalidInputError(msg.str());
+}
+
+}  // namespace
+
 PlanarStack build_contour_stack(const std::vector<PlanarContour>& contours, const std::string& what,
                                 const PlanarStackOptions& options) {
   check_options(options);
@@ -305,25 +404,10 @@ PlanarStack build_contour_stack(const std::vector<PlanarContour>& contours, cons
       }
     }
   }
-  const bool by_id = std::all_of(contours.begin(), contours.end(), [](const PlanarContour& c) { return c.slice_id.has_value(); });
-
-  // 1. The slice axis and the frame.
-  Eigen::Vector3d axis;
-  if (options.slice_axis) {
-    axis = *options.slice_axis;
-  } else {
-    std::vector<Eigen::Vector3d> areas;
-    areas.reserve(contours.size());
-    for (const PlanarContour& c : contours) areas.push_back(area_vector(c.points));
-    axis = common_normal(areas);
-    if (!(axis.norm() > 0.0) || !axis.allFinite()) {
-      throw InvalidInputError(what + ": the contours enclose no area, so they define no slice plane");
-    }
-  }
-  frame_for(canonical_axis(axis), stack);
+  frame_for(canonical_axis(slice_axis(contours, what, options)), stack);
   const std::string axis_name = axis_label(stack);
 
-  // 2. Slice coordinates, and each contour's position along the axis.
+  // Slice coordinates, and each contour's mean position along the axis.
   const std::size_t n = contours.size();
   std::vector<Polygon> uv(n);
   std::vector<double> mean_w(n, 0.0);
@@ -336,81 +420,14 @@ PlanarStack build_contour_stack(const std::vector<PlanarContour>& contours, cons
     }
     if (!p.empty()) mean_w[i] /= static_cast<double>(p.size());
   }
-
-  // 3. Slices: by id, or by position along the axis.
-  std::vector<std::vector<std::size_t>> groups;
-  if (by_id) {
-    std::map<long long, std::vector<std::size_t>> by;
-    for (std::size_t i = 0; i < n; ++i) by[*contours[i].slice_id].push_back(i);
-    for (auto& [id, members] : by) groups.push_back(std::move(members));
-  } else {
-    std::vector<std::size_t> order(n);
-    std::iota(order.begin(), order.end(), 0);
-    std::stable_sort(order.begin(), order.end(), [&](std::size_t a, std::size_t b) { return mean_w[a] < mean_w[b]; });
-    for (std::size_t i : order) {
-      if (groups.empty() || mean_w[i] - mean_w[groups.back().front()] > options.slice_tolerance) groups.emplace_back();
-      groups.back().push_back(i);
-    }
-  }
-  struct Slice {
-    double w;
-    std::vector<std::size_t> members;
-  };
-  std::vector<Slice> slices;
-  for (auto& g : groups) {
-    std::sort(g.begin(), g.end());  // a slice's contours in input order
-    double w = 0.0, weight = 0.0;
-    for (std::size_t i : g) {
-      const double a = static_cast<double>(contours[i].points.size());
-      w += a * mean_w[i];
-      weight += a;
-    }
-    slices.push_back({weight > 0.0 ? w / weight : mean_w[g.front()], std::move(g)});
-  }
-  std::stable_sort(slices.begin(), slices.end(), [](const Slice& a, const Slice& b) { return a.w < b.w; });
-  if (by_id) {
-    for (std::size_t s = 1; s < slices.size(); ++s) {
-      if (!(slices[s].w - slices[s - 1].w > 1e-9)) {
-        throw InvalidInputError(what + ": slices " + std::to_string(*contours[slices[s - 1].members.front()].slice_id) +
-                                " and " + std::to_string(*contours[slices[s].members.front()].slice_id) +
-                                " lie in the same plane (" + axis_name + " = " + mm(slices[s].w) + " mm)");
-      }
-    }
+  const std::vector<InputSlice> slices = group_slices(contours, mean_w, what, axis_name, options);
+  for (const InputSlice& sl : slices) {
+    for (std::size_t i : sl.members) check_planarity(contours[i], name_of(i), sl.w, mean_w[i], stack, what, options);
   }
 
-  // 4. Planarity: every point within the tolerance of its slice plane.
-  for (const Slice& sl : slices) {
-    for (std::size_t i : sl.members) {
-      double worst = 0.0;
-      for (const Eigen::Vector3d& q : contours[i].points) worst = std::max(worst, std::abs(q.dot(stack.axis_w) - sl.w));
-      if (worst <= options.planarity_tolerance) continue;
-      std::ostringstream msg;
-      msg << what << ": " << name_of(i) << " (" << axis_name << " = " << mm(mean_w[i]) << " mm) is ";
-      const Eigen::Vector3d own = area_vector(contours[i].points);
-      double own_spread = std::numeric_limits<double>::infinity();
-      if (own.norm() > 0.0) {
-        const Eigen::Vector3d nrm = own.normalized();
-        double lo = std::numeric_limits<double>::infinity(), hi = -lo;
-        for (const Eigen::Vector3d& q : contours[i].points) {
-          lo = std::min(lo, q.dot(nrm));
-          hi = std::max(hi, q.dot(nrm));
-        }
-        own_spread = hi - lo;
-      }
-      if (own_spread <= 2.0 * options.planarity_tolerance) {
-        const double angle = std::acos(std::min(1.0, std::abs(own.normalized().dot(stack.axis_w)))) * 180.0 / std::numbers::pi;
-        msg << "planar but tilted " << mm(angle) << " degrees from the slice planes of the others";
-      } else {
-        msg << "not planar: its points lie up to " << mm(worst) << " mm from its slice plane (tolerance "
-            << options.planarity_tolerance << " mm)";
-      }
-      throw InvalidInputError(msg.str());
-    }
-  }
-
-  // 5. Per slice: clean, check, nest, orient.
+  // Per slice: clean, check, nest, orient.
   std::vector<std::string> repeated_names;
-  for (const Slice& sl : slices) {
+  for (const InputSlice& sl : slices) {
     std::vector<Work> work;
     for (std::size_t i : sl.members) {
       work.push_back({std::move(uv[i]), i, what + ": " + name_of(i) + " (" + axis_name + " = " + mm(sl.w) + " mm)",
@@ -457,140 +474,6 @@ PlanarStackReport normalize_contour_stack(ContourStack& stack, const std::string
   report_repeated(report, repeated_names, what);
   report.slices = stack.slices.size();
   check_spacing(stack, options, what, report);
-  return report;
-}
-
-std::vector<Eigen::Vector2d> resample_drawn(const std::vector<Eigen::Vector2d>& polygon, double spacing,
-                                           double tolerance) {
-  if (!(spacing > 0.0) || !std::isfinite(spacing)) throw InvalidInputError("resampling: the spacing must be > 0 mm");
-  if (!(tolerance >= 0.0) || !std::isfinite(tolerance)) throw InvalidInputError("resampling: the tolerance must be >= 0 mm");
-  const std::size_t n = polygon.size();
-  if (n < 3) throw InvalidInputError("resampling: a polygon needs at least 3 points");
-  // Start at the sharpest corner, which any simplification keeps.
-  std::size_t start = 0;
-  double sharpest = 2.0;
-  for (std::size_t i = 0; i < n; ++i) {
-    const Eigen::Vector2d a = polygon[i] - polygon[(i + n - 1) % n];
-    const Eigen::Vector2d b = polygon[(i + 1) % n] - polygon[i];
-    if (!(a.norm() > 0.0) || !(b.norm() > 0.0)) continue;
-    const double c = a.normalized().dot(b.normalized());
-    if (c < sharpest) {
-      sharpest = c;
-      start = i;
-    }
-  }
-  auto at = [&](std::size_t k) -> const Eigen::Vector2d& { return polygon[(start + k) % n]; };
-  // Greedy chords: from an anchor, extend while the chord stays short and every skipped point close.
-  std::vector<std::size_t> kept{0};
-  std::size_t anchor = 0;
-  while (anchor < n) {
-    std::size_t best = anchor + 1;
-    for (std::size_t j = anchor + 2; j <= n; ++j) {
-      const Eigen::Vector2d& a = at(anchor);
-      const Eigen::Vector2d& b = at(j);  // j == n is the start again
-      const Eigen::Vector2d d = b - a;
-      const double len = d.norm();
-      if (len > spacing) break;
-      bool close = len > 0.0;
-      for (std::size_t k = anchor + 1; k < j && close; ++k) {
-        const Eigen::Vector2d q = at(k) - a;
-        const double t = q.dot(d) / (len * len);
-        close = t > 0.0 && t < 1.0 && std::abs(d.x() * q.y() - d.y() * q.x()) / len <= tolerance;
-      }
-      if (!close) break;
-      best = j;
-    }
-    if (best < n) kept.push_back(best);
-    anchor = best;
-  }
-  if (kept.size() < 3) {  // a contour smaller than the spacing: keep its shape as drawn
-    kept.resize(n);
-    std::iota(kept.begin(), kept.end(), 0);
-  }
-  std::vector<Eigen::Vector2d> out;
-  for (std::size_t i = 0; i < kept.size(); ++i) {
-    const Eigen::Vector2d& a = at(kept[i]);
-    const Eigen::Vector2d& b = at(i + 1 < kept.size() ? kept[i + 1] : 0);
-    const auto pieces = static_cast<std::size_t>(std::max(1.0, std::ceil((b - a).norm() / spacing - 1e-9)));
-    for (std::size_t k = 0; k < pieces; ++k) out.push_back(a + (b - a) * (static_cast<double>(k) / static_cast<double>(pieces)));
-  }
-  return out;
-}
-
-namespace {
-
-// Splits every edge of `p` longer than `limit` into ceil(length / piece) equal parts.
-void split_long_edges(Polygon& p, double limit, double piece) {
-  Polygon out;
-  out.reserve(p.size());
-  for (std::size_t i = 0; i < p.size(); ++i) {
-    const Eigen::Vector2d& a = p[i];
-    const Eigen::Vector2d& b = p[(i + 1) % p.size()];
-    const double len = (b - a).norm();
-    out.push_back(a);
-    if (len <= limit) continue;
-    const auto pieces = static_cast<std::size_t>(std::ceil(len / piece));
-    for (std::size_t k = 1; k < pieces; ++k) out.push_back(a + (b - a) * (static_cast<double>(k) / static_cast<double>(pieces)));
-  }
-  p = std::move(out);
-}
-
-double longest_edge(const Polygon& p) {
-  double m = 0.0;
-  for (std::size_t i = 0; i < p.size(); ++i) m = std::max(m, (p[(i + 1) % p.size()] - p[i]).norm());
-  return m;
-}
-
-}  // namespace
-
-ResamplingReport resample_drawn_stack(ContourStack& stack, double spacing, double tolerance) {
-  ResamplingReport report;
-  for (SliceContours& slice : stack.slices) {
-    auto& cs = slice.contours;
-    std::vector<Polygon> simplified(cs.size());
-    for (std::size_t c = 0; c < cs.size(); ++c) {
-      report.points_before += cs[c].points.size();
-      simplified[c] = resample_drawn(cs[c].points, spacing, tolerance);
-    }
-    // Simplification moves a contour by up to `tolerance`: where that makes contours meet, keep
-    // every drawn point (subdividing only).
-    auto exact = [&](std::size_t c) {
-      simplified[c] = resample_drawn(cs[c].points, spacing, 0.0);
-      ++report.exact_fallbacks;
-    };
-    for (std::size_t c = 0; c < cs.size(); ++c) {
-      if (find_self_intersection(simplified[c])) exact(c);
-    }
-    if (tolerance > 0.0 && cs.size() > 1 && find_polygon_crossing(simplified)) {
-      for (std::size_t c = 0; c < cs.size(); ++c) exact(c);
-    }
-    // Even sampling within each outer contour and its holes.
-    for (std::size_t o = 0; o < cs.size(); ++o) {
-      if (cs[o].is_hole) continue;
-      std::vector<std::size_t> group{o};
-      for (std::size_t h = 0; h < cs.size(); ++h) {
-        if (cs[h].is_hole && cs[h].parent == static_cast<int>(o)) group.push_back(h);
-      }
-      // A cap spaces its interior vertices by the mean edge of its outer polygon: the outer contour's,
-      // or a hole's own when the hole is capped (it ends inside material, or becomes a hollow slab).
-      auto mean_edge = [&](std::size_t c) { return perimeter(simplified[c]) / static_cast<double>(simplified[c].size()); };
-      for (int pass = 0; pass < 32; ++pass) {
-        bool changed = false;
-        const double outer_mean = mean_edge(o);
-        for (std::size_t c : group) {
-          const double piece = std::min(outer_mean, mean_edge(c));
-          if (longest_edge(simplified[c]) <= 1.4 * piece) continue;
-          split_long_edges(simplified[c], 1.4 * piece, piece);
-          changed = true;
-        }
-        if (!changed) break;
-      }
-    }
-    for (std::size_t c = 0; c < cs.size(); ++c) {
-      cs[c].points = std::move(simplified[c]);
-      report.points_after += cs[c].points.size();
-    }
-  }
   return report;
 }
 

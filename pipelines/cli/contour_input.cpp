@@ -10,6 +10,7 @@
 #include <CLI/CLI.hpp>
 
 #include <iostream>
+#include <utility>
 #include <sstream>
 
 namespace contourmesh::cli {
@@ -175,6 +176,73 @@ std::filesystem::path roi_output_path(const std::string& output, const ContourIn
     return p;
   }
   return std::filesystem::path(output) / (input.stem + extension);
+}
+
+std::vector<std::filesystem::path> roi_outputs(const std::string& output, const ContourInputs& loaded,
+                                               const std::string& extension, bool json_only) {
+  std::vector<std::filesystem::path> paths;
+  for (const ContourInput& in : loaded.inputs) {
+    if (output.empty()) {
+      paths.emplace_back();
+      continue;
+    }
+    paths.push_back(roi_output_path(output, in, loaded.all, extension));
+    if (json_only && !is_contour_stack_path(paths.back())) {
+      throw InvalidInputError(paths.back().string() + ": contour files end in .json");
+    }
+    ensure_parent_directory(paths.back());
+    check_output_path(paths.back());
+  }
+  return paths;
+}
+
+nlohmann::json for_each_roi(const std::string& command, const std::string& path, const ContourInputs& loaded,
+                            const std::function<nlohmann::json(const ContourInput&, std::size_t)>& body,
+                            std::size_t& failed) {
+  nlohmann::json rois = nlohmann::json::array();
+  failed = 0;
+  for (std::size_t i = 0; i < loaded.inputs.size(); ++i) {
+    const ContourInput& in = loaded.inputs[i];
+    auto fail = [&](const std::string& message) {
+      std::cerr << "contourmesh " << command << ": error: " << path << ": " << message << "\n";
+      ++failed;
+      nlohmann::json j{{"status", "failed"}, {"error", message}};
+      describe_input(j, in);
+      rois.push_back(j);
+    };
+    if (!in.error.empty()) {
+      if (!loaded.all) throw InvalidInputError(path + ": " + in.error);
+      fail(in.error);
+      continue;
+    }
+    print_warnings(command, in.warnings);
+    try {
+      rois.push_back(body(in, i));
+    } catch (const LimitError& e) {
+      if (!loaded.all) throw LimitError(path + ": " + e.what());
+      fail(e.what());
+    } catch (const InvalidInputError& e) {
+      if (!loaded.all) throw InvalidInputError(path + ": " + e.what());
+      fail(e.what());
+    }
+  }
+  return rois;
+}
+
+nlohmann::json roi_results_json(const std::string& command, const std::string& path, const ContourInputs& loaded,
+                                nlohmann::json rois, std::size_t failed, std::chrono::steady_clock::time_point start) {
+  nlohmann::json j;
+  if (loaded.all) {
+    j["rois"] = std::move(rois);
+    j["skipped"] = loaded.skipped;
+    j["failed"] = failed;
+  } else {
+    j = rois.at(0);
+  }
+  j["command"] = command;
+  j["input"] = path;
+  j["seconds"] = seconds_since(start);
+  return j;
 }
 
 void ensure_parent_directory(const std::filesystem::path& path) {

@@ -12,7 +12,9 @@
 #include <nlohmann/json.hpp>
 
 #include <array>
+#include <chrono>
 #include <filesystem>
+#include <functional>
 #include <optional>
 #include <string>
 #include <vector>
@@ -85,6 +87,27 @@ struct ContourInputs {
 /// by the stem, or else `output` as a directory holding "<stem><extension>".
 [[nodiscard]] std::filesystem::path roi_output_path(const std::string& output, const ContourInput& input, bool all,
                                                     const std::string& extension);
+
+/// The output path of every input (roi_output_path), each checked before any work: its directory is
+/// created when missing, it must be writable, and with `json_only` end in .json. An empty `output`
+/// gives empty paths (no such output).
+[[nodiscard]] std::vector<std::filesystem::path> roi_outputs(const std::string& output, const ContourInputs& loaded,
+                                                             const std::string& extension, bool json_only = false);
+
+/// Runs `body` on every input, collecting the JSON object it returns for each. With --roi all, an
+/// input whose conversion failed, or whose body throws InvalidInputError, is reported (one error line
+/// on stderr, and {"status": "failed", "error": ...}) and the others go on; with one ROI the error
+/// propagates, prefixed by the file. Returns the objects and sets `failed`.
+[[nodiscard]] nlohmann::json for_each_roi(const std::string& command, const std::string& path,
+                                          const ContourInputs& loaded,
+                                          const std::function<nlohmann::json(const ContourInput&, std::size_t)>& body,
+                                          std::size_t& failed);
+
+/// The JSON a command prints: the one ROI's object, or (--roi all) `rois`, `skipped` and `failed`;
+/// with `command`, `input` and `seconds` since `start`.
+[[nodiscard]] nlohmann::json roi_results_json(const std::string& command, const std::string& path,
+                                              const ContourInputs& loaded, nlohmann::json rois, std::size_t failed,
+                                              std::chrono::steady_clock::time_point start);
 
 /// Creates the directory of `path` when missing (InvalidInputError when it cannot).
 void ensure_parent_directory(const std::filesystem::path& path);

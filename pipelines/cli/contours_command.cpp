@@ -13,6 +13,7 @@
 #include <CLI/CLI.hpp>
 
 #include <algorithm>
+#include <chrono>
 #include <iomanip>
 #include <iostream>
 #include <limits>
@@ -147,48 +148,27 @@ int list_contour_file(const ContoursArgs& a) {
 }
 
 int write_stacks(const ContoursArgs& a, InputKind kind) {
+  const auto start = std::chrono::steady_clock::now();
   const ContourInputs loaded = load_contour_inputs(a.input, kind, a.contour);
   print_warnings("contours", loaded.warnings);
   print_warnings("contours", loaded.skipped);
-  std::vector<std::filesystem::path> outputs;
-  for (const ContourInput& in : loaded.inputs) {
-    outputs.push_back(roi_output_path(a.output, in, loaded.all, ".json"));
-    if (!is_contour_stack_path(outputs.back())) throw InvalidInputError(outputs.back().string() + ": contour files end in .json");
-    ensure_parent_directory(outputs.back());
-    check_output_path(outputs.back());
-  }
+  const auto outputs = roi_outputs(a.output, loaded, ".json", true);
   std::size_t failed = 0;
-  nlohmann::json written = nlohmann::json::array();
-  for (std::size_t i = 0; i < loaded.inputs.size(); ++i) {
-    const ContourInput& in = loaded.inputs[i];
-    nlohmann::json j;
-    describe_input(j, in);
-    if (!in.error.empty()) {
-      std::cerr << "contourmesh contours: error: " << a.input << ": " << in.error << "\n";
-      ++failed;
-      j["status"] = "failed";
-      j["error"] = in.error;
-      written.push_back(j);
-      continue;
-    }
-    print_warnings("contours", in.warnings);
-    write_input_contours(in, outputs[i]);
-    j["status"] = "ok";
-    j["output"] = outputs[i].string();
-    j["slices"] = in.stack.slices.size();
-    j["contours"] = in.stack.num_contours();
-    written.push_back(j);
-    if (!a.json && !a.common.quiet) std::cout << "wrote " << outputs[i].string() << " (" << in.what << ")\n";
-  }
-  if (a.json) {
-    nlohmann::json j;
-    j["command"] = "contours";
-    j["input"] = a.input;
-    j["written"] = written;
-    j["skipped"] = loaded.skipped;
-    j["failed"] = failed;
-    print_json(j);
-  }
+  nlohmann::json written = for_each_roi(
+      "contours", a.input, loaded,
+      [&](const ContourInput& in, std::size_t i) {
+        write_input_contours(in, outputs[i]);
+        if (!a.json && !a.common.quiet) std::cout << "wrote " << outputs[i].string() << " (" << in.what << ")\n";
+        nlohmann::json j;
+        j["status"] = "ok";
+        describe_input(j, in);
+        j["output"] = outputs[i].string();
+        j["slices"] = in.stack.slices.size();
+        j["contours"] = in.stack.num_contours();
+        return j;
+      },
+      failed);
+  if (a.json) print_json(roi_results_json("contours", a.input, loaded, std::move(written), failed, start));
   return failed > 0 ? kBadInput : kOk;
 }
 

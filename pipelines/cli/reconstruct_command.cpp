@@ -175,143 +175,98 @@ std::string mesh_extension(MeshFormat format) {
   return ".vtp";
 }
 
+// One ROI (or contour file): tiled, written, checked against its drawn contours; its JSON object.
+nlohmann::json reconstruct_one(const ReconstructArgs& a, InputKind kind, const ContourInput& in,
+                               const std::filesystem::path& output, const std::filesystem::path& contours_out,
+                               const MeshWriteOptions& write_options, ProgressDisplay& progress) {
+  const auto t0 = std::chrono::steady_clock::now();
+  const ContourReconstruction r = reconstruct_from_contours(
+      in.stack, in.what, contour_options(a.contour, in, a.sampling, parse_end_caps(a.end_caps), a.max_vertices),
+      progress.callback());
+  print_warnings("reconstruct", r.report.warnings);
+  progress.stage("write");
+  write_mesh(r.mesh, output, write_options);
+  if (!contours_out.empty()) write_input_contours(in, contours_out);
+  const TopologySummary topo = summarize_topology(r.mesh);
+  const double volume = enclosed_volume(r.mesh);
+  const ContourDeviation deviation = contour_deviation(r.mesh, in.stack);
+  const double difference = 100.0 * (volume - r.report.slicewise_volume) / r.report.slicewise_volume;
+  const double seconds = seconds_since(t0);
+  nlohmann::json j;
+  j["status"] = "ok";
+  describe_input(j, in);
+  j["output"] = output.string();
+  if (!contours_out.empty()) j["contours_out"] = contours_out.string();
+  j["slices"] = r.report.slices;
+  j["contours"] = r.report.contours;
+  j["hole_contours"] = r.report.hole_contours;
+  j["points_drawn"] = r.report.points_drawn;
+  j["points_tiled"] = r.report.points_tiled;
+  j["branchings"] = r.report.tiling.branchings;
+  j["caps"] = r.report.tiling.caps;
+  j["slabs"] = r.report.slabs;
+  j["aligned_gaps"] = r.report.aligned_gaps;
+  j["vertices"] = r.mesh.num_vertices();
+  j["faces"] = r.mesh.num_faces();
+  j["components"] = topo.components;
+  j["is_closed"] = topo.closed;
+  j["is_manifold"] = topo.manifold;
+  j["euler_characteristic"] = topo.euler_characteristic;
+  j["volume"] = volume;
+  j["slicewise_volume"] = r.report.slicewise_volume;
+  j["volume_difference_percent"] = difference;
+  j["contour_deviation_mean"] = deviation.mean;
+  j["contour_deviation_max"] = deviation.max;
+  j["slices_without_section"] = deviation.slices_without_section;
+  j["seconds_tile"] = r.report.seconds_tile;
+  j["seconds"] = seconds;
+  if (a.json || a.common.quiet) return j;
+  std::cout << std::fixed << std::setprecision(2) << "reconstructed " << in.what
+            << (kind == InputKind::StructureSet ? " of " + a.input : "") << "\n"
+            << "  contours   " << r.report.contours << " (" << r.report.hole_contours
+            << (r.report.hole_contours == 1 ? " hole) on " : " holes) on ") << r.report.slices << " slices, "
+            << r.report.points_drawn << " points drawn, " << r.report.points_tiled << " tiled; "
+            << r.report.tiling.branchings << " branchings, " << r.report.tiling.caps << " caps, " << r.report.slabs
+            << " single-slice slabs\n"
+            << "  mesh       " << r.mesh.num_vertices() << " vertices, " << r.mesh.num_faces() << " triangles, "
+            << topo.components << " component" << (topo.components == 1 ? "" : "s") << ", "
+            << (topo.closed ? "closed" : "OPEN") << ", " << (topo.manifold ? "manifold" : "NOT manifold")
+            << ", Euler characteristic " << topo.euler_characteristic << "\n"
+            << "  volume     " << std::setprecision(1) << volume << " mm^3; slice-wise " << r.report.slicewise_volume
+            << " mm^3 (" << std::showpos << std::setprecision(2) << difference << std::noshowpos << " %)\n"
+            << std::setprecision(3) << "  contours   reproduced in their slice planes within " << deviation.max
+            << " mm (mean " << deviation.mean << " mm)\n"
+            << "  wrote      " << output.string() << (contours_out.empty() ? "" : " and " + contours_out.string())
+            << " in " << std::setprecision(2) << seconds << " s\n";
+  return j;
+}
+
 int run_reconstruct_contours(const ReconstructArgs& a, InputKind kind) {
   const auto start = std::chrono::steady_clock::now();
   MeshWriteOptions write_options;
   write_options.format = parse_mesh_format(a.format);
-  const EndCaps end_caps = parse_end_caps(a.end_caps);
+  (void)parse_end_caps(a.end_caps);
   apply_common_options(a.common);
   ProgressDisplay progress("reconstruct", a.common.quiet);
   progress.stage("read");
-  ContourInputs loaded = load_contour_inputs(a.input, kind, a.contour);
+  const ContourInputs loaded = load_contour_inputs(a.input, kind, a.contour);
   print_warnings("reconstruct", loaded.warnings);
   print_warnings("reconstruct", loaded.skipped);
-  // Every output path is checked before any work.
-  const std::string extension = mesh_extension(write_options.format);
-  std::vector<std::filesystem::path> outputs, contour_outputs;
-  for (const ContourInput& in : loaded.inputs) {
-    outputs.push_back(roi_output_path(a.output, in, loaded.all, extension));
-    contour_outputs.push_back(a.contours_out.empty() ? std::filesystem::path()
-                                                     : roi_output_path(a.contours_out, in, loaded.all, ".json"));
-    for (const auto& p : {outputs.back(), contour_outputs.back()}) {
-      if (p.empty()) continue;
-      ensure_parent_directory(p);
-      check_output_path(p);
-    }
-    if (write_options.format == MeshFormat::Auto) (void)format_from_extension(outputs.back());
-    if (!contour_outputs.back().empty() && !is_contour_stack_path(contour_outputs.back())) {
-      throw InvalidInputError(contour_outputs.back().string() + ": contour files end in .json");
-    }
+  const auto outputs = roi_outputs(a.output, loaded, mesh_extension(write_options.format));
+  const auto contour_outputs = roi_outputs(a.contours_out, loaded, ".json", true);
+  if (write_options.format == MeshFormat::Auto) {
+    for (const auto& p : outputs) (void)format_from_extension(p);
   }
-
-  nlohmann::json rois = nlohmann::json::array();
   std::size_t failed = 0;
-  for (std::size_t i = 0; i < loaded.inputs.size(); ++i) {
-    const ContourInput& in = loaded.inputs[i];
-    const auto t0 = std::chrono::steady_clock::now();
-    auto fail = [&](const std::string& message) {
-      if (!loaded.all) throw InvalidInputError(a.input + ": " + message);
-      std::cerr << "contourmesh reconstruct: error: " << a.input << ": " << message << "\n";
-      ++failed;
-      nlohmann::json j{{"status", "failed"}, {"error", message}};
-      describe_input(j, in);
-      rois.push_back(j);
-    };
-    if (!in.error.empty()) {
-      fail(in.error);
-      continue;
-    }
-    print_warnings("reconstruct", in.warnings);
-    ContourReconstruction r;
-    try {
-      r = reconstruct_from_contours(in.stack, in.what,
-                                    contour_options(a.contour, in, a.sampling, end_caps, a.max_vertices),
-                                    progress.callback());
-    } catch (const LimitError& e) {
-      if (!loaded.all) throw LimitError(a.input + ": " + e.what());
-      fail(e.what());
-      continue;
-    } catch (const InvalidInputError& e) {
-      fail(e.what());
-      continue;
-    }
-    print_warnings("reconstruct", r.report.warnings);
-    progress.stage("write");
-    write_mesh(r.mesh, outputs[i], write_options);
-    if (!contour_outputs[i].empty()) write_input_contours(in, contour_outputs[i]);
-    const TopologySummary topo = summarize_topology(r.mesh);
-    const double volume = enclosed_volume(r.mesh);
-    const ContourDeviation deviation = contour_deviation(r.mesh, in.stack);
-    const double difference = 100.0 * (volume - r.report.slicewise_volume) / r.report.slicewise_volume;
-    const double seconds = seconds_since(t0);
-    nlohmann::json j;
-    j["status"] = "ok";
-    describe_input(j, in);
-    j["output"] = outputs[i].string();
-    if (!contour_outputs[i].empty()) j["contours_out"] = contour_outputs[i].string();
-    j["slices"] = r.report.slices;
-    j["contours"] = r.report.contours;
-    j["hole_contours"] = r.report.hole_contours;
-    j["points_drawn"] = r.report.points_drawn;
-    j["points_tiled"] = r.report.points_tiled;
-    j["branchings"] = r.report.tiling.branchings;
-    j["caps"] = r.report.tiling.caps;
-    j["slabs"] = r.report.slabs;
-    j["aligned_gaps"] = r.report.aligned_gaps;
-    j["vertices"] = r.mesh.num_vertices();
-    j["faces"] = r.mesh.num_faces();
-    j["components"] = topo.components;
-    j["is_closed"] = topo.closed;
-    j["is_manifold"] = topo.manifold;
-    j["euler_characteristic"] = topo.euler_characteristic;
-    j["volume"] = volume;
-    j["slicewise_volume"] = r.report.slicewise_volume;
-    j["volume_difference_percent"] = difference;
-    j["contour_deviation_mean"] = deviation.mean;
-    j["contour_deviation_max"] = deviation.max;
-    j["slices_without_section"] = deviation.slices_without_section;
-    j["seconds_tile"] = r.report.seconds_tile;
-    j["seconds"] = seconds;
-    rois.push_back(j);
-    if (a.json || a.common.quiet) continue;
-    std::cout << std::fixed << std::setprecision(2) << "reconstructed " << in.what
-              << (kind == InputKind::StructureSet ? " of " + a.input : "") << "\n"
-              << "  contours   " << r.report.contours << " (" << r.report.hole_contours << (r.report.hole_contours == 1 ? " hole) on " : " holes) on ")
-              << r.report.slices << " slices, " << r.report.points_drawn << " points drawn, " << r.report.points_tiled
-              << " tiled; " << r.report.tiling.branchings << " branchings, " << r.report.tiling.caps << " caps, "
-              << r.report.slabs << " single-slice slabs\n"
-              << "  mesh       " << r.mesh.num_vertices() << " vertices, " << r.mesh.num_faces() << " triangles, "
-              << topo.components << " component" << (topo.components == 1 ? "" : "s") << ", "
-              << (topo.closed ? "closed" : "OPEN") << ", " << (topo.manifold ? "manifold" : "NOT manifold")
-              << ", Euler characteristic " << topo.euler_characteristic << "\n"
-              << "  volume     " << std::setprecision(1) << volume << " mm^3; slice-wise " << r.report.slicewise_volume
-              << " mm^3 (" << std::showpos << std::setprecision(2) << difference << std::noshowpos << " %)\n"
-              << std::setprecision(3) << "  contours   reproduced in their slice planes within " << deviation.max
-              << " mm (mean " << deviation.mean << " mm)\n"
-              << "  wrote      " << outputs[i].string()
-              << (contour_outputs[i].empty() ? "" : " and " + contour_outputs[i].string()) << " in "
-              << std::setprecision(2) << seconds << " s\n";
-  }
+  nlohmann::json rois = for_each_roi(
+      "reconstruct", a.input, loaded,
+      [&](const ContourInput& in, std::size_t i) {
+        return reconstruct_one(a, kind, in, outputs[i], contour_outputs[i], write_options, progress);
+      },
+      failed);
   progress.finish();
-  if (a.json) {
-    if (loaded.all) {
-      nlohmann::json j;
-      j["command"] = "reconstruct";
-      j["input"] = a.input;
-      j["rois"] = rois;
-      j["skipped"] = loaded.skipped;
-      j["failed"] = failed;
-      j["seconds"] = seconds_since(start);
-      print_json(j);
-    } else {
-      nlohmann::json j = rois.at(0);
-      j["command"] = "reconstruct";
-      j["input"] = a.input;
-      j["seconds"] = seconds_since(start);
-      print_json(j);
-    }
-  }
-  if (failed > 0 && !a.common.quiet && !a.json) {
+  if (a.json) print_json(roi_results_json("reconstruct", a.input, loaded, std::move(rois), failed, start));
+  if (failed > 0 && !a.json) {
     std::cerr << "contourmesh reconstruct: " << failed << " of " << loaded.inputs.size() << " ROIs failed\n";
   }
   return failed > 0 ? kBadInput : kOk;

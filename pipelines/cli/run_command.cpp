@@ -270,6 +270,88 @@ int run_run(const RunArgs& a) {
   return kOk;
 }
 
+// One ROI (or contour file): tiled, smoothed by the same stage as a CT volume, written, and measured
+// against its drawn contours before and after smoothing; its JSON object.
+nlohmann::json run_one(const RunArgs& a, InputKind kind, const ContourInput& in, const std::filesystem::path& output,
+                       const std::filesystem::path& labels, const MeshWriteOptions& write_options,
+                       ProgressDisplay& progress) {
+  const auto t0 = std::chrono::steady_clock::now();
+  const EndCaps end_caps = a.end_caps == "end-slice" ? EndCaps::AtEndSlice : EndCaps::HalfSpacing;
+  const ContourReconstruction rec = reconstruct_from_contours(
+      in.stack, in.what, contour_options(a.contour, in, a.sampling, end_caps, a.max_vertices), progress.callback());
+  print_warnings("run", rec.report.warnings);
+  const Smoothed smoothed = smooth_reconstruction(rec.mesh, a, progress, in.what);
+  const auto t = std::chrono::steady_clock::now();
+  progress.stage("write");
+  write_mesh(smoothed.mesh, output, write_options);
+  if (smoothed.paper && !labels.empty()) {
+    MeshWriteOptions label_options;
+    label_options.point_scalars = detection_arrays(smoothed.paper->detection);
+    write_mesh(rec.mesh, labels, label_options);
+  }
+  const double seconds_write = seconds_since(t);
+  const TopologySummary topo = summarize_topology(smoothed.mesh);
+  const double v0 = enclosed_volume(rec.mesh);
+  const double v1 = enclosed_volume(smoothed.mesh);
+  const ContourDeviation before = contour_deviation(rec.mesh, in.stack);
+  const ContourDeviation after = contour_deviation(smoothed.mesh, in.stack);
+  nlohmann::json j;
+  j["status"] = "ok";
+  describe_input(j, in);
+  j["output"] = output.string();
+  if (!labels.empty()) j["labels_out"] = labels.string();
+  j["method"] = a.method;
+  j["slices"] = rec.report.slices;
+  j["contours"] = rec.report.contours;
+  j["hole_contours"] = rec.report.hole_contours;
+  j["points_drawn"] = rec.report.points_drawn;
+  j["slabs"] = rec.report.slabs;
+  j["vertices"] = smoothed.mesh.num_vertices();
+  j["faces"] = smoothed.mesh.num_faces();
+  j["components"] = topo.components;
+  j["is_closed"] = topo.closed;
+  j["is_manifold"] = topo.manifold;
+  j["euler_characteristic"] = topo.euler_characteristic;
+  j["slicewise_volume"] = rec.report.slicewise_volume;
+  j["volume_before"] = v0;
+  j["volume_after"] = v1;
+  j["volume_change_percent"] = 100.0 * (v1 - v0) / v0;
+  j["contour_deviation_before_mean"] = before.mean;
+  j["contour_deviation_before_max"] = before.max;
+  j["contour_deviation_after_mean"] = after.mean;
+  j["contour_deviation_after_rms"] = after.rms;
+  j["contour_deviation_after_max"] = after.max;
+  j["slices_without_section_after"] = after.slices_without_section;
+  j["seconds_tile"] = rec.report.seconds_tile;
+  j["seconds_smooth"] = smoothed.seconds;
+  j["seconds_write"] = seconds_write;
+  add_paper_json(j, smoothed);
+  j["seconds"] = seconds_since(t0);
+  if (a.json || a.common.quiet) return j;
+  std::cout << std::fixed << std::setprecision(2) << "ContourMesh: " << in.what
+            << (kind == InputKind::StructureSet ? " of " + a.input : "") << "\n"
+            << "  contours    " << rec.report.contours << " on " << rec.report.slices << " slices ("
+            << rec.report.hole_contours << (rec.report.hole_contours == 1 ? " hole, " : " holes, ")
+            << rec.report.tiling.branchings << " branchings, " << rec.report.slabs << " single-slice slabs)\n"
+            << "  mesh        " << smoothed.mesh.num_vertices() << " vertices, " << smoothed.mesh.num_faces()
+            << " triangles, " << (topo.closed ? "closed" : "OPEN") << ", " << (topo.manifold ? "manifold" : "NOT manifold")
+            << ", Euler characteristic " << topo.euler_characteristic << "\n";
+  if (smoothed.paper) {
+    std::cout << "  features    " << smoothed.paper->detection.edges << " edge, " << smoothed.paper->detection.corners
+              << " corner, " << smoothed.paper->detection.noise << " noise vertices; "
+              << smoothed.paper->subdivided_vertices << " subdivided\n";
+  }
+  std::cout << "  smoothing   " << a.method << ": volume " << std::setprecision(1) << v0 << " -> " << v1 << " mm^3 ("
+            << std::setprecision(2) << 100.0 * (v1 - v0) / v0 << " %; slice-wise " << std::setprecision(1)
+            << rec.report.slicewise_volume << ")\n"
+            << std::setprecision(3) << "  contours    in-plane distance to the drawn contours: mean " << before.mean
+            << " -> " << after.mean << " mm, largest " << before.max << " -> " << after.max << " mm\n"
+            << std::setprecision(2) << "  seconds     tile " << rec.report.seconds_tile << ", smooth " << smoothed.seconds
+            << ", write " << seconds_write << ", total " << seconds_since(t0) << "\n"
+            << "  wrote       " << output.string() << (labels.empty() ? "" : " and " + labels.string()) << "\n";
+  return j;
+}
+
 // The contour route: drawn contours (an RT Structure Set ROI, or all of them, or a contour file) ->
 // tiling -> the same smoothing -> export.
 int run_contours(const RunArgs& a, InputKind kind, bool output_given) {
@@ -278,156 +360,42 @@ int run_contours(const RunArgs& a, InputKind kind, bool output_given) {
   if (!a.labels_out.empty() && a.method != "paper") {
     throw InvalidInputError("--labels-out needs --method paper (the labels come from its detection)");
   }
-  EndCaps end_caps = EndCaps::HalfSpacing;
-  if (a.end_caps == "end-slice") end_caps = EndCaps::AtEndSlice;
-  else if (a.end_caps != "half-spacing") throw InvalidInputError("--end-caps must be half-spacing or end-slice");
+  if (a.end_caps != "end-slice" && a.end_caps != "half-spacing") {
+    throw InvalidInputError("--end-caps must be half-spacing or end-slice");
+  }
+  (void)detection_options(a.detection);
   MeshWriteOptions write_options;
   write_options.format = parse_mesh_format(a.format);
   apply_common_options(a.common);
   ProgressDisplay progress("run", a.common.quiet);
   progress.stage("read");
-  ContourInputs loaded = load_contour_inputs(a.input, kind, a.contour);
+  const ContourInputs loaded = load_contour_inputs(a.input, kind, a.contour);
   print_warnings("run", loaded.warnings);
   print_warnings("run", loaded.skipped);
   // Without -o: out/<ROI>.stl, or the directory out/ for --roi all.
-  const std::string output = output_given ? a.output : (loaded.all ? std::string("out") : "out/" + loaded.inputs[0].stem + ".stl");
-  const std::string extension = write_options.format == MeshFormat::Auto || write_options.format == MeshFormat::StlBinary ||
-                                        write_options.format == MeshFormat::StlAscii
+  const std::string output =
+      output_given ? a.output : (loaded.all ? std::string("out") : "out/" + loaded.inputs[0].stem + ".stl");
+  const MeshFormat f = write_options.format;
+  const std::string extension = f == MeshFormat::Auto || f == MeshFormat::StlBinary || f == MeshFormat::StlAscii
                                     ? ".stl"
-                                    : "." + std::string(to_string(write_options.format));
-  std::vector<std::filesystem::path> outputs, labels;
-  for (const ContourInput& in : loaded.inputs) {
-    outputs.push_back(roi_output_path(output, in, loaded.all, extension));
-    labels.push_back(a.labels_out.empty() ? std::filesystem::path() : roi_output_path(a.labels_out, in, loaded.all, "_labels.vtp"));
-    for (const auto& p : {outputs.back(), labels.back()}) {
-      if (p.empty()) continue;
-      ensure_parent_directory(p);
-      check_output_path(p);
-    }
-    if (write_options.format == MeshFormat::Auto) (void)format_from_extension(outputs.back());
-    if (!labels.back().empty() && !format_keeps_contour_ids(format_from_extension(labels.back()))) {
-      throw InvalidInputError(labels.back().string() + ": labels need a .vtp or .ply file");
+                                    : "." + std::string(to_string(f));
+  const auto outputs = roi_outputs(output, loaded, extension);
+  const auto labels = roi_outputs(a.labels_out, loaded, "_labels.vtp");
+  for (std::size_t i = 0; i < outputs.size(); ++i) {
+    if (f == MeshFormat::Auto) (void)format_from_extension(outputs[i]);
+    if (!labels[i].empty() && !format_keeps_contour_ids(format_from_extension(labels[i]))) {
+      throw InvalidInputError(labels[i].string() + ": labels need a .vtp or .ply file");
     }
   }
-
-  nlohmann::json rois = nlohmann::json::array();
   std::size_t failed = 0;
-  for (std::size_t i = 0; i < loaded.inputs.size(); ++i) {
-    const ContourInput& in = loaded.inputs[i];
-    const auto t0 = std::chrono::steady_clock::now();
-    auto fail = [&](const std::string& message) {
-      if (!loaded.all) throw InvalidInputError(a.input + ": " + message);
-      std::cerr << "contourmesh run: error: " << a.input << ": " << message << "\n";
-      ++failed;
-      nlohmann::json j{{"status", "failed"}, {"error", message}};
-      describe_input(j, in);
-      rois.push_back(j);
-    };
-    if (!in.error.empty()) {
-      fail(in.error);
-      continue;
-    }
-    print_warnings("run", in.warnings);
-    ContourReconstruction rec;
-    Smoothed smoothed;
-    try {
-      rec = reconstruct_from_contours(in.stack, in.what, contour_options(a.contour, in, a.sampling, end_caps, a.max_vertices),
-                                      progress.callback());
-      print_warnings("run", rec.report.warnings);
-      smoothed = smooth_reconstruction(rec.mesh, a, progress, in.what);
-    } catch (const LimitError& e) {
-      if (!loaded.all) throw LimitError(a.input + ": " + e.what());
-      fail(e.what());
-      continue;
-    } catch (const InvalidInputError& e) {
-      fail(e.what());
-      continue;
-    }
-    auto t = std::chrono::steady_clock::now();
-    progress.stage("write");
-    write_mesh(smoothed.mesh, outputs[i], write_options);
-    if (smoothed.paper && !labels[i].empty()) {
-      MeshWriteOptions label_options;
-      label_options.point_scalars = detection_arrays(smoothed.paper->detection);
-      write_mesh(rec.mesh, labels[i], label_options);
-    }
-    const double seconds_write = seconds_since(t);
-    const TopologySummary topo = summarize_topology(smoothed.mesh);
-    const double v0 = enclosed_volume(rec.mesh);
-    const double v1 = enclosed_volume(smoothed.mesh);
-    const ContourDeviation before = contour_deviation(rec.mesh, in.stack);
-    const ContourDeviation after = contour_deviation(smoothed.mesh, in.stack);
-    nlohmann::json j;
-    j["status"] = "ok";
-    describe_input(j, in);
-    j["output"] = outputs[i].string();
-    if (!labels[i].empty()) j["labels_out"] = labels[i].string();
-    j["method"] = a.method;
-    j["slices"] = rec.report.slices;
-    j["contours"] = rec.report.contours;
-    j["hole_contours"] = rec.report.hole_contours;
-    j["points_drawn"] = rec.report.points_drawn;
-    j["slabs"] = rec.report.slabs;
-    j["vertices"] = smoothed.mesh.num_vertices();
-    j["faces"] = smoothed.mesh.num_faces();
-    j["components"] = topo.components;
-    j["is_closed"] = topo.closed;
-    j["is_manifold"] = topo.manifold;
-    j["euler_characteristic"] = topo.euler_characteristic;
-    j["slicewise_volume"] = rec.report.slicewise_volume;
-    j["volume_before"] = v0;
-    j["volume_after"] = v1;
-    j["volume_change_percent"] = 100.0 * (v1 - v0) / v0;
-    j["contour_deviation_before_mean"] = before.mean;
-    j["contour_deviation_before_max"] = before.max;
-    j["contour_deviation_after_mean"] = after.mean;
-    j["contour_deviation_after_rms"] = after.rms;
-    j["contour_deviation_after_max"] = after.max;
-    j["slices_without_section_after"] = after.slices_without_section;
-    j["seconds_tile"] = rec.report.seconds_tile;
-    j["seconds_smooth"] = smoothed.seconds;
-    j["seconds_write"] = seconds_write;
-    add_paper_json(j, smoothed);
-    j["seconds"] = seconds_since(t0);
-    rois.push_back(j);
-    if (a.json || a.common.quiet) continue;
-    std::cout << std::fixed << std::setprecision(2) << "ContourMesh: " << in.what
-              << (kind == InputKind::StructureSet ? " of " + a.input : "") << "\n"
-              << "  contours    " << rec.report.contours << " on " << rec.report.slices << " slices ("
-              << rec.report.hole_contours << (rec.report.hole_contours == 1 ? " hole, " : " holes, ") << rec.report.tiling.branchings << " branchings, "
-              << rec.report.slabs << " single-slice slabs)\n"
-              << "  mesh        " << smoothed.mesh.num_vertices() << " vertices, " << smoothed.mesh.num_faces()
-              << " triangles, " << (topo.closed ? "closed" : "OPEN") << ", " << (topo.manifold ? "manifold" : "NOT manifold")
-              << ", Euler characteristic " << topo.euler_characteristic << "\n";
-    if (smoothed.paper) {
-      std::cout << "  features    " << smoothed.paper->detection.edges << " edge, " << smoothed.paper->detection.corners
-                << " corner, " << smoothed.paper->detection.noise << " noise vertices; "
-                << smoothed.paper->subdivided_vertices << " subdivided\n";
-    }
-    std::cout << "  smoothing   " << a.method << ": volume " << std::setprecision(1) << v0 << " -> " << v1 << " mm^3 ("
-              << std::setprecision(2) << 100.0 * (v1 - v0) / v0 << " %; slice-wise " << std::setprecision(1)
-              << rec.report.slicewise_volume << ")\n"
-              << std::setprecision(3) << "  contours    in-plane distance to the drawn contours: mean " << before.mean
-              << " -> " << after.mean << " mm, largest " << before.max << " -> " << after.max << " mm\n"
-              << std::setprecision(2) << "  seconds     tile " << rec.report.seconds_tile << ", smooth " << smoothed.seconds
-              << ", write " << seconds_write << ", total " << seconds_since(t0) << "\n"
-              << "  wrote       " << outputs[i].string() << (labels[i].empty() ? "" : " and " + labels[i].string()) << "\n";
-  }
+  nlohmann::json rois = for_each_roi(
+      "run", a.input, loaded,
+      [&](const ContourInput& in, std::size_t i) {
+        return run_one(a, kind, in, outputs[i], labels[i], write_options, progress);
+      },
+      failed);
   progress.finish();
-  if (a.json) {
-    nlohmann::json j;
-    if (loaded.all) {
-      j["rois"] = rois;
-      j["skipped"] = loaded.skipped;
-      j["failed"] = failed;
-    } else {
-      j = rois.at(0);
-    }
-    j["command"] = "run";
-    j["input"] = a.input;
-    j["seconds"] = seconds_since(start);
-    print_json(j);
-  }
+  if (a.json) print_json(roi_results_json("run", a.input, loaded, std::move(rois), failed, start));
   if (failed > 0 && !a.json) std::cerr << "contourmesh run: " << failed << " of " << loaded.inputs.size() << " ROIs failed\n";
   return failed > 0 ? kBadInput : kOk;
 }

@@ -1,4 +1,5 @@
 // Drawn contours to ordered stacks: slice axis, slices, nesting, orientation, repairs and refusals.
+#include <reconstruct/contour_resampling.h>
 #include <reconstruct/planar_contours.h>
 #include <smooth/errors.h>
 
