@@ -16,6 +16,7 @@
 #include <charconv>
 #include <cmath>
 #include <map>
+#include <new>
 #include <set>
 #include <sstream>
 
@@ -146,9 +147,11 @@ bool is_closed(RtContourType t) { return t == RtContourType::ClosedPlanar || t =
 
 std::string quoted(const std::filesystem::path& p) { return p.string(); }
 
-// The contours of one ROI Contour item.
+// The contours of one ROI Contour item. Unreadable Contour Data sets `error` (the ROI cannot be used;
+// the others can).
 std::vector<RtContour> read_contours(const gdcm::DataSet& item, const std::filesystem::path& file,
-                                     const std::string& roi_label, std::vector<std::string>& warnings) {
+                                     const std::string& roi_label, std::vector<std::string>& warnings,
+                                     std::string& error) {
   std::vector<RtContour> out;
   const auto contours = sequence(item, kContourSequence);
   if (!contours) return out;
@@ -160,8 +163,11 @@ std::vector<RtContour> read_contours(const gdcm::DataSet& item, const std::files
     contour.type_name = trim(raw_value(c, kContourGeometricType));
     contour.type = contour_type(contour.type_name);
     if (!parse_numbers(raw_value(c, kContourData), values) || values.size() % 3 != 0) {
-      throw InvalidInputError(quoted(file) + ": " + roi_label + ", contour " + std::to_string(k) +
-                              ": Contour Data (3006,0050) is not a list of x\\y\\z numbers");
+      if (error.empty()) {
+        error = roi_label + ", contour " + std::to_string(k) +
+                ": Contour Data (3006,0050) is not a list of x\\y\\z numbers";
+      }
+      values.clear();
     }
     contour.points.reserve(values.size() / 3);
     for (std::size_t i = 0; i + 2 < values.size(); i += 3) contour.points.emplace_back(values[i], values[i + 1], values[i + 2]);
@@ -250,21 +256,27 @@ std::size_t RtRoi::points() const {
 bool is_rt_structure_set(const std::filesystem::path& file) {
   std::error_code ec;
   if (!std::filesystem::is_regular_file(file, ec)) return false;
-  gdcm::Reader reader;
-  reader.SetFileName(file.string().c_str());
-  // Modality (0008,0060) comes after the SOP Class UID: reading up to it reads both.
-  if (!reader.ReadUpToTag(gdcm::Tag(0x0008, 0x0061))) return false;
-  const gdcm::DataSet& ds = reader.GetFile().GetDataSet();
-  return trim(raw_value(ds, kSopClassUid)) == kRtStructureSetStorage || trim(raw_value(ds, kModality)) == "RTSTRUCT";
+  try {
+    gdcm::Reader reader;
+    reader.SetFileName(file.string().c_str());
+    // Modality (0008,0060) comes after the SOP Class UID: reading up to it reads both.
+    if (!reader.ReadUpToTag(gdcm::Tag(0x0008, 0x0061))) return false;
+    const gdcm::DataSet& ds = reader.GetFile().GetDataSet();
+    return trim(raw_value(ds, kSopClassUid)) == kRtStructureSetStorage || trim(raw_value(ds, kModality)) == "RTSTRUCT";
+  } catch (const std::exception&) {
+    return false;
+  }
 }
 
-RtStructureSet read_rt_structure_set(const std::filesystem::path& file) {
+namespace {
+
+RtStructureSet read_structure_set(const std::filesystem::path& file) {
   std::error_code ec;
   if (!std::filesystem::exists(file, ec)) throw InvalidInputError(quoted(file) + ": no such file");
   if (!std::filesystem::is_regular_file(file, ec)) throw InvalidInputError(quoted(file) + ": not a regular file");
   gdcm::Reader reader;
   reader.SetFileName(file.string().c_str());
-  if (!reader.Read()) throw InvalidInputError(quoted(file) + ": not a readable DICOM file");
+  if (!reader.Read()) throw InvalidInputError(quoted(file) + ": not a readable DICOM file (truncated or corrupt?)");
   const gdcm::DataSet& ds = reader.GetFile().GetDataSet();
   const std::string sop = trim(raw_value(ds, kSopClassUid));
   const std::string modality = trim(raw_value(ds, kModality));
@@ -323,7 +335,7 @@ RtStructureSet read_rt_structure_set(const std::filesystem::path& file) {
           std::all_of(rgb.begin(), rgb.end(), [](double v) { return v >= 0.0 && v <= 255.0 && v == std::floor(v); })) {
         roi.color = std::array<int, 3>{static_cast<int>(rgb[0]), static_cast<int>(rgb[1]), static_cast<int>(rgb[2])};
       }
-      std::vector<RtContour> more = read_contours(item, file, roi.label(), set.warnings);
+      std::vector<RtContour> more = read_contours(item, file, roi.label(), set.warnings, roi.error);
       roi.contours.insert(roi.contours.end(), std::make_move_iterator(more.begin()), std::make_move_iterator(more.end()));
     }
   }
@@ -337,6 +349,21 @@ RtStructureSet read_rt_structure_set(const std::filesystem::path& file) {
     }
   }
   return set;
+}
+
+}  // namespace
+
+RtStructureSet read_rt_structure_set(const std::filesystem::path& file) {
+  try {
+    return read_structure_set(file);
+  } catch (const InvalidInputError&) {
+    throw;
+  } catch (const std::bad_alloc&) {
+    throw;
+  } catch (const std::exception& e) {
+    // GDCM reports some malformed sequences by throwing.
+    throw InvalidInputError(quoted(file) + ": malformed RT Structure Set (" + e.what() + ")");
+  }
 }
 
 const RtRoi& find_roi(const RtStructureSet& set, const std::string& selector) {
@@ -373,6 +400,7 @@ const RtRoi& find_roi(const RtStructureSet& set, const std::string& selector) {
 
 RoiStack roi_contour_stack(const RtRoi& roi, const PlanarStackOptions& options) {
   const std::string what = roi.label();
+  if (!roi.error.empty()) throw InvalidInputError(roi.error);
   if (roi.contours.empty()) throw InvalidInputError(what + " has no contours: there is nothing to reconstruct");
   std::vector<PlanarContour> closed;
   std::map<std::string, std::vector<std::size_t>> skipped;  // type name -> contour numbers

@@ -61,6 +61,10 @@ int list_structure_set(const ContoursArgs& a) {
     j["points"] = roi.points();
     j["z_min"] = roi.points() > 0 ? nlohmann::json(lo) : nlohmann::json(nullptr);
     j["z_max"] = roi.points() > 0 ? nlohmann::json(hi) : nlohmann::json(nullptr);
+    if (!roi.error.empty()) {
+      j["error"] = roi.error;
+      print_warnings("contours", {a.input + ": " + roi.error});
+    }
     rois.push_back(j);
   }
   const auto spacing = structure_set_slice_spacing(set);

@@ -42,6 +42,9 @@ struct RtRoi {
   std::string interpreted_type;                  ///< RT ROI Interpreted Type (3006,00A4): EXTERNAL, ORGAN, PTV...
   std::string generation_algorithm;              ///< ROI Generation Algorithm (3006,0036): MANUAL, AUTOMATIC...
   std::vector<RtContour> contours;               ///< in file order; contour k is "contour k + 1" in messages
+  /// Set when a contour of this ROI could not be read (Contour Data that is not numbers in threes):
+  /// the message, naming the ROI and the contour. roi_contour_stack throws it; other ROIs are usable.
+  std::string error;
 
   /// "ROI 5 'Heart'", for messages.
   [[nodiscard]] std::string label() const;
@@ -68,10 +71,10 @@ struct RtStructureSet {
 [[nodiscard]] bool is_rt_structure_set(const std::filesystem::path& file);
 
 /// Reads an RT Structure Set. Throws InvalidInputError naming the file for: an unreadable or non-DICOM
-/// file, a DICOM file of another kind (naming its modality), a file with no Structure Set ROI Sequence,
-/// Contour Data that is not a list of numbers in threes. An ROI Contour item for an ROI number not
-/// declared, a Number of Contour Points that disagrees with the data, and ROI numbers declared twice
-/// are warnings. Character sets: ISO_IR 100 (Latin-1) and ISO_IR 192 (UTF-8) names are converted to
+/// file, a DICOM file of another kind (naming its modality), a file with no Structure Set ROI Sequence.
+/// Contour Data that is not a list of numbers in threes marks its ROI (RtRoi::error). An ROI Contour
+/// item for an ROI number not declared, a Number of Contour Points that disagrees with the data, and
+/// ROI numbers declared twice are warnings. Character sets: ISO_IR 100 (Latin-1) and ISO_IR 192 (UTF-8) names are converted to
 /// UTF-8; other bytes above 127 are replaced by '?'.
 [[nodiscard]] RtStructureSet read_rt_structure_set(const std::filesystem::path& file);
 
@@ -90,7 +93,8 @@ struct RoiStack {
 /// build_contour_stack (slice axis from the contours, nesting gives holes, orientation normalised,
 /// slices ordered, gaps warned about). POINT, OPEN_PLANAR, OPEN_NONPLANAR and unknown contours are
 /// skipped with one warning naming them. Throws InvalidInputError naming the ROI (and the contour) when
-/// it has no contours, no closed planar contour, or a contour build_contour_stack refuses.
+/// it has unreadable contour data, no contours, no closed planar contour, or a contour
+/// build_contour_stack refuses.
 [[nodiscard]] RoiStack roi_contour_stack(const RtRoi& roi, const PlanarStackOptions& options = {});
 
 /// The distance between adjacent contour planes of the whole set (the median over the planes of every
