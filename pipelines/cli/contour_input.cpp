@@ -180,6 +180,11 @@ std::filesystem::path roi_output_path(const std::string& output, const ContourIn
 
 std::vector<std::filesystem::path> roi_outputs(const std::string& output, const ContourInputs& loaded,
                                                const std::string& extension, bool json_only) {
+  if (loaded.all && !output.empty() && output.find("{roi}") == std::string::npos &&
+      std::filesystem::path(output).has_extension()) {
+    throw UsageError("with --roi all, an output is a directory or a path containing {roi} (one file per ROI), not '" +
+                     output + "'");
+  }
   std::vector<std::filesystem::path> paths;
   for (const ContourInput& in : loaded.inputs) {
     if (output.empty()) {

@@ -157,6 +157,10 @@ TEST_F(ContoursCli, RoiAllWritesOneMeshPerRoiNamedAfterIt) {
   EXPECT_EQ(j["rois"][2]["status"], "failed");
   EXPECT_EQ(j["failed"], 1);
   EXPECT_EQ(j["skipped"].size(), 1u);
+  // A file name is not a place for several meshes.
+  const CliRun file = run_cli("reconstruct " + q(set) + " --roi all -o " + q(dir_ / "one.vtp"), dir_);
+  EXPECT_EQ(file.code, 1);
+  EXPECT_NE(file.err.find("{roi}"), std::string::npos) << file.err;
   // A pattern with {roi}, and another format.
   const CliRun p = run_cli("reconstruct " + q(set) + " --roi all -o " + q(dir_ / "m_{roi}.ply") + " --quiet", dir_);
   EXPECT_TRUE(fs::exists(dir_ / "m_GTV_1.ply"));
