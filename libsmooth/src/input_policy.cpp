@@ -217,7 +217,7 @@ class IdPreparation {
     Mesh& mesh = out_.mesh;
     if (!assign_ids_by_slice_planes(mesh, adjacency, *options_.slice_axis, options_.slice_tolerance)) {
       throw InvalidInputError((why.empty() ? std::string() : why + ", and ") +
-                              "the vertices do not lie on planes normal to " + axis_name(*options_.slice_axis) +
+                              "the vertices do not lie on planes normal to the slice axis " + axis_name(*options_.slice_axis) +
                               ", so contour ids cannot be recovered (not a contour-based mesh?)");
     }
     if (!why.empty()) {

@@ -80,6 +80,7 @@ int run_reconstruct(const ReconstructArgs& a) {
     throw InvalidInputError(a.input + ": " + e.what());
   }
   progress.stage("write");
+  write_options.progress = progress.callback();
   write_mesh(r.mesh, a.output, write_options);
   progress.finish();
   const TopologySummary topo = summarize_topology(r.mesh);

@@ -80,6 +80,7 @@ int run_run(const RunArgs& a) {
   }
   check_output_path(out);
   if (!a.labels_out.empty()) check_output_path(a.labels_out);
+  check_distinct_outputs({{"-o", a.output}, {"--labels-out", a.labels_out}});
 
   // 1. Read or generate the volume.
   auto t = std::chrono::steady_clock::now();
@@ -151,10 +152,12 @@ int run_run(const RunArgs& a) {
   // 4. Export.
   t = std::chrono::steady_clock::now();
   progress.stage("write");
+  write_options.progress = progress.callback();
   write_mesh(result, out, write_options);
   if (paper && !a.labels_out.empty()) {
     MeshWriteOptions labels;
     labels.point_scalars = detection_arrays(paper->detection);
+    labels.progress = progress.callback();
     write_mesh(mesh, a.labels_out, labels);
   }
   progress.finish();
