@@ -9,6 +9,7 @@
 
 #include <csignal>
 #include <cmath>
+#include <cstring>
 #include <filesystem>
 #include <limits>
 #include <new>
@@ -73,11 +74,11 @@ int run_guarded_body(const std::string& command, const std::function<int()>& bod
     return body();
   } catch (const LimitError& e) {
     const std::string what = e.what();
-    std::cerr << "contourmesh " << command << ": error: " << what
+    std::cerr << "contourmesh " << command << ": error: " << cli_wording(what)
               << (what.find("limit of") != std::string::npos ? "; raise it with --max-vertices" : "") << "\n";
     return kBadInput;
   } catch (const InvalidInputError& e) {
-    std::cerr << "contourmesh " << command << ": error: " << e.what() << "\n";
+    std::cerr << "contourmesh " << command << ": error: " << cli_wording(e.what()) << "\n";
     return kBadInput;
   } catch (const CancelledError& e) {
     if (cancel_requested()) {
@@ -107,6 +108,18 @@ int run_guarded_body(const std::string& command, const std::function<int()>& bod
 namespace {
 int g_exit_code = kOk;
 }  // namespace
+
+std::string cli_wording(std::string text) {
+  static const std::pair<const char*, const char*> kPhrases[] = {
+      {"give the slice axis", "give --slice-axis"},
+      {"allow uneven slices", "give --allow-uneven-slices"},
+      {"treat non-finite voxels as air", "give --non-finite-as-air"},
+  };
+  for (const auto& [library, cli] : kPhrases) {
+    if (const auto at = text.find(library); at != std::string::npos) text.replace(at, std::strlen(library), cli);
+  }
+  return text;
+}
 
 void set_exit_code(int code) { g_exit_code = code; }
 int last_exit_code() { return g_exit_code; }

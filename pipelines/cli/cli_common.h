@@ -52,6 +52,11 @@ void check_distinct_outputs(const std::vector<std::pair<std::string, std::string
 void set_exit_code(int code);
 int last_exit_code();
 
+/// The library's wording turned into the command line's: "give the slice axis" -> "give --slice-axis",
+/// "allow uneven slices" -> "give --allow-uneven-slices", "treat non-finite voxels as air" -> "give
+/// --non-finite-as-air". Applied to every error and warning the commands print.
+[[nodiscard]] std::string cli_wording(std::string text);
+
 /// Prints `json` as one line on stdout.
 void print_json(const nlohmann::json& json);
 

@@ -1,5 +1,7 @@
 #include "feature_options.h"
 
+#include "cli_common.h"
+
 #include <smooth/errors.h>
 
 #include <CLI/CLI.hpp>
@@ -60,16 +62,6 @@ std::optional<Eigen::Vector3d> slice_axis_option(const FeatureArgs& args) {
   throw InvalidInputError("--slice-axis must be x, y or z, got '" + args.slice_axis + "'");
 }
 
-namespace {
-
-// The library speaks of "the slice axis"; on the command line it is an option.
-std::string cli_wording(std::string text) {
-  if (const auto at = text.find("give the slice axis"); at != std::string::npos) text.replace(at, 19, "give --slice-axis");
-  return text;
-}
-
-}  // namespace
-
 PreparedMesh prepare_input(Mesh mesh, const std::string& path, const std::string& command, ContourIdUse use,
                            const FeatureArgs& args) {
   InputPolicyOptions options;
@@ -79,8 +71,8 @@ PreparedMesh prepare_input(Mesh mesh, const std::string& path, const std::string
   PreparedMesh prepared;
   try {
     prepared = prepare_input_mesh(std::move(mesh), options);
-  } catch (const InvalidInputError& e) {  // the policy throws nothing more specific
-    throw InvalidInputError(path + ": " + cli_wording(e.what()));
+  } catch (const InvalidInputError&) {
+    rethrow_with_context(path);
   }
   for (const std::string& line : prepared.warnings) {
     std::cerr << "contourmesh " << command << ": warning: " << path << ": " << cli_wording(line) << "\n";

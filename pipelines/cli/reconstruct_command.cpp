@@ -1,6 +1,7 @@
 // contourmesh reconstruct IN -o mesh.vtp: CT volume (file or DICOM directory) -> contours -> tiled mesh.
 #include "cli_common.h"
 #include "progress_display.h"
+#include "volume_options.h"
 
 #include <pipelines/atomic_file.h>
 #include <pipelines/mesh_io.h>
@@ -35,6 +36,7 @@ struct ReconstructArgs {
   std::string format = "auto";
   Index max_vertices = kDefaultMaxVertices;
   bool json = false;
+  VolumeArgs volume;
   CommonArgs common;
 };
 
@@ -70,7 +72,7 @@ int run_reconstruct(const ReconstructArgs& a) {
   apply_common_options(a.common);
   ProgressDisplay progress("reconstruct", a.common.quiet);
   progress.stage("read");
-  const CtImage::Pointer image = read_volume(a.input);
+  const CtImage::Pointer image = read_volume(a.input, volume_read_options(a.volume, "reconstruct"));
   Reconstruction r;
   try {
     r = reconstruct(*image, options, progress.callback());
@@ -154,6 +156,7 @@ void add_reconstruct_command(CLI::App& app) {
       ->capture_default_str();
   cmd->add_option("--format", args->format, "Output format: auto | stl | stl-ascii | ply | vtp | obj")
       ->capture_default_str();
+  add_volume_options(cmd, args->volume);
   add_max_vertices_option(cmd, args->max_vertices);
   cmd->add_flag("--json", args->json, "Print one JSON object on stdout instead of the summary");
   add_common_options(cmd, args->common);

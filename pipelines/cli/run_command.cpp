@@ -4,6 +4,7 @@
 #include "cli_common.h"
 #include "feature_options.h"
 #include "progress_display.h"
+#include "volume_options.h"
 
 #include <pipelines/atomic_file.h>
 #include <pipelines/mesh_io.h>
@@ -49,6 +50,7 @@ struct RunArgs {
   Index max_vertices = kDefaultMaxVertices;
   bool json = false;
   FeatureArgs detection;
+  VolumeArgs volume;
   CommonArgs common;
 };
 
@@ -100,7 +102,7 @@ int run_run(const RunArgs& a) {
     s << "phantom '" << a.shape << "' (" << vo.noise << " HU noise, " << vo.blur << " mm blur)";
     source = s.str();
   } else {
-    image = read_volume(a.input);
+    image = read_volume(a.input, volume_read_options(a.volume, "run"));
     source = a.input;
   }
   const double seconds_volume = seconds_since(t);
@@ -275,6 +277,7 @@ void add_run_command(CLI::App& app) {
                   "Phantom: vertices this close to a sharp edge form the feature region, mm")
       ->capture_default_str();
   add_detection_options(cmd, args->detection);
+  add_volume_options(cmd, args->volume);
   add_common_options(cmd, args->common);
   add_max_vertices_option(cmd, args->max_vertices);
   cmd->add_flag("--json", args->json, "Print one JSON object on stdout instead of the summary");
