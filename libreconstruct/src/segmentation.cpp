@@ -10,6 +10,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
 #include <cstdint>
 #include <limits>
 #include <array>
@@ -152,21 +153,38 @@ struct PendingContour {
 };
 constexpr int kRawLevel = 4;
 
-void resample(PendingContour& c, double sampling) {
+// The contour points of the stack against the resource limits, checked before each resampling.
+struct PointBudget {
+  ResourceLimits limits;
+  double sampling = 0.0;
+  double points = 0.0;  // resampled points in the stack so far
+  void check(double more) const {
+    constexpr double kBytesPerPoint = 64.0;  // the 2-D point, then the tiled mesh's vertex and its ids
+    char what[64];
+    std::snprintf(what, sizeof what, "contour resampling at %g mm", sampling);
+    check_allocation(what, points + more, (points + more) * kBytesPerPoint, limits);
+  }
+};
+
+void resample(PendingContour& c, double sampling, PointBudget& budget) {
   const bool hole = c.contour.is_hole;
+  budget.points -= static_cast<double>(c.contour.points.size());  // replaced below
   for (; c.level < kRawLevel; ++c.level) {
-    c.contour.points = resample_closed(c.loop, sampling / static_cast<double>(1 << c.level));
+    const double spacing = sampling / static_cast<double>(1 << c.level);
+    budget.check(perimeter(c.loop) / spacing + 1.0);
+    c.contour.points = resample_closed(c.loop, spacing);
     if (!find_self_intersection(c.contour.points)) break;
   }
   if (c.level == kRawLevel) c.contour.points = c.loop;
+  budget.points += static_cast<double>(c.contour.points.size());
   const double area = signed_area(c.contour.points);
   if ((hole && area > 0.0) || (!hole && area < 0.0)) std::reverse(c.contour.points.begin(), c.contour.points.end());
 }
 
 // The contours of a slice bound disjoint regions and must not meet (the tiler rejects a slice whose
 // contours do): refine the resampling of both contours of a meeting pair until none meet.
-std::vector<Contour> separated(std::vector<PendingContour> pending, double sampling) {
-  for (PendingContour& c : pending) resample(c, sampling);
+std::vector<Contour> separated(std::vector<PendingContour> pending, double sampling, PointBudget& budget) {
+  for (PendingContour& c : pending) resample(c, sampling, budget);
   for (;;) {
     std::vector<std::vector<Eigen::Vector2d>> outlines;
     outlines.reserve(pending.size());
@@ -178,7 +196,7 @@ std::vector<Contour> separated(std::vector<PendingContour> pending, double sampl
       PendingContour& c = pending[k];
       if (c.level >= kRawLevel) continue;
       ++c.level;
-      resample(c, sampling);
+      resample(c, sampling, budget);
       refined = true;
     }
     if (!refined) break;  // the extracted loops themselves meet: the tiler names them
@@ -240,12 +258,16 @@ SegmentationResult segment_contours(const CtImage& input, const SegmentationOpti
   const double sampling =
       options.sampling > 0.0 ? options.sampling : std::min({sx, sy, SegmentationOptions::kMaxDefaultSampling});
 
+  // The loops of every slice are extracted first, so that the points their resampling will produce
+  // are checked against the limits before any is made (a tiny `sampling` is refused at once).
+  PointBudget budget{options.limits, sampling};
+  std::vector<std::vector<PendingContour>> pending_of(size[2]);
   std::vector<int> fg_label, bg_label;
   std::vector<std::uint8_t> slice_mask(static_cast<std::size_t>(nx) * ny);
   for (std::size_t z = 0; z < size[2]; ++z) {
     SliceContours& out = stack.slices[z];
     out.w = static_cast<double>(z) * sz;
-    std::vector<PendingContour> pending;
+    std::vector<PendingContour>& pending = pending_of[z];
     const float* val = values.data() + z * size[0] * size[1];
     std::copy_n(mask.data() + z * size[0] * size[1], slice_mask.size(), slice_mask.begin());
 
@@ -361,8 +383,20 @@ SegmentationResult segment_contours(const CtImage& input, const SegmentationOpti
         pending.push_back(std::move(hole));
       }
     }
-    out.contours = separated(std::move(pending), sampling);
-    if (progress && !progress("segment", static_cast<double>(z + 1) / static_cast<double>(size[2]))) {
+    if (progress && !progress("segment", 0.5 * static_cast<double>(z + 1) / static_cast<double>(size[2]))) {
+      throw CancelledError("segmentation");
+    }
+  }
+  {
+    double points = 0.0;
+    for (const auto& pending : pending_of) {
+      for (const PendingContour& c : pending) points += perimeter(c.loop) / sampling + 1.0;
+    }
+    budget.check(points);
+  }
+  for (std::size_t z = 0; z < size[2]; ++z) {
+    stack.slices[z].contours = separated(std::move(pending_of[z]), sampling, budget);
+    if (progress && !progress("segment", 0.5 + 0.5 * static_cast<double>(z + 1) / static_cast<double>(size[2]))) {
       throw CancelledError("segmentation");
     }
   }

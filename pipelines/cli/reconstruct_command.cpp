@@ -68,6 +68,7 @@ int run_reconstruct(const ReconstructArgs& a) {
   if (write_options.format == MeshFormat::Auto) (void)format_from_extension(a.output);  // fail before the work
   check_output_path(a.output);
   options.tiling.limits.max_vertices = a.max_vertices;
+  options.segmentation.limits.max_vertices = a.max_vertices;
 
   apply_common_options(a.common);
   ProgressDisplay progress("reconstruct", a.common.quiet);

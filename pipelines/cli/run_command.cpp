@@ -116,6 +116,7 @@ int run_run(const RunArgs& a) {
   ro.segmentation.threshold =
       a.threshold.value_or(phantom ? 0.5 * (phantom_defaults.bone_hu + phantom_defaults.tissue_hu) : 300.0);
   ro.tiling.limits.max_vertices = a.max_vertices;
+  ro.segmentation.limits.max_vertices = a.max_vertices;
   Reconstruction rec;
   try {
     rec = reconstruct(*image, ro, progress.callback());
