@@ -133,6 +133,7 @@ CtImage::Pointer read_image_file(const fs::path& path, const std::string& name, 
   if (fs::file_size(path, ec) == 0 && !ec) throw InvalidInputError(name + ": empty file, not an image");
   itk::ImageIOBase::Pointer io = itk::ImageIOFactory::CreateImageIO(path.c_str(), itk::IOFileModeEnum::ReadMode);
   if (!io) {
+    detail::check_volume_file(path, name);  // a header cut short is named as such
     throw InvalidInputError(name +
                             ": not a readable image (unknown format or corrupt file; expected .mha/.mhd, "
                             ".nrrd/.nhdr, .nii/.nii.gz or a DICOM series directory)");
