@@ -150,7 +150,12 @@ void check_metaimage(const fs::path& path, const std::string& shown) {
       break;
     }
   }
-  if (!data_line) return;  // not a MetaImage ITK can read either; it will say so
+  if (!data_line) {
+    if (fields.count("ObjectType") || fields.count("NDims")) {
+      fail(shown, "the MetaImage header does not end (no ElementDataFile line: truncated file?)");
+    }
+    return;  // not a MetaImage: ITK decides what it is
+  }
   const std::uint64_t data_start = static_cast<std::uint64_t>(in.tellg());
   // MetaIO reports a malformed number as a missing field ("DimSize required"): say what is wrong.
   for (const char* key : {"ElementSpacing", "ElementSize", "Offset", "Origin", "Position", "TransformMatrix",
