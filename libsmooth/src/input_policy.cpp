@@ -295,41 +295,75 @@ std::optional<std::pair<Index, Index>> find_orientation_conflict(const Mesh& mes
   return conflict;
 }
 
-OrientationRepair make_orientation_consistent(Mesh& mesh) {
-  const Index nf = mesh.num_faces();
-  const std::vector<EdgeUse> uses = sorted_edge_uses(mesh);
-  // Links between the two triangles of each manifold edge, with the parity "must differ in flip state".
+namespace {
+
+// The triangles linked across each edge of exactly two triangles (CSR), with the parity "these two must
+// differ in flip state" (they traverse the edge in the same direction); `open` marks triangles with a
+// boundary edge.
+struct TriangleLinks {
   struct Link {
     Index other;
     bool same_direction;
   };
-  std::vector<Index> offsets(static_cast<std::size_t>(nf) + 1, 0);
-  std::vector<std::uint8_t> open(static_cast<std::size_t>(nf), 0);
+  std::vector<Index> offsets;
+  std::vector<Link> links;
+  std::vector<std::uint8_t> open;
+};
+
+TriangleLinks link_triangles(const Mesh& mesh) {
+  const Index nf = mesh.num_faces();
+  const std::vector<EdgeUse> uses = sorted_edge_uses(mesh);
+  TriangleLinks t;
+  t.offsets.assign(static_cast<std::size_t>(nf) + 1, 0);
+  t.open.assign(static_cast<std::size_t>(nf), 0);
   for_each_edge(uses, [&](std::size_t k, std::size_t count) {
     if (count == 2) {
-      ++offsets[uses[k].face + 1];
-      ++offsets[uses[k + 1].face + 1];
+      ++t.offsets[uses[k].face + 1];
+      ++t.offsets[uses[k + 1].face + 1];
     } else if (count == 1) {
-      open[uses[k].face] = 1;
+      t.open[uses[k].face] = 1;
     }
   });
-  std::partial_sum(offsets.begin(), offsets.end(), offsets.begin());
-  std::vector<Link> links(static_cast<std::size_t>(offsets.back()));
-  {
-    std::vector<Index> fill(offsets.begin(), offsets.end() - 1);
-    for_each_edge(uses, [&](std::size_t k, std::size_t count) {
-      if (count != 2) return;
-      const bool same = uses[k].forward == uses[k + 1].forward;
-      links[fill[uses[k].face]++] = {uses[k + 1].face, same};
-      links[fill[uses[k + 1].face]++] = {uses[k].face, same};
+  std::partial_sum(t.offsets.begin(), t.offsets.end(), t.offsets.begin());
+  t.links.resize(static_cast<std::size_t>(t.offsets.back()));
+  std::vector<Index> fill(t.offsets.begin(), t.offsets.end() - 1);
+  for_each_edge(uses, [&](std::size_t k, std::size_t count) {
+    if (count != 2) return;
+    const bool same = uses[k].forward == uses[k + 1].forward;
+    t.links[fill[uses[k].face]++] = {uses[k + 1].face, same};
+    t.links[fill[uses[k + 1].face]++] = {uses[k].face, same};
+  });
+  return t;
+}
+
+// A closed piece, once consistent: its triangles, enclosed volume and bounding box.
+struct ClosedPiece {
+  std::vector<Index> faces;
+  double volume = 0.0;
+  Eigen::AlignedBox3d box;
+};
+
+// A closed piece enclosing a negative volume is inside out, unless it lies within a positive piece (a
+// cavity's surface faces into the cavity). Containment is judged by bounding boxes: a piece inside
+// another's box is left as it is.
+void turn_inside_out_pieces(Mesh& mesh, const std::vector<ClosedPiece>& pieces, OrientationRepair& report) {
+  for (const ClosedPiece& c : pieces) {
+    if (!(c.volume < 0.0)) continue;
+    const bool nested = std::any_of(pieces.begin(), pieces.end(), [&](const ClosedPiece& outer) {
+      return outer.volume > 0.0 && outer.box.contains(c.box);
     });
+    if (nested) continue;
+    for (Index f : c.faces) std::swap(mesh.triangles[f][1], mesh.triangles[f][2]);
+    ++report.inside_out_pieces;
+    report.inside_out_triangles += static_cast<Index>(c.faces.size());
   }
-  // A closed piece, once consistent: its triangles, enclosed volume and bounding box.
-  struct ClosedPiece {
-    std::vector<Index> faces;
-    double volume = 0.0;
-    Eigen::AlignedBox3d box;
-  };
+}
+
+}  // namespace
+
+OrientationRepair make_orientation_consistent(Mesh& mesh) {
+  const Index nf = mesh.num_faces();
+  const TriangleLinks t = link_triangles(mesh);
   std::vector<ClosedPiece> closed_pieces;
   OrientationRepair report;
   // Flood each piece from its first triangle; flip[f] = whether f must turn over to agree with it.
@@ -345,9 +379,9 @@ OrientationRepair make_orientation_consistent(Mesh& mesh) {
       const Index f = stack.back();
       stack.pop_back();
       piece.push_back(f);
-      closed = closed && !open[f];
-      for (Index k = offsets[f]; k < offsets[f + 1]; ++k) {
-        const Link& l = links[k];
+      closed = closed && !t.open[f];
+      for (Index k = t.offsets[f]; k < t.offsets[f + 1]; ++k) {
+        const TriangleLinks::Link& l = t.links[k];
         const auto want = static_cast<std::int8_t>(flip[f] ^ (l.same_direction ? 1 : 0));
         if (flip[l.other] < 0) {
           flip[l.other] = want;
@@ -359,8 +393,8 @@ OrientationRepair make_orientation_consistent(Mesh& mesh) {
         }
       }
     }
-    const auto to_flip = static_cast<Index>(std::count_if(piece.begin(), piece.end(), [&](Index f) { return flip[f]; }));
     // The minority turns over; on a tie, a closed piece is then oriented by its volume below.
+    const auto to_flip = static_cast<Index>(std::count_if(piece.begin(), piece.end(), [&](Index f) { return flip[f]; }));
     const bool invert = 2 * to_flip > static_cast<Index>(piece.size());
     for (Index f : piece) {
       if ((flip[f] != 0) != invert) {
@@ -368,30 +402,16 @@ OrientationRepair make_orientation_consistent(Mesh& mesh) {
         ++report.against_neighbours;
       }
     }
-    if (closed) {
-      ClosedPiece c;
-      c.faces = piece;
-      for (Index f : piece) {
-        const Triangle& t = mesh.triangles[f];
-        c.volume += signed_volume_term(mesh, t);
-        for (Index v : t) c.box.extend(mesh.positions.col(v));
-      }
-      closed_pieces.push_back(std::move(c));
+    if (!closed) continue;
+    ClosedPiece c;
+    c.faces = piece;
+    for (Index f : piece) {
+      c.volume += signed_volume_term(mesh, mesh.triangles[f]);
+      for (Index v : mesh.triangles[f]) c.box.extend(mesh.positions.col(v));
     }
+    closed_pieces.push_back(std::move(c));
   }
-  // A closed piece enclosing a negative volume is inside out, unless it lies within a positive piece (a
-  // cavity's surface faces into the cavity). Containment is judged by bounding boxes: a piece inside
-  // another's box is left as it is.
-  for (const ClosedPiece& c : closed_pieces) {
-    if (!(c.volume < 0.0)) continue;
-    const bool nested = std::any_of(closed_pieces.begin(), closed_pieces.end(), [&](const ClosedPiece& outer) {
-      return outer.volume > 0.0 && outer.box.contains(c.box);
-    });
-    if (nested) continue;
-    for (Index f : c.faces) std::swap(mesh.triangles[f][1], mesh.triangles[f][2]);
-    ++report.inside_out_pieces;
-    report.inside_out_triangles += static_cast<Index>(c.faces.size());
-  }
+  turn_inside_out_pieces(mesh, closed_pieces, report);
   return report;
 }
 

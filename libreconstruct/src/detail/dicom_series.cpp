@@ -197,12 +197,14 @@ CtImage::Pointer resample_slices(const CtImage& stacked, const std::vector<doubl
 
 }  // namespace
 
-CtImage::Pointer read_dicom_series(const fs::path& directory, const std::string& shown, UnevenSlices uneven,
-                                   std::vector<std::string>& warnings) {
-  const std::string name = directory.string();
+namespace {
+
+// The files of the one series in `directory`; a DICOM file the scan left out did not decode, and a
+// slice would silently be missing: an error.
+std::vector<std::string> series_files(const fs::path& directory, const std::string& shown) {
   auto names = itk::GDCMSeriesFileNames::New();
   names->SetUseSeriesDetails(false);  // group by Series Instance UID only, so the UIDs listed are real
-  names->SetDirectory(name);
+  names->SetDirectory(directory.string());
   std::vector<std::string> uids;
   try {
     uids = names->GetSeriesUIDs();
@@ -216,39 +218,36 @@ CtImage::Pointer read_dicom_series(const fs::path& directory, const std::string&
     throw InvalidInputError(shown + ": the directory holds " + std::to_string(uids.size()) + " DICOM series (" + list +
                             "); put one series per directory");
   }
-  const std::vector<std::string> files = names->GetFileNames(uids.front());
-  // A DICOM file the scan left out did not decode: a slice would silently be missing.
-  {
-    const std::set<fs::path> listed(files.begin(), files.end());
-    std::vector<fs::path> others;
-    for (const auto& entry : fs::directory_iterator(directory)) {
-      if (entry.is_regular_file() && !listed.count(entry.path()) && has_dicom_magic(entry.path())) {
-        others.push_back(entry.path());
-      }
+  std::vector<std::string> files = names->GetFileNames(uids.front());
+  const std::set<fs::path> listed(files.begin(), files.end());
+  std::vector<fs::path> others;
+  for (const auto& entry : fs::directory_iterator(directory)) {
+    if (entry.is_regular_file() && !listed.count(entry.path()) && has_dicom_magic(entry.path())) {
+      others.push_back(entry.path());
     }
-    std::sort(others.begin(), others.end());
-    for (const fs::path& file : others) {
-      gdcm::Reader reader;
-      reader.SetFileName(file.c_str());
-      if (!reader.ReadUpToTag(kPixelData, {kPixelData})) {
-        throw InvalidInputError(shown + ": " + file.filename().string() +
-                                ": cannot be decoded as DICOM (truncated or corrupt file?)");
-      }
-      if (text_of(reader.GetFile().GetDataSet(), gdcm::Tag(0x0020, 0x000e)) == uids.front()) {
-        throw InvalidInputError(shown + ": " + file.filename().string() +
-                                ": belongs to the series but could not be placed in it (no position?)");
-      }
+  }
+  std::sort(others.begin(), others.end());
+  for (const fs::path& file : others) {
+    gdcm::Reader reader;
+    reader.SetFileName(file.c_str());
+    if (!reader.ReadUpToTag(kPixelData, {kPixelData})) {
+      throw InvalidInputError(shown + ": " + file.filename().string() +
+                              ": cannot be decoded as DICOM (truncated or corrupt file?)");
+    }
+    if (text_of(reader.GetFile().GetDataSet(), gdcm::Tag(0x0020, 0x000e)) == uids.front()) {
+      throw InvalidInputError(shown + ": " + file.filename().string() +
+                              ": belongs to the series but could not be placed in it (no position?)");
     }
   }
   if (files.size() < 2) {
     throw InvalidInputError(shown + ": the DICOM series has " + std::to_string(files.size()) +
                             " slice; a 3-D volume needs at least 2");
   }
-  std::vector<SliceHeader> slices;
-  slices.reserve(files.size());
-  for (const std::string& file : files) slices.push_back(read_slice_header(file, shown));
+  return files;
+}
 
-  // One image size, pixel spacing and orientation.
+// One image size, pixel spacing and orientation.
+void check_headers_agree(const std::vector<SliceHeader>& slices, const std::string& shown) {
   const SliceHeader& first = slices.front();
   for (const SliceHeader& s : slices) {
     const std::string pair = s.file.filename().string() + " and " + first.file.filename().string();
@@ -269,19 +268,32 @@ CtImage::Pointer read_dicom_series(const fs::path& directory, const std::string&
                               vec(first.row) + ", columns along " + vec(s.column) + " and " + vec(first.column) + ")");
     }
   }
-  // Positions along the slice normal: sorted, distinct, on one line, evenly spaced.
-  Vec3 normal = cross(first.row, first.column);
+}
+
+// How the slices lie along the normal, once sorted.
+struct SlicePlacement {
+  Vec3 normal{};
+  double typical_gap = 0.0;  // the median distance between neighbours
+  std::string uneven;        // empty when evenly spaced, else what is uneven
+};
+
+// Sorts the slices along the normal and checks that they lie on one line, at distinct positions;
+// reports whether they are evenly spaced.
+SlicePlacement place_slices(std::vector<SliceHeader>& slices, const std::string& shown) {
+  SlicePlacement out;
+  const SliceHeader& first = slices.front();
+  const Vec3 normal = cross(first.row, first.column);
   const double length = norm(normal);
-  normal = {normal[0] / length, normal[1] / length, normal[2] / length};
-  for (SliceHeader& s : slices) s.w = dot(s.position, normal);
+  out.normal = {normal[0] / length, normal[1] / length, normal[2] / length};
+  for (SliceHeader& s : slices) s.w = dot(s.position, out.normal);
   std::stable_sort(slices.begin(), slices.end(), [](const SliceHeader& a, const SliceHeader& b) { return a.w < b.w; });
   const double pixel = std::min(first.row_spacing, first.column_spacing);
   for (const SliceHeader& s : slices) {
     const Vec3 d = minus(s.position, slices.front().position);
-    const double along = dot(d, normal);
-    const double sideways = norm({d[0] - along * normal[0], d[1] - along * normal[1], d[2] - along * normal[2]});
-    if (sideways > 0.01 * pixel + 1e-4) {
-      throw InvalidInputError(shown + ": " + s.file.filename().string() + " lies " + number(sideways) +
+    const double along = dot(d, out.normal);
+    const Vec3 across = {d[0] - along * out.normal[0], d[1] - along * out.normal[1], d[2] - along * out.normal[2]};
+    if (norm(across) > 0.01 * pixel + 1e-4) {
+      throw InvalidInputError(shown + ": " + s.file.filename().string() + " lies " + number(norm(across)) +
                               " mm sideways of the line through " + slices.front().file.filename().string() +
                               " along the slice normal: the slices are sheared (a gantry tilt?); resample the "
                               "series onto an orthogonal grid first");
@@ -291,31 +303,26 @@ CtImage::Pointer read_dicom_series(const fs::path& directory, const std::string&
   for (std::size_t k = 0; k + 1 < slices.size(); ++k) gaps.push_back(slices[k + 1].w - slices[k].w);
   std::vector<double> sorted = gaps;
   std::nth_element(sorted.begin(), sorted.begin() + static_cast<std::ptrdiff_t>(sorted.size() / 2), sorted.end());
-  const double typical = sorted[sorted.size() / 2];
+  out.typical_gap = sorted[sorted.size() / 2];
   std::size_t widest = 0;
   for (std::size_t k = 0; k < gaps.size(); ++k) {
-    if (gaps[k] < std::max(1e-4, 0.01 * typical)) {
+    if (gaps[k] < std::max(1e-4, 0.01 * out.typical_gap)) {
       throw InvalidInputError(shown + ": " + slices[k].file.filename().string() + " and " +
                               slices[k + 1].file.filename().string() + " lie at the same position (" +
                               number(slices[k].w) + " mm along the slice normal): a duplicated slice");
     }
-    if (std::abs(gaps[k] - typical) > std::abs(gaps[widest] - typical)) widest = k;
+    if (std::abs(gaps[k] - out.typical_gap) > std::abs(gaps[widest] - out.typical_gap)) widest = k;
   }
-  const bool even = std::abs(gaps[widest] - typical) <= std::max(1e-3, 0.01 * typical);
-  std::string uneven_text;
-  if (!even) {
-    uneven_text = "uneven slice spacing: " + slices[widest].file.filename().string() + " and " +
-                  slices[widest + 1].file.filename().string() + " are " + number(gaps[widest]) +
-                  " mm apart, most slices " + number(typical) + " mm" +
-                  (gaps[widest] > 1.5 * typical ? " (a missing slice?)" : "");
-    if (uneven == UnevenSlices::Refuse) {
-      throw InvalidInputError(shown + ": " + uneven_text +
-                              "; refused, as stacking them would misplace slices (allow uneven slices to resample "
-                              "them onto an even grid)");
-    }
+  if (std::abs(gaps[widest] - out.typical_gap) > std::max(1e-3, 0.01 * out.typical_gap)) {
+    out.uneven = "uneven slice spacing: " + slices[widest].file.filename().string() + " and " +
+                 slices[widest + 1].file.filename().string() + " are " + number(gaps[widest]) +
+                 " mm apart, most slices " + number(out.typical_gap) + " mm" +
+                 (gaps[widest] > 1.5 * out.typical_gap ? " (a missing slice?)" : "");
   }
+  return out;
+}
 
-  // The pixels, in the checked order.
+CtImage::Pointer read_pixels(const std::vector<SliceHeader>& slices, const std::string& shown) {
   std::vector<std::string> ordered;
   for (const SliceHeader& s : slices) ordered.push_back(s.file.string());
   auto reader = itk::ImageSeriesReader<CtImage>::New();
@@ -330,11 +337,28 @@ CtImage::Pointer read_dicom_series(const fs::path& directory, const std::string&
   }
   CtImage::Pointer image = reader->GetOutput();
   image->DisconnectPipeline();
+  return image;
+}
+
+}  // namespace
+
+CtImage::Pointer read_dicom_series(const fs::path& directory, const std::string& shown, UnevenSlices uneven,
+                                   std::vector<std::string>& warnings) {
+  std::vector<SliceHeader> slices;
+  for (const std::string& file : series_files(directory, shown)) slices.push_back(read_slice_header(file, shown));
+  check_headers_agree(slices, shown);
+  const SlicePlacement placement = place_slices(slices, shown);
+  if (!placement.uneven.empty() && uneven == UnevenSlices::Refuse) {
+    throw InvalidInputError(shown + ": " + placement.uneven +
+                            "; refused, as stacking them would misplace slices (allow uneven slices to resample "
+                            "them onto an even grid)");
+  }
+  CtImage::Pointer image = read_pixels(slices, shown);
   std::vector<double> w;
   for (const SliceHeader& s : slices) w.push_back(s.w);
   double slice_spacing = (w.back() - w.front()) / static_cast<double>(w.size() - 1);
-  if (!even) {
-    const auto count = static_cast<std::size_t>(std::llround((w.back() - w.front()) / typical)) + 1;
+  if (!placement.uneven.empty()) {
+    const auto count = static_cast<std::size_t>(std::llround((w.back() - w.front()) / placement.typical_gap)) + 1;
     const auto size = image->GetLargestPossibleRegion().GetSize();
     const double voxels = static_cast<double>(size[0]) * static_cast<double>(size[1]) * static_cast<double>(count);
     try {
@@ -345,11 +369,12 @@ CtImage::Pointer read_dicom_series(const fs::path& directory, const std::string&
     }
     image = resample_slices(*image, w, count);
     slice_spacing = (w.back() - w.front()) / static_cast<double>(count - 1);
-    warnings.push_back(shown + ": " + uneven_text + ": resampled the " + std::to_string(w.size()) + " slices onto " +
-                       std::to_string(count) + " slices " + number(slice_spacing) +
+    warnings.push_back(shown + ": " + placement.uneven + ": resampled the " + std::to_string(w.size()) +
+                       " slices onto " + std::to_string(count) + " slices " + number(slice_spacing) +
                        " mm apart, interpolating linearly along the slice normal");
   }
   // The geometry from the checked headers.
+  const SliceHeader& first = slices.front();
   CtImage::SpacingType spacing;
   spacing[0] = first.column_spacing;
   spacing[1] = first.row_spacing;
@@ -357,10 +382,10 @@ CtImage::Pointer read_dicom_series(const fs::path& directory, const std::string&
   CtImage::PointType origin;
   CtImage::DirectionType direction;
   for (int r = 0; r < 3; ++r) {
-    origin[r] = slices.front().position[r];
+    origin[r] = first.position[r];
     direction[r][0] = first.row[r];
     direction[r][1] = first.column[r];
-    direction[r][2] = normal[r];
+    direction[r][2] = placement.normal[r];
   }
   image->SetSpacing(spacing);
   image->SetOrigin(origin);
