@@ -680,9 +680,11 @@ TEST_F(BadInput, MaxVerticesRefusesOversizedMeshesBeforeAllocating) {
   const fs::path volume = write_volume_file("v.mha", {24, 24, 5}, {1, 1, 1}, [](int i, int j, int k) {
     return k > 0 && k < 4 && (i - 12) * (i - 12) + (j - 12) * (j - 12) < 64 ? 1000.0f : -1000.0f;
   });
+  // The contour points are counted before they are resampled, so the limit stops the work there.
   expect_rejected(run("reconstruct " + volume.string() + " -o " + out.string() + " --max-vertices 50"),
-                  {volume.string(), "tiling", "exceed the limit of 50 vertices"});
-  expect_rejected(run("run " + volume.string() + " -o " + out.string() + " --max-vertices 50"), {"tiling"});
+                  {volume.string(), "contour resampling", "exceed the limit of 50 vertices"});
+  expect_rejected(run("run " + volume.string() + " -o " + out.string() + " --max-vertices 50"),
+                  {"contour resampling"});
   expect_nothing_written(out);
   // A volume header promising 170 TB of working memory: refused from the header, before any reading.
   const fs::path huge = write_text("huge.mha", "ObjectType = Image\nNDims = 3\nDimSize = 100000 100000 1000\n"
