@@ -393,9 +393,19 @@ OrientationRepair make_orientation_consistent(Mesh& mesh) {
         }
       }
     }
-    // The minority turns over; on a tie, a closed piece is then oriented by its volume below.
+    // The minority turns over; on a tie, a closed piece takes the orientation that encloses a positive
+    // volume.
     const auto to_flip = static_cast<Index>(std::count_if(piece.begin(), piece.end(), [&](Index f) { return flip[f]; }));
-    const bool invert = 2 * to_flip > static_cast<Index>(piece.size());
+    bool invert = 2 * to_flip > static_cast<Index>(piece.size());
+    if (closed && 2 * to_flip == static_cast<Index>(piece.size())) {
+      double volume = 0.0;
+      for (Index f : piece) {
+        Triangle tri = mesh.triangles[f];
+        if (flip[f]) std::swap(tri[1], tri[2]);
+        volume += signed_volume_term(mesh, tri);
+      }
+      invert = volume < 0.0;
+    }
     for (Index f : piece) {
       if ((flip[f] != 0) != invert) {
         std::swap(mesh.triangles[f][1], mesh.triangles[f][2]);
