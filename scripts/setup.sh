@@ -13,6 +13,7 @@ packages=(
   libgtest-dev libbenchmark-dev       # tests and benchmarks
   xvfb xauth libgl1-mesa-dri          # offscreen renders of `contourmesh compare` (VTK draws through X)
   clang libclang-rt-dev llvm          # fuzz targets (scripts/run_fuzzers.sh): clang, libFuzzer, llvm-symbolizer
+  strace                              # tests: the atomic writes fsync before they rename (skipped without it)
 )
 
 missing=()

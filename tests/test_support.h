@@ -5,6 +5,8 @@
 
 #include <gtest/gtest.h>
 
+#include <unistd.h>
+
 #include <cstdint>
 #include <filesystem>
 #include <string>
@@ -13,7 +15,8 @@
 
 namespace contourmesh::test {
 
-/// A fresh directory named after the running test, removed at scope exit.
+/// A fresh directory named after the running test and the process, removed at scope exit (the process
+/// id keeps two builds' test runs on one machine, which share /tmp, out of each other's files).
 class ScopedTempDir {
  public:
   explicit ScopedTempDir(const std::string& prefix)

@@ -1,6 +1,7 @@
 #include "reconstruct/segmentation.h"
 
 #include <smooth/errors.h>
+#include <smooth/limits.h>
 
 #include "detail/region_boundaries.h"
 #include "detail/slice_components.h"
@@ -14,6 +15,7 @@
 #include <tbb/parallel_for.h>
 
 #include <algorithm>
+#include <cstdio>
 #include <array>
 #include <atomic>
 #include <cmath>
@@ -355,19 +357,32 @@ struct SliceOutput {
   std::size_t foreground = 0;  // pixels at or above the threshold
 };
 
-// One slice: its regions and holes, their contours, resampled. `mask` = the slice's part of the 3-D
-// component selection, or null to threshold `values` here.
-void segment_slice(const SliceSetup& setup, const float* values, const std::uint8_t* mask, SliceRegions& s,
-                   SliceOutput& out) {
+// One slice's regions and holes and their contours as traced, not yet resampled. `mask` = the slice's
+// part of the 3-D component selection, or null to threshold `values` here.
+std::vector<PendingContour> trace_slice(const SliceSetup& setup, const float* values, const std::uint8_t* mask,
+                                        SliceRegions& s, SliceOutput& out) {
   const std::size_t pixels = static_cast<std::size_t>(setup.nx) * static_cast<std::size_t>(setup.ny);
   s.mask.resize(pixels);
   if (mask) std::copy_n(mask, pixels, s.mask.begin());
   else threshold_pixels(values, s.mask.data(), pixels, setup.iso.threshold);
   out.dropped = find_regions(setup.nx, setup.ny, setup.sx * setup.sy, setup.options, s);
   for (const detail::PixelRun& r : s.fg) out.foreground += static_cast<std::size_t>(r.x1 - r.x0);
-  out.contours = separated(
-      region_contours(values, setup.nx, setup.ny, setup.sx, setup.sy, setup.iso, setup.options, s, out.dropped),
-      setup.sampling);
+  return region_contours(values, setup.nx, setup.ny, setup.sx, setup.sy, setup.iso, setup.options, s, out.dropped);
+}
+
+// The contour points the resampling at `sampling` will make, checked against the limits before any is
+// made: a tiny `sampling` is refused at once instead of growing until memory runs out. (A contour
+// resampled more finely to keep it apart from another adds a few more; the estimate is of the first pass.)
+void check_point_budget(const std::vector<std::vector<PendingContour>>& pending, double sampling,
+                        const ResourceLimits& limits) {
+  constexpr double kBytesPerPoint = 64.0;  // the 2-D point, then the tiled mesh's vertex and its ids
+  double points = 0.0;
+  for (const auto& slice : pending) {
+    for (const PendingContour& c : slice) points += perimeter(c.loop) / sampling + 1.0;
+  }
+  char what[64];
+  std::snprintf(what, sizeof what, "contour resampling at %g mm", sampling);
+  check_allocation(what, points, points * kBytesPerPoint, limits);
 }
 
 // The voxel values, x fastest. ITK's buffer when it holds the whole image (always, for images that
@@ -425,27 +440,37 @@ SegmentationResult segment_contours(const CtImage& input, const SegmentationOpti
   stack.axis_w = Eigen::Vector3d(dir[0][2], dir[1][2], dir[2][2]).normalized();
   stack.slices.resize(size[2]);
 
-  // Slices are independent: each is segmented on its own, on every core the caller allows. Progress is
-  // reported (and cancellation asked) from the calling thread only, as ProgressCallback promises.
+  // Slices are independent: each is segmented on its own, on every core the caller allows, in two
+  // passes with the point budget checked between them (trace, then resample). Progress is reported (and
+  // cancellation asked) from the calling thread only, as ProgressCallback promises.
   std::vector<SliceOutput> slices(size[2]);
+  std::vector<std::vector<PendingContour>> pending(size[2]);
   tbb::enumerable_thread_specific<SliceRegions> scratch;
   const std::thread::id caller = std::this_thread::get_id();
   std::atomic<std::size_t> done{0};
   std::atomic<bool> cancelled{false};
-  tbb::parallel_for(tbb::blocked_range<std::size_t>(0, size[2], 1), [&](const tbb::blocked_range<std::size_t>& range) {
-    for (std::size_t z = range.begin(); z != range.end(); ++z) {
-      if (cancelled.load(std::memory_order_relaxed)) return;
-      segment_slice(setup, values + z * slice_pixels, volume_mask.empty() ? nullptr : volume_mask.data() + z * slice_pixels,
-                    scratch.local(), slices[z]);
-      const std::size_t finished = done.fetch_add(1) + 1;
-      if (progress && std::this_thread::get_id() == caller &&
-          !progress("segment", static_cast<double>(finished) / static_cast<double>(size[2]))) {
-        cancelled = true;
+  const auto pass = [&](auto&& work) {
+    tbb::parallel_for(tbb::blocked_range<std::size_t>(0, size[2], 1), [&](const tbb::blocked_range<std::size_t>& range) {
+      for (std::size_t z = range.begin(); z != range.end(); ++z) {
+        if (cancelled.load(std::memory_order_relaxed)) return;
+        work(z);
+        const std::size_t finished = done.fetch_add(1) + 1;
+        if (progress && std::this_thread::get_id() == caller &&
+            !progress("segment", 0.5 * static_cast<double>(finished) / static_cast<double>(size[2]))) {
+          cancelled = true;
+        }
       }
-    }
+    });
+    if (cancelled) throw CancelledError("segmentation");
+  };
+  pass([&](std::size_t z) {
+    pending[z] = trace_slice(setup, values + z * slice_pixels,
+                             volume_mask.empty() ? nullptr : volume_mask.data() + z * slice_pixels, scratch.local(),
+                             slices[z]);
   });
-  if (!cancelled && progress && !progress("segment", 1.0)) cancelled = true;
-  if (cancelled) throw CancelledError("segmentation");
+  check_point_budget(pending, setup.sampling, options.limits);
+  pass([&](std::size_t z) { slices[z].contours = separated(std::move(pending[z]), setup.sampling); });
+  if (progress && !progress("segment", 1.0)) throw CancelledError("segmentation");
   for (std::size_t z = 0; z < size[2]; ++z) {
     stack.slices[z].w = static_cast<double>(z) * spacing[2];
     stack.slices[z].contours = std::move(slices[z].contours);

@@ -17,6 +17,7 @@ int main(int argc, char** argv) {
   contourmesh::cli::add_smooth_command(app);
   contourmesh::cli::add_run_command(app);
   contourmesh::cli::add_compare_command(app);
+  contourmesh::cli::install_signal_handlers();
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {

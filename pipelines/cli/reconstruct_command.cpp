@@ -3,6 +3,7 @@
 #include "cli_common.h"
 #include "contour_input.h"
 #include "progress_display.h"
+#include "volume_options.h"
 
 #include <pipelines/atomic_file.h>
 #include <pipelines/contour_stack_io.h>
@@ -47,6 +48,7 @@ struct ReconstructArgs {
   Index max_vertices = kDefaultMaxVertices;
   bool json = false;
   ContourArgs contour;
+  VolumeArgs volume;
   CommonArgs common;
 };
 
@@ -92,11 +94,12 @@ int run_reconstruct(const ReconstructArgs& a) {
     check_output_path(a.contours_out);
   }
   options.tiling.limits.max_vertices = a.max_vertices;
+  options.segmentation.limits.max_vertices = a.max_vertices;
 
   apply_common_options(a.common);
   ProgressDisplay progress("reconstruct", a.common.quiet);
   progress.stage("read");
-  const CtImage::Pointer image = read_volume(a.input);
+  const CtImage::Pointer image = read_volume(a.input, volume_read_options(a.volume, "reconstruct"));
   Reconstruction r;
   try {
     r = reconstruct(*image, options, progress.callback());
@@ -110,6 +113,7 @@ int run_reconstruct(const ReconstructArgs& a) {
       std::async(available_threads() > 1 ? std::launch::async : std::launch::deferred,
                  [&r] { return summarize_topology(r.mesh); });
   progress.stage("write");
+  write_options.progress = progress.callback();
   write_mesh(r.mesh, a.output, write_options);
   if (!a.contours_out.empty()) {
     ContourStackFile contours;
@@ -319,6 +323,7 @@ void add_reconstruct_command(CLI::App& app) {
   cmd->add_option("--contours-out", args->contours_out,
                   "Also write the contours (found in the CT, or as normalised from the input) to this .json file");
   add_contour_options(cmd, args->contour);
+  add_volume_options(cmd, args->volume);
   add_max_vertices_option(cmd, args->max_vertices);
   cmd->add_flag("--json", args->json, "Print one JSON object on stdout instead of the summary");
   add_common_options(cmd, args->common);

@@ -5,6 +5,7 @@
 #include "contour_input.h"
 #include "feature_options.h"
 #include "progress_display.h"
+#include "volume_options.h"
 
 #include <pipelines/atomic_file.h>
 #include <pipelines/mesh_io.h>
@@ -62,6 +63,7 @@ struct RunArgs {
   std::optional<double> sampling;
   FeatureArgs detection;
   ContourArgs contour;
+  VolumeArgs volume;
   CommonArgs common;
 };
 
@@ -197,6 +199,7 @@ int run_run(const RunArgs& a) {
   }
   check_output_path(out);
   if (!a.labels_out.empty()) check_output_path(a.labels_out);
+  check_distinct_outputs({{"-o", a.output}, {"--labels-out", a.labels_out}});
 
   // 1. Read or generate the volume.
   auto t = std::chrono::steady_clock::now();
@@ -219,7 +222,7 @@ int run_run(const RunArgs& a) {
     s << vo.blur << " mm blur)";
     source = s.str();
   } else {
-    image = read_volume(a.input);
+    image = read_volume(a.input, volume_read_options(a.volume, "run"));
     source = a.input;
   }
   const double seconds_volume = seconds_since(t);
@@ -233,6 +236,7 @@ int run_run(const RunArgs& a) {
   ro.segmentation.threshold =
       a.threshold.value_or(phantom ? 0.5 * (phantom_defaults.bone_hu + phantom_defaults.tissue_hu) : 300.0);
   ro.tiling.limits.max_vertices = a.max_vertices;
+  ro.segmentation.limits.max_vertices = a.max_vertices;
   Reconstruction rec;
   try {
     rec = reconstruct(*image, ro, progress.callback());
@@ -255,10 +259,12 @@ int run_run(const RunArgs& a) {
                  [&result] { return summarize_topology(result); });
   t = std::chrono::steady_clock::now();
   progress.stage("write");
+  write_options.progress = progress.callback();
   write_mesh(result, out, write_options);
   if (paper && !a.labels_out.empty()) {
     MeshWriteOptions labels;
     labels.point_scalars = detection_arrays(paper->detection);
+    labels.progress = progress.callback();
     write_mesh(mesh, a.labels_out, labels);
   }
   progress.finish();
@@ -511,6 +517,7 @@ void add_run_command(CLI::App& app) {
       ->default_str("1");
   add_contour_options(cmd, args->contour);
   add_detection_options(cmd, args->detection);
+  add_volume_options(cmd, args->volume);
   add_common_options(cmd, args->common);
   add_max_vertices_option(cmd, args->max_vertices);
   cmd->add_flag("--json", args->json, "Print one JSON object on stdout instead of the summary");

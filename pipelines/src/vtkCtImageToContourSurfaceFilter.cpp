@@ -83,6 +83,9 @@ int vtkCtImageToContourSurfaceFilter::RequestData(vtkInformation*, vtkInformatio
     vtkDataArray* scalars = this->GetInputArrayToProcess(0, inputVector);
     if (scalars == nullptr) throw InvalidInputError("the input image has no point scalars to segment");
     const CtImage::Pointer image = to_ct_image(input, scalars);
+    // As read_volume checks a file: a sheared or degenerate grid, or NaN voxels, would give a wrong surface.
+    check_volume_geometry(*image, "input");
+    check_voxel_values(*image, "input", NonFiniteVoxels::Refuse);
 
     ReconstructionOptions o;
     SegmentationOptions& seg = o.segmentation;

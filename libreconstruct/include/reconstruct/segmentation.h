@@ -6,6 +6,7 @@
 #include "reconstruct/contours.h"
 #include "reconstruct/volume.h"
 
+#include <smooth/limits.h>
 #include <smooth/progress.h>
 
 #include <cstddef>
@@ -50,6 +51,10 @@ struct SegmentationOptions {
   static constexpr double kMaxDefaultSampling = 1.0;  ///< mm
   /// Contours shorter than this (mm) are dropped, with their holes. >= 0.
   double min_contour_length = 3.0;
+  /// Vertex cap and memory budget for the contour points: before each contour is resampled, the points
+  /// it would add to the stack are checked (a tiny `sampling` is refused with a LimitError at once,
+  /// instead of growing until the memory runs out).
+  ResourceLimits limits;
 };
 
 struct SegmentationResult {
@@ -64,8 +69,9 @@ struct SegmentationResult {
 /// (origin, axes and w from the image's origin, direction and spacing). Outer contours are
 /// counter-clockwise, holes clockwise with `parent` set. Slices are segmented in parallel on the
 /// threads a ThreadLimit (threads.h) allows, every core by default; the result does not depend on
-/// their number. Throws InvalidInputError for an empty image or options out of range; CancelledError
-/// when `progress` (stage "segment", called from the calling thread) returns false.
+/// their number. Throws InvalidInputError for an empty image or options out of range; LimitError when
+/// the resampled contour points would exceed `limits`; CancelledError when `progress` (stage
+/// "segment", called from the calling thread) returns false.
 [[nodiscard]] SegmentationResult segment_contours(const CtImage& image, const SegmentationOptions& options = {},
                                                   const ProgressCallback& progress = {});
 

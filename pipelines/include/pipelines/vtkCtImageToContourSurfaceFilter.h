@@ -17,9 +17,10 @@
 /// these arrays, so image -> surface -> smoothing is a plain VTK chain.
 ///
 /// Setters clamp to the valid closed range; MinOverlapFraction 0 (the range is (0, 1]) is rejected
-/// when the filter runs. Errors (no scalars, no bone above the threshold, contours in fewer than two
-/// slices, options out of range): vtkErrorMacro naming the problem, an empty output, RequestData
-/// returns 0.
+/// when the filter runs. Errors (no scalars, NaN or infinite scalars, a spacing that is not finite and
+/// > 0, a direction matrix that is singular or not orthonormal, no bone above the threshold, contours in
+/// fewer than two slices, options out of range): vtkErrorMacro naming the problem, an empty output,
+/// RequestData returns 0.
 ///
 /// Progress: segmentation in [0, 0.7], tiling in [0.7, 1], once per slice. Cancellation through
 /// AbortExecute (vtkAlgorithm::CheckAbort on VTK >= 9.3), checked once per slice: an aborted run
