@@ -4,6 +4,7 @@
 #include "detail/slab_tiling.h"
 #include "detail/stack_preparation.h"
 #include "detail/tiling_types.h"
+#include "reconstruct/threads.h"
 
 #include <smooth/errors.h>
 
@@ -100,8 +101,8 @@ TilingResult tile_contours(const ContourStack& stack, const TilingOptions& optio
   const std::vector<std::vector<Contour>> slices = detail::prepare_stack(stack);
   const std::size_t S = slices.size();
   TilingResult result;
-  const unsigned threads = options.threads > 0 ? static_cast<unsigned>(options.threads)
-                                               : std::max(1U, std::thread::hardware_concurrency());
+  // threads = 0: as many as the process allows (a ThreadLimit, such as the command line's --threads, caps it).
+  const unsigned threads = static_cast<unsigned>(options.threads > 0 ? options.threads : available_threads());
 
   // Every contour as a level contour (ids later), and the correspondence of each pair of adjacent
   // slices, to find the contours that continue nowhere.

@@ -3,6 +3,7 @@
 // plots, renders and report.html (pipelines/comparison_report.h does the work).
 #include "cli_common.h"
 #include "progress_display.h"
+#include "volume_options.h"
 
 #include <pipelines/atomic_file.h>
 #include <pipelines/comparison.h>
@@ -42,6 +43,7 @@ struct CompareArgs {
   std::string note;
   std::string spacing = "0.7,0.7,2";
   double noise = 20.0;
+  double contour_noise = 0.0;
   double blur = 0.5;
   std::uint64_t seed = 1;
   std::optional<double> threshold;
@@ -54,6 +56,7 @@ struct CompareArgs {
   bool no_curves = false;
   Index max_vertices = kDefaultMaxVertices;
   bool json = false;
+  VolumeArgs volume;
   CommonArgs common;
 };
 
@@ -69,6 +72,7 @@ std::string command_line(const CompareArgs& a) {
   if (a.input.empty()) {
     if (a.spacing != "0.7,0.7,2") s << " --spacing " << a.spacing;
     if (a.noise != 20.0) s << " --noise " << a.noise;
+    if (a.contour_noise != 0.0) s << " --contour-noise " << a.contour_noise;
     if (a.blur != 0.5) s << " --blur " << a.blur;
     if (a.seed != 1) s << " --seed " << a.seed;
   }
@@ -162,10 +166,12 @@ int run_compare(const CompareArgs& a) {
   PhantomVolumeOptions volume_options;
   volume_options.spacing = parse_spacing(a.spacing);
   volume_options.noise = a.noise;
+  volume_options.contour_noise = a.contour_noise;
   volume_options.blur = a.blur;
   volume_options.seed = a.seed;
   if (!(a.noise >= 0.0)) throw InvalidInputError("--noise must be a sigma >= 0 in HU");
   if (!(a.blur >= 0.0)) throw InvalidInputError("--blur must be a sigma >= 0 in mm");
+  check_contour_noise(a.contour_noise);
 
   // Outputs are checked before the work.
   const fs::path out(a.out);
@@ -213,8 +219,9 @@ int run_compare(const CompareArgs& a) {
       const CtImage::Pointer image = render_phantom(phantom, volume_options);
       std::ostringstream source;
       source << "phantom '" << name << "' (" << volume_options.spacing.x() << " x " << volume_options.spacing.y()
-             << " x " << volume_options.spacing.z() << " mm voxels, " << volume_options.noise << " HU noise, "
-             << volume_options.blur << " mm blur, seed " << volume_options.seed << ")";
+             << " x " << volume_options.spacing.z() << " mm voxels, " << volume_options.noise << " HU noise, ";
+      if (volume_options.contour_noise > 0.0) source << volume_options.contour_noise << " mm contour noise, ";
+      source << volume_options.blur << " mm blur, seed " << volume_options.seed << ")";
       options.reconstruction.segmentation.threshold =
           a.threshold.value_or(0.5 * (volume_options.bone_hu + volume_options.tissue_hu));
       compare_one(name, *image, source.str(), phantom_truth(phantom), several ? out / name : out);
@@ -227,7 +234,7 @@ int run_compare(const CompareArgs& a) {
       reference = read_mesh(a.truth, ro);
     }
     progress.stage("read");
-    const CtImage::Pointer image = read_volume(a.input);
+    const CtImage::Pointer image = read_volume(a.input, volume_read_options(a.volume, "compare"));
     options.reconstruction.segmentation.threshold = a.threshold.value_or(300.0);
     const ComparisonTruth truth =
         reference ? reference_surface_truth(*reference, "reference surface " + a.truth) : ComparisonTruth{};
@@ -285,9 +292,8 @@ void add_compare_command(CLI::App& app) {
   CLI::Option* input =
       cmd->add_option("input", args->input, "CT volume or DICOM directory (default: the phantom --phantom)");
   CLI::Option* phantom = cmd->add_option("--phantom", args->phantom,
-                                         "Phantom to compare on, or 'all' (one subdirectory each, plus a summary): "
-                                         "ridge-box | femur | pelvis | skull | branch | two-objects | cavity | all "
-                                         "(default femur)");
+                                         "Phantom to compare on, or 'all' (one subdirectory each, plus a summary): " +
+                                             phantom_shape_names(" | ") + " | all (default femur)");
   CLI::Option* truth = cmd->add_option("--truth", args->truth,
                                        "With an input volume: reference surface mesh to measure distances against");
   phantom->excludes(input);
@@ -298,6 +304,7 @@ void add_compare_command(CLI::App& app) {
   cmd->add_option("--note", args->note, "A paragraph to add under the title of the reports");
   cmd->add_option("--spacing", args->spacing, "Phantom voxel size, mm: sx,sy,sz")->capture_default_str();
   cmd->add_option("--noise", args->noise, "Phantom Gaussian noise, HU")->capture_default_str();
+  add_contour_noise_option(cmd, args->contour_noise)->excludes(input);
   cmd->add_option("--blur", args->blur, "Phantom Gaussian blur, mm")->capture_default_str();
   cmd->add_option("--seed", args->seed, "Phantom noise seed")->capture_default_str();
   cmd->add_option("--threshold", args->threshold,
@@ -318,6 +325,7 @@ void add_compare_command(CLI::App& app) {
       ->capture_default_str();
   cmd->add_flag("--no-render", args->no_render, "Skip the PNG renders of the meshes (they need an X display)");
   cmd->add_flag("--no-curves", args->no_curves, "Skip the volume-shrinking curves (saves the extra runs)");
+  add_volume_options(cmd, args->volume);
   add_common_options(cmd, args->common);
   add_max_vertices_option(cmd, args->max_vertices);
   cmd->add_flag("--json", args->json, "Print one JSON object on stdout instead of the summary");

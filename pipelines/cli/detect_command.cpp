@@ -41,18 +41,31 @@ int run_detect(const DetectArgs& a) {
   MeshReadOptions read_options;
   read_options.arrays = {a.slice_array, a.contour_array};
   read_options.max_vertices = a.max_vertices;
-  Mesh mesh = read_mesh(a.input, read_options);
-  check_mesh(mesh, a.input, "detect");
+  ProgressDisplay progress("detect", a.common.quiet);
+  progress.stage("read");
+  PreparedMesh input = prepare_input(read_mesh(a.input, read_options), a.input, "detect", ContourIdUse::Detection,
+                                     a.features);
+  const Mesh mesh = std::move(input.mesh);
   const MeshAdjacency adjacency = build_adjacency(mesh);
   DetectionOptions options = detection_options(a.features);
-  const std::string id_source = prepare_contour_ids(mesh, adjacency, a.features, a.input, "detect", options);
+  if (input.detection_mode == DetectionMode::CurvatureOnly) options.mode = DetectionMode::CurvatureOnly;
+  options.progress = progress.callback();
+  const std::string id_source(to_string(input.id_source));
   const auto t = std::chrono::steady_clock::now();
-  const FeatureDetection d = detect_features(mesh, adjacency, options);
+  FeatureDetection d;
+  try {
+    d = detect_features(mesh, adjacency, options);
+  } catch (const InvalidInputError&) {
+    rethrow_with_context(a.input);
+  }
   const double detect_seconds = seconds_since(t);
   MeshWriteOptions write_options;
   write_options.arrays = read_options.arrays;
   write_options.point_scalars = detection_arrays(d);
+  progress.stage("write");
+  write_options.progress = progress.callback();
   write_mesh(mesh, a.output, write_options);
+  progress.finish();
   if (a.json) {
     nlohmann::json j;
     j["command"] = "detect";

@@ -6,6 +6,7 @@
 #include <pipelines/atomic_file.h>
 #include <pipelines/mesh_io.h>
 #include <smooth/adjacency.h>
+#include <smooth/divergence.h>
 #include <smooth/errors.h>
 #include <smooth/feature_smoothing.h>
 #include <smooth/limits.h>
@@ -73,11 +74,13 @@ int run_smooth(const SmoothArgs& a) {
 
   check_output_path(a.output);
   if (!a.labels_out.empty()) check_output_path(a.labels_out);
+  check_distinct_outputs({{"-o", a.output}, {"--labels-out", a.labels_out}});
 
   progress.stage("read");
 
-  Mesh mesh = read_mesh(a.input, read_options);
-  check_mesh(mesh, a.input, "smooth");
+  PreparedMesh input = prepare_input(read_mesh(a.input, read_options), a.input, "smooth",
+                                     paper ? ContourIdUse::Detection : ContourIdUse::PassThrough, a.features);
+  Mesh mesh = std::move(input.mesh);
   const MeshAdjacency adjacency = build_adjacency(mesh);
   const double volume_before = enclosed_volume(mesh);
   const bool closed = adjacency.is_closed();
@@ -92,7 +95,8 @@ int run_smooth(const SmoothArgs& a) {
   if (paper) {
     FeatureSmoothingOptions o;
     o.detection = detection_options(a.features);
-    id_source = prepare_contour_ids(mesh, adjacency, a.features, a.input, "smooth", o.detection);
+    if (input.detection_mode == DetectionMode::CurvatureOnly) o.detection.mode = DetectionMode::CurvatureOnly;
+    id_source = to_string(input.id_source);
     o.max_levels = a.max_levels;
     o.diffusion = parse_smoothing_method(a.diffusion);
     o.iterations = a.iterations.value_or(40);
@@ -102,11 +106,12 @@ int run_smooth(const SmoothArgs& a) {
     o.output = a.keep_adaptive ? OutputResolution::Adaptive : OutputResolution::Original;
     o.progress = progress.callback();
     o.limits.max_vertices = a.max_vertices;
+    o.on_iteration = divergence_guard(mesh.positions, "smoothing");
     FeatureSmoothingResult r;
     try {
       r = feature_preserving_smooth(mesh, o);
-    } catch (const LimitError& e) {
-      throw LimitError(a.input + ": " + e.what());
+    } catch (const InvalidInputError&) {
+      rethrow_with_context(a.input);
     }
     result = r.mesh;
     iterations = o.iterations;
@@ -137,6 +142,7 @@ int run_smooth(const SmoothArgs& a) {
       MeshWriteOptions labels;
       labels.arrays = read_options.arrays;
       labels.point_scalars = detection_arrays(d);
+      labels.progress = progress.callback();
       write_mesh(mesh, a.labels_out, labels);
       j["labels_out"] = a.labels_out;
     }
@@ -149,15 +155,27 @@ int run_smooth(const SmoothArgs& a) {
     options.beta = a.beta;
     options.boundary = boundary;
     options.progress = progress.callback();
+    options.on_iteration = divergence_guard(mesh.positions, "smoothing");
     const auto t = std::chrono::steady_clock::now();
     result = mesh;
-    result.positions = smooth(mesh, adjacency, options);
+    try {
+      result.positions = smooth(mesh, adjacency, options);
+    } catch (const InvalidInputError&) {
+      rethrow_with_context(a.input);
+    }
     smooth_seconds = seconds_since(t);
     iterations = options.iterations;
     lambda = options.lambda.value_or(default_lambda(options.method));
     j["seconds_smooth"] = smooth_seconds;
   }
+  // The guard saw every iteration; this also covers the resolution step of the paper's method.
+  try {
+    check_not_diverged(result.positions, DivergenceBounds::of(mesh.positions), "smoothing");
+  } catch (const InvalidInputError&) {
+    rethrow_with_context(a.input);
+  }
   progress.stage("write");
+  write_options.progress = progress.callback();
   write_mesh(result, a.output, write_options);
   progress.finish();
 

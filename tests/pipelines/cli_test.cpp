@@ -15,6 +15,8 @@
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
+#include <iterator>
+#include <string>
 
 #include "test_support.h"
 
@@ -192,6 +194,32 @@ TEST_F(Cli, PhantomThenReconstructGivesAClosedMeshWithIds) {
   EXPECT_EQ(m.num_vertices(), j["vertices"].get<int>());
 }
 
+// --contour-noise reaches the volume on phantom and run, is range-checked (exit 2), and is refused
+// next to an input volume (exit 1), which it could not change.
+TEST_F(Cli, ContourNoiseOption) {
+  const fs::path clean = dir_ / "clean.mha", noisy = dir_ / "noisy.mha";
+  const std::string common = " --shape ridge-box --spacing 1.5,1.5,3 --noise 0 --blur 0 --json";
+  ASSERT_EQ(run_cli("phantom -o " + clean.string() + common, dir_).code, 0);
+  const CliRun r = run_cli("phantom -o " + noisy.string() + common + " --contour-noise 0.5", dir_);
+  ASSERT_EQ(r.code, 0) << r.err;
+  EXPECT_EQ(nlohmann::json::parse(r.out)["contour_noise"], 0.5);
+  std::ifstream a(clean, std::ios::binary), b(noisy, std::ios::binary);
+  const std::string bytes_a((std::istreambuf_iterator<char>(a)), {}), bytes_b((std::istreambuf_iterator<char>(b)), {});
+  EXPECT_NE(bytes_a, bytes_b);
+  for (const char* bad : {"-0.1", "11", "nan"}) {
+    const CliRun e = run_cli("phantom -o " + noisy.string() + common + " --contour-noise " + bad, dir_);
+    EXPECT_EQ(e.code, 2) << bad;
+    EXPECT_NE(e.err.find("--contour-noise"), std::string::npos) << e.err;
+  }
+  const CliRun run = run_cli("run -o " + (dir_ / "box.stl").string() +
+                                 " --shape ridge-box --spacing 1.5,1.5,3 --contour-noise 0.4 --method none",
+                             dir_);
+  ASSERT_EQ(run.code, 0) << run.err;
+  EXPECT_NE(run.out.find("0.4 mm contour noise"), std::string::npos) << run.out;
+  EXPECT_EQ(run_cli("run " + clean.string() + " -o x.stl --contour-noise 0.4", dir_).code, 1);
+  EXPECT_EQ(run_cli("compare " + clean.string() + " --out cmp --contour-noise 0.4", dir_).code, 1);
+}
+
 TEST_F(Cli, ReconstructRejectsBadVolumesWithExitTwo) {
   std::ofstream(dir_ / "junk.mha") << "this is not an image";
   const fs::path out = dir_ / "out.vtp";
@@ -304,13 +332,15 @@ TEST_F(Cli, ProgressIsOneLinePerStageOffATerminalAndQuietSilencesIt) {
 TEST_F(Cli, HelpListsEveryOptionOfEverySubcommand) {
   const std::map<std::string, std::vector<std::string>> options = {
       {"phantom", {"--shape", "--spacing", "--noise", "--blur", "--seed", "--json"}},
-      {"reconstruct", {"--threshold", "--otsu", "--end-caps", "--keep", "--fill-holes", "--json", "--quiet", "--threads"}},
+      {"reconstruct", {"--threshold", "--otsu", "--end-caps", "--keep", "--fill-holes", "--json", "--quiet", "--threads",
+                       "--roi", "--contours-out", "--sampling", "--slab-thickness", "--align", "--single-slice"}},
+      {"contours", {"--list", "--roi", "--output", "--json", "--planarity-tolerance"}},
       {"detect", {"--gamma", "--delta", "--measure", "--in-slice", "--prefilter", "--window", "--corner-spread", "--slice-axis",
                   "--json"}},
       {"smooth", {"--method", "--iterations", "--gamma", "--delta", "--max-levels", "--keep-adaptive", "--labels-out",
                   "--in-slice", "--json", "--quiet", "--threads"}},
       {"run", {"--shape", "--noise", "--method", "--iterations", "--threshold", "--end-caps", "--in-slice", "--measure",
-               "--json", "--quiet", "--threads"}},
+               "--json", "--quiet", "--threads", "--roi", "--sampling", "--slab-thickness"}},
   };
   for (const auto& [command, names] : options) {
     const CliRun r = run_cli(command + " --help", dir_);

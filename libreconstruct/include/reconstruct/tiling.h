@@ -68,7 +68,8 @@ struct TilingOptions {
   int max_intermediate_contours = 15;
   /// Grid of the signed distance fields, as a fraction of the contour spacing, in (0, 1].
   double interpolation_grid = 0.5;
-  /// Threads tiling slabs at once (0: one per core). The mesh does not depend on it.
+  /// Threads tiling slabs at once (0: available_threads(), which a ThreadLimit caps). The mesh does not
+  /// depend on it.
   int threads = 0;
   /// Two contours of adjacent slices correspond when the area of overlap of their regions exceeds this
   /// fraction of the smaller region (outer contours: the filled outline; holes: the hole). In (0, 1].

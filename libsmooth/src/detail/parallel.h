@@ -1,0 +1,51 @@
+// A minimal parallel loop on std::thread for libsmooth (which depends on Eigen only). Work is cut into
+// fixed chunks that do not depend on the number of threads, so a reduction over chunks in chunk order
+// gives the same result on any machine.
+#pragma once
+
+#include <algorithm>
+#include <atomic>
+#include <cstddef>
+#include <exception>
+#include <mutex>
+#include <thread>
+#include <vector>
+
+namespace contourmesh::detail {
+
+/// Number of worker threads: hardware concurrency, at least 1, at most 64.
+inline unsigned worker_count() { return std::clamp(std::thread::hardware_concurrency(), 1u, 64u); }
+
+/// Calls body(chunk, begin, end) for the chunks [k * chunk_size, min(n, (k + 1) * chunk_size)), on all
+/// cores. The first exception thrown by a body is rethrown after every thread has stopped.
+template <typename Body>
+void parallel_chunks(std::size_t n, std::size_t chunk_size, const Body& body) {
+  chunk_size = std::max<std::size_t>(chunk_size, 1);
+  const std::size_t chunks = (n + chunk_size - 1) / chunk_size;
+  const unsigned threads = static_cast<unsigned>(std::min<std::size_t>(worker_count(), chunks));
+  std::atomic<std::size_t> next{0};
+  std::exception_ptr error;
+  std::mutex error_mutex;
+  auto work = [&] {
+    for (std::size_t k = next++; k < chunks; k = next++) {
+      try {
+        body(k, k * chunk_size, std::min(n, (k + 1) * chunk_size));
+      } catch (...) {
+        const std::lock_guard<std::mutex> lock(error_mutex);
+        if (!error) error = std::current_exception();
+        next = chunks;
+      }
+    }
+  };
+  if (threads <= 1) {
+    work();
+  } else {
+    std::vector<std::thread> pool;
+    pool.reserve(threads);
+    for (unsigned t = 0; t < threads; ++t) pool.emplace_back(work);
+    for (std::thread& t : pool) t.join();
+  }
+  if (error) std::rethrow_exception(error);
+}
+
+}  // namespace contourmesh::detail
