@@ -1,5 +1,7 @@
 #include "reconstruct/volume.h"
 
+#include "detail/image_io.h"
+
 #include <smooth/errors.h>
 
 #include <itkGDCMImageIO.h>
@@ -9,6 +11,7 @@
 #include <itkImageFileWriter.h>
 #include <itkImageIOFactory.h>
 #include <itkImageSeriesReader.h>
+#include <itkMetaDataObject.h>
 #include <itkMetaImageIO.h>
 #include <itkMetaImageIOFactory.h>
 #include <itkNiftiImageIO.h>
@@ -31,13 +34,9 @@
 
 namespace contourmesh {
 
-namespace fs = std::filesystem;
+namespace detail {
 
-namespace {
-
-// The IO factories are registered here, once, so that reading does not depend on UseITK.cmake's
-// generated registration code.
-void register_io_factories() {
+void register_image_io_factories() {
   static std::once_flag once;
   std::call_once(once, [] {
     itk::MetaImageIOFactory::RegisterOneFactory();
@@ -46,6 +45,14 @@ void register_io_factories() {
     itk::GDCMImageIOFactory::RegisterOneFactory();
   });
 }
+
+}  // namespace detail
+
+namespace fs = std::filesystem;
+
+namespace {
+
+void register_io_factories() { detail::register_image_io_factories(); }
 
 std::string describe(const itk::ExceptionObject& e) {
   std::string text = e.GetDescription();
@@ -121,7 +128,7 @@ CtImage::Pointer read_image_file(const fs::path& path) {
   return image;
 }
 
-CtImage::Pointer read_dicom_directory(const fs::path& path) {
+CtImage::Pointer read_dicom_directory(const fs::path& path, const std::string& series_uid) {
   const std::string name = path.string();
   auto names = itk::GDCMSeriesFileNames::New();
   names->SetUseSeriesDetails(false);  // group by Series Instance UID only, so the UIDs listed are real
@@ -133,15 +140,18 @@ CtImage::Pointer read_dicom_directory(const fs::path& path) {
     throw InvalidInputError(name + ": cannot scan the directory for DICOM files: " + describe(e));
   }
   if (uids.empty()) throw InvalidInputError(name + ": a directory without a DICOM series");
-  if (uids.size() > 1) {
-    std::string list;
-    for (const std::string& uid : uids) list += (list.empty() ? "" : ", ") + uid;
+  std::string list;
+  for (const std::string& uid : uids) list += (list.empty() ? "" : ", ") + uid;
+  if (series_uid.empty() && uids.size() > 1) {
     throw InvalidInputError(name + ": the directory holds " + std::to_string(uids.size()) + " DICOM series (" + list +
-                            "); put one series per directory");
+                            "); pick one with --series UID (--list-series describes them)");
+  }
+  if (!series_uid.empty() && std::find(uids.begin(), uids.end(), series_uid) == uids.end()) {
+    throw InvalidInputError(name + ": no DICOM series " + series_uid + " in the directory (it holds " + list + ")");
   }
   // GDCMSeriesFileNames sorts the files along the slice normal by Image Position (Patient); the series
   // reader then takes the slice spacing from those positions, not from SliceThickness.
-  const std::vector<std::string> files = names->GetFileNames(uids.front());
+  const std::vector<std::string> files = names->GetFileNames(series_uid.empty() ? uids.front() : series_uid);
   if (files.size() < 2) {
     throw InvalidInputError(name + ": the DICOM series has " + std::to_string(files.size()) +
                             " slice; a 3-D volume needs at least 2");
@@ -187,15 +197,64 @@ itk::ImageIOBase::Pointer writer_io(const std::string& extension) {
 
 }  // namespace
 
-CtImage::Pointer read_volume(const fs::path& path) {
+CtImage::Pointer read_volume(const fs::path& path, const VolumeReadOptions& options) {
   register_io_factories();
   const std::string name = path.string();
   std::error_code ec;
   const fs::file_status status = fs::status(path, ec);
   if (ec || !fs::exists(status)) throw InvalidInputError(name + ": no such file or directory");
-  CtImage::Pointer image = fs::is_directory(status) ? read_dicom_directory(path) : read_image_file(path);
+  if (!options.series_uid.empty() && !fs::is_directory(status)) {
+    throw InvalidInputError(name + ": a DICOM series UID applies to a directory of DICOM files, not to a file");
+  }
+  CtImage::Pointer image =
+      fs::is_directory(status) ? read_dicom_directory(path, options.series_uid) : read_image_file(path);
   check_volume(*image, path);
   return image;
+}
+
+std::vector<DicomSeries> list_dicom_series(const fs::path& directory) {
+  register_io_factories();
+  const std::string name = directory.string();
+  std::error_code ec;
+  if (!fs::is_directory(directory, ec)) throw InvalidInputError(name + ": not a directory");
+  auto names = itk::GDCMSeriesFileNames::New();
+  names->SetUseSeriesDetails(false);  // as read_volume: one entry per Series Instance UID
+  names->SetDirectory(name);
+  std::vector<std::string> uids;
+  try {
+    uids = names->GetSeriesUIDs();
+  } catch (const itk::ExceptionObject& e) {
+    throw InvalidInputError(name + ": cannot scan the directory for DICOM files: " + describe(e));
+  }
+  std::vector<DicomSeries> series;
+  for (const std::string& uid : uids) {
+    DicomSeries s;
+    s.uid = uid;
+    const std::vector<std::string> files = names->GetFileNames(uid);
+    s.files = files.size();
+    if (!files.empty()) {
+      auto io = itk::GDCMImageIO::New();
+      io->SetFileName(files.front());
+      try {
+        io->ReadImageInformation();
+        const auto tag = [&](const char* key) {
+          std::string value;
+          itk::ExposeMetaData<std::string>(io->GetMetaDataDictionary(), key, value);
+          while (!value.empty() && (std::isspace(static_cast<unsigned char>(value.back())) || value.back() == '\0')) {
+            value.pop_back();
+          }
+          return value;
+        };
+        s.number = tag("0020|0011");
+        s.modality = tag("0008|0060");
+        s.description = tag("0008|103e");
+      } catch (const itk::ExceptionObject&) {
+        // The listing still names the series; reading it reports the problem.
+      }
+    }
+    series.push_back(std::move(s));
+  }
+  return series;
 }
 
 void write_volume(const CtImage* image, const fs::path& path) {
