@@ -337,7 +337,7 @@ CtImage::Pointer label_mask(const LabelMap& map, const Label& label) {
     for (long j = lo[1]; j <= hi[1]; ++j) {
       const float* row = data + (k * static_cast<long>(size[1]) + j) * static_cast<long>(size[0]);
       float* dst = out + ((k - first[2]) * static_cast<long>(out_size[1]) + (j - first[1])) * static_cast<long>(out_size[0]) - first[0];
-      for (long i = lo[0]; i <= hi[0]; ++i) dst[i] = row[i] == value ? 1.0f : 0.0f;
+      for (long i = lo[0]; i <= hi[0]; ++i) dst[i] = row[i] == value ? kLabelMaskInside : 0.0f;
     }
   }
   return mask;
@@ -348,7 +348,7 @@ Reconstruction reconstruct_label(const LabelMap& map, const Label& label, Recons
   const std::string what = "label '" + label.display_name() + "'" +
                            (label.name.empty() ? std::string() : " (" + std::to_string(label.value) + ")");
   options.segmentation.threshold_method = ThresholdMethod::Fixed;
-  options.segmentation.threshold = 0.5;
+  options.segmentation.threshold = 0.5 * kLabelMaskInside;
   options.segmentation.smoothing = ImageSmoothing::None;
   try {
     const CtImage::Pointer mask = label_mask(map, label);

@@ -3,10 +3,12 @@
 // against the phantom's analytic surface.
 #include "cli_common.h"
 #include "feature_options.h"
+#include "input_selection.h"
 #include "progress_display.h"
 
 #include <pipelines/atomic_file.h>
 #include <pipelines/mesh_io.h>
+#include <reconstruct/label_map.h>
 #include <reconstruct/phantom.h>
 #include <reconstruct/reconstruction.h>
 #include <reconstruct/threads.h>
@@ -57,7 +59,14 @@ struct RunArgs {
   Index max_vertices = kDefaultMaxVertices;
   bool json = false;
   FeatureArgs detection;
+  InputSelectionArgs selection;
   CommonArgs common;
+};
+
+// One label of a label map that `run` meshes instead of thresholding the input.
+struct LabelJob {
+  const LabelMap* map = nullptr;
+  Label label;
 };
 
 // The vertices with distance_to_features(phantom, p) < radius, in order. The feature points are binned
@@ -114,17 +123,20 @@ std::vector<Index> vertices_near_features(const Phantom& phantom, const Eigen::M
   return near;
 }
 
-int run_run(const RunArgs& a) {
+// The chain on one volume, or on one label when `job` is set, written to `output` (and `labels_out`).
+// With `collect`, the JSON summary is appended to it instead of being printed.
+int run_run(const RunArgs& a, const std::string& output, const std::string& labels_out, const LabelJob* job,
+            nlohmann::json* collect) {
   const auto start = std::chrono::steady_clock::now();
   const SmoothingMethod baseline = a.method == "paper" ? SmoothingMethod::None : parse_smoothing_method(a.method);
   // Fail on bad options and output paths before the work.
   MeshWriteOptions write_options;
   write_options.format = parse_mesh_format(a.format);
-  if (write_options.format == MeshFormat::Auto) (void)format_from_extension(a.output);
-  if (!a.labels_out.empty()) {
+  if (write_options.format == MeshFormat::Auto) (void)format_from_extension(output);
+  if (!labels_out.empty()) {
     if (a.method != "paper") throw InvalidInputError("--labels-out needs --method paper (the labels come from its detection)");
-    if (!format_keeps_contour_ids(format_from_extension(a.labels_out))) {
-      throw InvalidInputError(a.labels_out + ": labels need a .vtp or .ply file");
+    if (!format_keeps_contour_ids(format_from_extension(labels_out))) {
+      throw InvalidInputError(labels_out + ": labels need a .vtp or .ply file");
     }
   }
   if (!(a.feature_radius > 0.0)) throw InvalidInputError("--feature-radius must be > 0 mm");
@@ -132,17 +144,17 @@ int run_run(const RunArgs& a) {
   apply_common_options(a.common);
   ProgressDisplay progress("run", a.common.quiet);
   // The default output goes to out/: create the directory, then check it can take the file.
-  const std::filesystem::path out(a.output);
+  const std::filesystem::path out(output);
   if (!out.parent_path().empty() && !std::filesystem::exists(out.parent_path())) {
     std::error_code ec;
     std::filesystem::create_directories(out.parent_path(), ec);
     if (ec) {
-      throw InvalidInputError(a.output + ": cannot create the directory '" + out.parent_path().string() +
+      throw InvalidInputError(output + ": cannot create the directory '" + out.parent_path().string() +
                               "': " + ec.message());
     }
   }
   check_output_path(out);
-  if (!a.labels_out.empty()) check_output_path(a.labels_out);
+  if (!labels_out.empty()) check_output_path(labels_out);
 
   // 1. Read or generate the volume.
   auto t = std::chrono::steady_clock::now();
@@ -165,8 +177,8 @@ int run_run(const RunArgs& a) {
     s << vo.blur << " mm blur)";
     source = s.str();
   } else {
-    image = read_volume(a.input);
-    source = a.input;
+    image = job ? label_mask(*job->map, job->label) : read_volume(a.input, read_options(a.selection));
+    source = job ? a.input + " label '" + job->label.display_name() + "'" : a.input;
   }
   const double seconds_volume = seconds_since(t);
 
@@ -178,6 +190,7 @@ int run_run(const RunArgs& a) {
   const PhantomVolumeOptions phantom_defaults;
   ro.segmentation.threshold =
       a.threshold.value_or(phantom ? 0.5 * (phantom_defaults.bone_hu + phantom_defaults.tissue_hu) : 300.0);
+  if (job) ro.segmentation.threshold = 0.5 * kLabelMaskInside;  // the label's voxels (label_map.h)
   ro.tiling.limits.max_vertices = a.max_vertices;
   Reconstruction rec;
   try {
@@ -224,10 +237,10 @@ int run_run(const RunArgs& a) {
   t = std::chrono::steady_clock::now();
   progress.stage("write");
   write_mesh(result, out, write_options);
-  if (paper && !a.labels_out.empty()) {
+  if (paper && !labels_out.empty()) {
     MeshWriteOptions labels;
     labels.point_scalars = detection_arrays(paper->detection);
-    write_mesh(mesh, a.labels_out, labels);
+    write_mesh(mesh, labels_out, labels);
   }
   progress.finish();
   const double seconds_write = seconds_since(t);
@@ -238,8 +251,8 @@ int run_run(const RunArgs& a) {
   nlohmann::json j;
   j["command"] = "run";
   j["source"] = source;
-  j["output"] = a.output;
-  if (!a.labels_out.empty()) j["labels_out"] = a.labels_out;
+  j["output"] = output;
+  if (!labels_out.empty()) j["labels_out"] = labels_out;
   j["method"] = a.method;
   j["slices"] = rec.report.slices;
   j["contours"] = rec.report.contours;
@@ -280,6 +293,15 @@ int run_run(const RunArgs& a) {
     j["feature_vertices"] = feature_vertices.size();
   }
   j["seconds"] = seconds_since(start);
+  if (job) {
+    j["label"] = job->label.display_name();
+    j["label_value"] = job->label.value;
+    j["label_voxels"] = job->label.voxels;
+  }
+  if (collect) {
+    collect->push_back(j);
+    if (a.json) return kOk;
+  }
   if (a.json) {
     print_json(j);
     return kOk;
@@ -307,7 +329,30 @@ int run_run(const RunArgs& a) {
   std::cout << std::setprecision(2) << "  seconds     volume " << seconds_volume << ", segment "
             << rec.report.seconds_segment << ", tile " << rec.report.seconds_tile << ", smooth " << seconds_smooth
             << ", write " << seconds_write << ", total " << seconds_since(start) << "\n"
-            << "  wrote       " << a.output << (a.labels_out.empty() ? "" : " and " + a.labels_out) << "\n";
+            << "  wrote       " << output << (labels_out.empty() ? "" : " and " + labels_out) << "\n";
+  return kOk;
+}
+
+// `run`: --list-series, one label after the other with --label / --labels, or the volume.
+int run_command(const RunArgs& a) {
+  if (a.selection.list_series) return print_series_list(a.input, a.json);
+  if (!labels_requested(a.selection)) return run_run(a, a.output, a.labels_out, nullptr, nullptr);
+  if (a.input.empty()) throw InvalidInputError("--label and --labels need an input label map");
+  const auto start = std::chrono::steady_clock::now();
+  const SelectedLabels selected = read_selected_labels(a.input, a.selection);
+  for (const Label& label : selected.labels) {
+    check_output_path(label_output_path(a.output, label, a.selection));
+    if (!a.labels_out.empty()) check_output_path(label_output_path(a.labels_out, label, a.selection));
+  }
+  nlohmann::json meshes = nlohmann::json::array();
+  for (const Label& label : selected.labels) {
+    const LabelJob job{&selected.map, label};
+    const std::string labels_out =
+        a.labels_out.empty() ? std::string() : label_output_path(a.labels_out, label, a.selection).string();
+    const int code = run_run(a, label_output_path(a.output, label, a.selection).string(), labels_out, &job, &meshes);
+    if (code != kOk) return code;
+  }
+  if (a.json) print_json({{"command", "run"}, {"input", a.input}, {"labels", meshes}, {"seconds", seconds_since(start)}});
   return kOk;
 }
 
@@ -332,7 +377,7 @@ void add_run_command(CLI::App& app) {
   add_contour_noise_option(cmd, args->contour_noise)->excludes(input);
   cmd->add_option("--blur", args->blur, "Phantom Gaussian blur, mm")->capture_default_str();
   cmd->add_option("--seed", args->seed, "Phantom noise seed")->capture_default_str();
-  cmd->add_option("--threshold", args->threshold,
+  CLI::Option* threshold = cmd->add_option("--threshold", args->threshold,
                   "Bone threshold, HU (default: 300 for an input volume; 520 for a phantom, halfway between its "
                   "soft tissue and bone)");
   cmd->add_option("--end-caps", args->end_caps, "Where objects end: half-spacing | end-slice")->capture_default_str();
@@ -342,10 +387,11 @@ void add_run_command(CLI::App& app) {
                   "Phantom: vertices this close to a sharp edge form the feature region, mm")
       ->capture_default_str();
   add_detection_options(cmd, args->detection);
+  add_input_selection_options(cmd, args->selection, {threshold});
   add_common_options(cmd, args->common);
   add_max_vertices_option(cmd, args->max_vertices);
   cmd->add_flag("--json", args->json, "Print one JSON object on stdout instead of the summary");
-  cmd->callback([args] { set_exit_code(run_guarded("run", [&] { return run_run(*args); })); });
+  cmd->callback([args] { set_exit_code(run_guarded("run", [&] { return run_command(*args); })); });
 }
 
 }  // namespace contourmesh::cli

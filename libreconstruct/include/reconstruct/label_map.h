@@ -59,14 +59,21 @@ inline constexpr std::size_t kMaxLabels = 4096;
 /// listing the labels present when a requested one is not in the map, or for an empty spec.
 [[nodiscard]] std::vector<Label> select_labels(const LabelMap& map, std::string_view spec);
 
-/// The voxels of `label` as a binary volume (1 inside, 0 outside) cropped to the label's bounding box
-/// plus one voxel of background where the map has it; physical positions are those of the map. Throws
-/// InvalidInputError when the label has no voxels.
+/// The value of label voxels in label_mask (background is 0). Large against the one-unit margin by which
+/// segmentation lifts a region's pixels above its threshold, so that the contour at half of it runs
+/// exactly half-way between a label voxel and a background voxel.
+inline constexpr float kLabelMaskInside = 100.0f;
+
+/// The voxels of `label` as a binary volume (kLabelMaskInside inside, 0 outside) cropped to the label's
+/// bounding box plus one voxel of background on every side (beyond the map's extent where the label
+/// touches it, so that every label gives a closed surface); physical positions are those of the map.
+/// Throws InvalidInputError when the label has no voxels.
 [[nodiscard]] CtImage::Pointer label_mask(const LabelMap& map, const Label& label);
 
-/// Surface of one label: label_mask, then the threshold path of reconstruct() at 0.5 (the contour runs
-/// half-way between a label voxel and a background voxel), with `options` otherwise (their threshold,
-/// threshold method and image smoothing are replaced). Errors name the label ("label 'femur' (2): ...").
+/// Surface of one label: label_mask, then the threshold path of reconstruct() at kLabelMaskInside / 2
+/// (the contour runs half-way between a label voxel and a background voxel, so the mesh encloses about
+/// the label's voxel volume), with `options` otherwise (their threshold, threshold method and image
+/// smoothing are replaced). Errors name the label ("label 'femur' (2): ...").
 [[nodiscard]] Reconstruction reconstruct_label(const LabelMap& map, const Label& label,
                                                ReconstructionOptions options = {},
                                                const ProgressCallback& progress = {});
