@@ -242,6 +242,7 @@ void write_mesh(const Mesh& mesh, const fs::path& path, const MeshWriteOptions& 
       writer->SetFileName(tmp.c_str());
       if (format == MeshFormat::StlBinary) writer->SetFileTypeToBinary();
       else writer->SetFileTypeToASCII();
+      writer->SetHeader(kStlHeader);
       ok = writer->Write() && writer->GetErrorCode() == 0;
     } else if (format == MeshFormat::Vtp) {
       vtkNew<vtkXMLPolyDataWriter> writer;
