@@ -18,6 +18,9 @@ namespace contourmesh::cli {
 int run_guarded(const std::string& command, const std::function<int()>& body) {
   try {
     return body();
+  } catch (const UsageError& e) {
+    std::cerr << "contourmesh " << command << ": error: " << e.what() << "\n";
+    return kUsage;
   } catch (const LimitError& e) {
     const std::string what = e.what();
     std::cerr << "contourmesh " << command << ": error: " << what

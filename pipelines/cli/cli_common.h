@@ -8,6 +8,7 @@
 
 #include <chrono>
 #include <functional>
+#include <stdexcept>
 #include <string>
 
 namespace CLI {
@@ -25,8 +26,15 @@ enum ExitCode : int {
   kInternal = 3,  ///< a bug or an unexpected failure
 };
 
+/// A command line that does not fit its input (an option of the image route given for contours, a
+/// structure set without --roi): exit code 1, like CLI11's own usage errors.
+class UsageError : public std::invalid_argument {
+ public:
+  using std::invalid_argument::invalid_argument;
+};
+
 /// Runs a subcommand body, mapping exceptions to exit codes and one-line messages on stderr:
-/// InvalidInputError (LimitError with a hint at --max-vertices) -> 2, CancelledError -> 2, a
+/// UsageError -> 1, InvalidInputError (LimitError with a hint at --max-vertices) -> 2, CancelledError -> 2, a
 /// filesystem error -> 2, std::bad_alloc -> 2 (out of memory), anything else -> 3.
 int run_guarded(const std::string& command, const std::function<int()>& body);
 
@@ -64,5 +72,6 @@ void add_run_command(CLI::App& app);
 void add_phantom_command(CLI::App& app);
 void add_reconstruct_command(CLI::App& app);
 void add_compare_command(CLI::App& app);
+void add_contours_command(CLI::App& app);
 
 }  // namespace contourmesh::cli

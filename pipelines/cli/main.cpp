@@ -11,6 +11,7 @@ int main(int argc, char** argv) {
   app.require_subcommand(1);
   app.fallthrough(false);
   contourmesh::cli::add_phantom_command(app);
+  contourmesh::cli::add_contours_command(app);
   contourmesh::cli::add_reconstruct_command(app);
   contourmesh::cli::add_detect_command(app);
   contourmesh::cli::add_smooth_command(app);

@@ -2,12 +2,15 @@
 // smooth -> export. With no input it runs on a built-in phantom with noise, and reports accuracy
 // against the phantom's analytic surface.
 #include "cli_common.h"
+#include "contour_input.h"
 #include "feature_options.h"
 #include "input_selection.h"
 #include "progress_display.h"
 
 #include <pipelines/atomic_file.h>
 #include <pipelines/mesh_io.h>
+#include <reconstruct/contour_deviation.h>
+#include <reconstruct/contour_reconstruction.h>
 #include <reconstruct/label_map.h>
 #include <reconstruct/phantom.h>
 #include <reconstruct/reconstruction.h>
@@ -29,8 +32,8 @@
 #include <cmath>
 #include <filesystem>
 #include <future>
-#include <iomanip>
 #include <limits>
+#include <iomanip>
 #include <sstream>
 #include <iostream>
 #include <memory>
@@ -58,16 +61,56 @@ struct RunArgs {
   std::string labels_out;
   Index max_vertices = kDefaultMaxVertices;
   bool json = false;
+  std::optional<double> sampling;
   FeatureArgs detection;
+  ContourArgs contour;
   InputSelectionArgs selection;
   CommonArgs common;
 };
 
-// One label of a label map that `run` meshes instead of thresholding the input.
-struct LabelJob {
-  const LabelMap* map = nullptr;
-  Label label;
+// The smoothing stage, the same for every input: the paper's method (default) or a baseline.
+struct Smoothed {
+  Mesh mesh;
+  std::optional<FeatureSmoothingResult> paper;
+  double seconds = 0.0;
 };
+
+Smoothed smooth_reconstruction(const Mesh& mesh, const RunArgs& a, ProgressDisplay& progress, const std::string& source) {
+  const auto t = std::chrono::steady_clock::now();
+  Smoothed out;
+  out.mesh = mesh;
+  if (a.method == "paper") {
+    FeatureSmoothingOptions o;
+    o.detection = detection_options(a.detection);
+    o.progress = progress.callback();
+    if (a.iterations) o.iterations = *a.iterations;
+    o.limits.max_vertices = a.max_vertices;
+    try {
+      out.paper = feature_preserving_smooth(mesh, o);
+    } catch (const LimitError& e) {
+      throw LimitError(source + ": " + e.what());
+    }
+    out.mesh = out.paper->mesh;
+  } else {
+    SmoothingOptions o;
+    o.method = parse_smoothing_method(a.method);
+    o.progress = progress.callback();
+    if (a.iterations) o.iterations = *a.iterations;
+    out.mesh.positions = smooth(mesh, o);
+  }
+  out.seconds = seconds_since(t);
+  return out;
+}
+
+void add_paper_json(nlohmann::json& j, const Smoothed& s) {
+  if (!s.paper) return;
+  j["edge_vertices"] = s.paper->detection.edges;
+  j["corner_vertices"] = s.paper->detection.corners;
+  j["noise_vertices"] = s.paper->detection.noise;
+  j["subdivided_vertices"] = s.paper->subdivided_vertices;
+  j["seconds_detect"] = s.paper->seconds.detect;
+  j["seconds_subdivide"] = s.paper->seconds.subdivide;
+}
 
 // The vertices with distance_to_features(phantom, p) < radius, in order. The feature points are binned
 // in a grid of cells at least `radius` wide, so each vertex looks at the points of the 27 cells around
@@ -123,12 +166,24 @@ std::vector<Index> vertices_near_features(const Phantom& phantom, const Eigen::M
   return near;
 }
 
+const std::vector<std::string> kVolumeOnly{"--shape",     "--spacing", "--noise",  "--contour-noise",
+                                           "--blur",      "--seed",    "--threshold", "--feature-radius",
+                                           "--label",     "--labels",  "--series", "--list-series"};
+
+// One label of a label map that `run` meshes instead of thresholding the input.
+struct LabelJob {
+  const LabelMap* map = nullptr;
+  Label label;
+};
+const std::vector<std::string> kContourOnly{"--roi", "--align", "--single-slice", "--slab-thickness",
+                                            "--planarity-tolerance", "--sampling-tolerance", "--sampling"};
+
 // The chain on one volume, or on one label when `job` is set, written to `output` (and `labels_out`).
 // With `collect`, the JSON summary is appended to it instead of being printed.
 int run_run(const RunArgs& a, const std::string& output, const std::string& labels_out, const LabelJob* job,
             nlohmann::json* collect) {
   const auto start = std::chrono::steady_clock::now();
-  const SmoothingMethod baseline = a.method == "paper" ? SmoothingMethod::None : parse_smoothing_method(a.method);
+  if (a.method != "paper") (void)parse_smoothing_method(a.method);  // fail before the work
   // Fail on bad options and output paths before the work.
   MeshWriteOptions write_options;
   write_options.format = parse_mesh_format(a.format);
@@ -203,32 +258,10 @@ int run_run(const RunArgs& a, const std::string& output, const std::string& labe
   const Mesh& mesh = rec.mesh;
 
   // 3. Smooth.
-  t = std::chrono::steady_clock::now();
-  Mesh result;
-  std::optional<FeatureSmoothingResult> paper;
-  if (a.method == "paper") {
-    FeatureSmoothingOptions o;
-    o.detection = detection_options(a.detection);
-    o.progress = progress.callback();
-    if (a.iterations) o.iterations = *a.iterations;
-    o.limits.max_vertices = a.max_vertices;
-    try {
-      paper = feature_preserving_smooth(mesh, o);
-    } catch (const LimitError& e) {
-      throw LimitError(source + ": " + e.what());
-    }
-    result = std::move(paper->mesh);
-  } else {
-    SmoothingOptions o;
-    o.method = baseline;
-    o.progress = progress.callback();
-    if (a.iterations) o.iterations = *a.iterations;
-    result.positions = smooth(mesh, o);
-    result.triangles = mesh.triangles;
-    result.slice_ids = mesh.slice_ids;
-    result.contour_ids = mesh.contour_ids;
-  }
-  const double seconds_smooth = seconds_since(t);
+  const Smoothed smoothed = smooth_reconstruction(mesh, a, progress, source);
+  const Mesh& result = smoothed.mesh;
+  const std::optional<FeatureSmoothingResult>& paper = smoothed.paper;
+  const double seconds_smooth = smoothed.seconds;
 
   // 4. Export. The summary's topology is computed meanwhile when a second thread is allowed.
   std::future<TopologySummary> topology =
@@ -270,14 +303,7 @@ int run_run(const RunArgs& a, const std::string& output, const std::string& labe
   j["seconds_tile"] = rec.report.seconds_tile;
   j["seconds_smooth"] = seconds_smooth;
   j["seconds_write"] = seconds_write;
-  if (paper) {
-    j["edge_vertices"] = paper->detection.edges;
-    j["corner_vertices"] = paper->detection.corners;
-    j["noise_vertices"] = paper->detection.noise;
-    j["subdivided_vertices"] = paper->subdivided_vertices;
-    j["seconds_detect"] = paper->seconds.detect;
-    j["seconds_subdivide"] = paper->seconds.subdivide;
-  }
+  add_paper_json(j, smoothed);
   DistanceStats before, after, feature_before, feature_after;
   if (phantom) {
     const std::vector<Index> feature_vertices = vertices_near_features(*phantom, mesh.positions, a.feature_radius);
@@ -333,8 +359,8 @@ int run_run(const RunArgs& a, const std::string& output, const std::string& labe
   return kOk;
 }
 
-// `run`: --list-series, one label after the other with --label / --labels, or the volume.
-int run_command(const RunArgs& a) {
+// `run` on a volume: --list-series, one label after the other with --label / --labels, or the volume.
+int run_volume(const RunArgs& a) {
   if (a.selection.list_series) return print_series_list(a.input, a.json);
   if (!labels_requested(a.selection)) return run_run(a, a.output, a.labels_out, nullptr, nullptr);
   if (a.input.empty()) throw InvalidInputError("--label and --labels need an input label map");
@@ -356,14 +382,155 @@ int run_command(const RunArgs& a) {
   return kOk;
 }
 
+// One ROI (or contour file): tiled, smoothed by the same stage as a CT volume, written, and measured
+// against its drawn contours before and after smoothing; its JSON object.
+nlohmann::json run_one(const RunArgs& a, InputKind kind, const ContourInput& in, const std::filesystem::path& output,
+                       const std::filesystem::path& labels, const MeshWriteOptions& write_options,
+                       ProgressDisplay& progress) {
+  const auto t0 = std::chrono::steady_clock::now();
+  const EndCaps end_caps = a.end_caps == "end-slice" ? EndCaps::AtEndSlice : EndCaps::HalfSpacing;
+  const ContourReconstruction rec = reconstruct_from_contours(
+      in.stack, in.what, contour_options(a.contour, in, a.sampling, end_caps, a.max_vertices), progress.callback());
+  print_warnings("run", rec.report.warnings);
+  const Smoothed smoothed = smooth_reconstruction(rec.mesh, a, progress, in.what);
+  const auto t = std::chrono::steady_clock::now();
+  progress.stage("write");
+  write_mesh(smoothed.mesh, output, write_options);
+  if (smoothed.paper && !labels.empty()) {
+    MeshWriteOptions label_options;
+    label_options.point_scalars = detection_arrays(smoothed.paper->detection);
+    write_mesh(rec.mesh, labels, label_options);
+  }
+  const double seconds_write = seconds_since(t);
+  const TopologySummary topo = summarize_topology(smoothed.mesh);
+  const double v0 = enclosed_volume(rec.mesh);
+  const double v1 = enclosed_volume(smoothed.mesh);
+  const ContourDeviation before = contour_deviation(rec.mesh, in.stack);
+  const ContourDeviation after = contour_deviation(smoothed.mesh, in.stack);
+  nlohmann::json j;
+  j["status"] = "ok";
+  describe_input(j, in);
+  j["output"] = output.string();
+  if (!labels.empty()) j["labels_out"] = labels.string();
+  j["method"] = a.method;
+  j["slices"] = rec.report.slices;
+  j["contours"] = rec.report.contours;
+  j["hole_contours"] = rec.report.hole_contours;
+  j["points_drawn"] = rec.report.points_drawn;
+  j["slabs"] = rec.report.slabs;
+  j["vertices"] = smoothed.mesh.num_vertices();
+  j["faces"] = smoothed.mesh.num_faces();
+  j["components"] = topo.components;
+  j["is_closed"] = topo.closed;
+  j["is_manifold"] = topo.manifold;
+  j["euler_characteristic"] = topo.euler_characteristic;
+  j["slicewise_volume"] = rec.report.slicewise_volume;
+  j["volume_before"] = v0;
+  j["volume_after"] = v1;
+  j["volume_change_percent"] = 100.0 * (v1 - v0) / v0;
+  j["contour_deviation_before_mean"] = before.mean;
+  j["contour_deviation_before_max"] = before.max;
+  j["contour_deviation_after_mean"] = after.mean;
+  j["contour_deviation_after_rms"] = after.rms;
+  j["contour_deviation_after_max"] = after.max;
+  j["slices_without_section_after"] = after.slices_without_section;
+  j["seconds_tile"] = rec.report.seconds_tile;
+  j["seconds_smooth"] = smoothed.seconds;
+  j["seconds_write"] = seconds_write;
+  add_paper_json(j, smoothed);
+  j["seconds"] = seconds_since(t0);
+  if (a.json || a.common.quiet) return j;
+  std::cout << std::fixed << std::setprecision(2) << "ContourMesh: " << in.what
+            << (kind == InputKind::StructureSet ? " of " + a.input : "") << "\n"
+            << "  contours    " << rec.report.contours << " on " << rec.report.slices << " slices ("
+            << rec.report.hole_contours << (rec.report.hole_contours == 1 ? " hole, " : " holes, ")
+            << rec.report.tiling.branchings << " branchings, " << rec.report.slabs << " single-slice slabs)\n"
+            << "  mesh        " << smoothed.mesh.num_vertices() << " vertices, " << smoothed.mesh.num_faces()
+            << " triangles, " << (topo.closed ? "closed" : "OPEN") << ", " << (topo.manifold ? "manifold" : "NOT manifold")
+            << ", Euler characteristic " << topo.euler_characteristic << "\n";
+  if (smoothed.paper) {
+    std::cout << "  features    " << smoothed.paper->detection.edges << " edge, " << smoothed.paper->detection.corners
+              << " corner, " << smoothed.paper->detection.noise << " noise vertices; "
+              << smoothed.paper->subdivided_vertices << " subdivided\n";
+  }
+  std::cout << "  smoothing   " << a.method << ": volume " << std::setprecision(1) << v0 << " -> " << v1 << " mm^3 ("
+            << std::setprecision(2) << 100.0 * (v1 - v0) / v0 << " %; slice-wise " << std::setprecision(1)
+            << rec.report.slicewise_volume << ")\n"
+            << std::setprecision(3) << "  contours    in-plane distance to the drawn contours: mean " << before.mean
+            << " -> " << after.mean << " mm, largest " << before.max << " -> " << after.max << " mm\n"
+            << std::setprecision(2) << "  seconds     tile " << rec.report.seconds_tile << ", smooth " << smoothed.seconds
+            << ", write " << seconds_write << ", total " << seconds_since(t0) << "\n"
+            << "  wrote       " << output.string() << (labels.empty() ? "" : " and " + labels.string()) << "\n";
+  return j;
+}
+
+// The contour route: drawn contours (an RT Structure Set ROI, or all of them, or a contour file) ->
+// tiling -> the same smoothing -> export.
+int run_contours(const RunArgs& a, InputKind kind, bool output_given) {
+  const auto start = std::chrono::steady_clock::now();
+  if (a.method != "paper") (void)parse_smoothing_method(a.method);
+  if (!a.labels_out.empty() && a.method != "paper") {
+    throw InvalidInputError("--labels-out needs --method paper (the labels come from its detection)");
+  }
+  if (a.end_caps != "end-slice" && a.end_caps != "half-spacing") {
+    throw InvalidInputError("--end-caps must be half-spacing or end-slice");
+  }
+  (void)detection_options(a.detection);
+  MeshWriteOptions write_options;
+  write_options.format = parse_mesh_format(a.format);
+  apply_common_options(a.common);
+  ProgressDisplay progress("run", a.common.quiet);
+  progress.stage("read");
+  const ContourInputs loaded = load_contour_inputs(a.input, kind, a.contour);
+  print_warnings("run", loaded.warnings);
+  print_warnings("run", loaded.skipped);
+  // Without -o: out/<ROI>.stl, or the directory out/ for --roi all.
+  const std::string output =
+      output_given ? a.output : (loaded.all ? std::string("out") : "out/" + loaded.inputs[0].stem + ".stl");
+  const MeshFormat f = write_options.format;
+  const std::string extension = f == MeshFormat::Auto || f == MeshFormat::StlBinary || f == MeshFormat::StlAscii
+                                    ? ".stl"
+                                    : "." + std::string(to_string(f));
+  const auto outputs = roi_outputs(output, loaded, extension);
+  const auto labels = roi_outputs(a.labels_out, loaded, "_labels.vtp");
+  for (std::size_t i = 0; i < outputs.size(); ++i) {
+    if (f == MeshFormat::Auto) (void)format_from_extension(outputs[i]);
+    if (!labels[i].empty() && !format_keeps_contour_ids(format_from_extension(labels[i]))) {
+      throw InvalidInputError(labels[i].string() + ": labels need a .vtp or .ply file");
+    }
+  }
+  std::size_t failed = 0;
+  nlohmann::json rois = for_each_roi(
+      "run", a.input, loaded,
+      [&](const ContourInput& in, std::size_t i) {
+        return run_one(a, kind, in, outputs[i], labels[i], write_options, progress);
+      },
+      failed);
+  progress.finish();
+  if (a.json) print_json(roi_results_json("run", a.input, loaded, std::move(rois), failed, start));
+  if (failed > 0 && !a.json) std::cerr << "contourmesh run: " << failed << " of " << loaded.inputs.size() << " ROIs failed\n";
+  return failed > 0 ? kBadInput : kOk;
+}
+
+int run_any(const RunArgs& a, const CLI::App* cmd) {
+  const InputKind kind = a.input.empty() ? InputKind::Volume : input_kind(a.input);
+  if (kind == InputKind::Volume) {
+    reject_options(cmd, kContourOnly, "applies to contours (an RT Structure Set or a .json contour file)");
+    return run_volume(a);
+  }
+  reject_options(cmd, kVolumeOnly, "applies to CT volumes and phantoms, not to contours");
+  return run_contours(a, kind, cmd->count("--output") > 0);
+}
+
 }  // namespace
 
 void add_run_command(CLI::App& app) {
   auto args = std::make_shared<RunArgs>();
   CLI::App* cmd = app.add_subcommand(
-      "run", "The whole pipeline: volume (or a built-in phantom) -> contours -> mesh -> smoothing -> file");
-  CLI::Option* input =
-      cmd->add_option("input", args->input, "CT volume or DICOM directory; none: the built-in phantom --shape");
+      "run", "The whole pipeline: volume (or a built-in phantom, or drawn contours) -> contours -> mesh -> smoothing -> file");
+  CLI::Option* input = cmd->add_option("input", args->input,
+                  "CT volume or DICOM directory, RT Structure Set (with --roi) or contour file (.json); none: the "
+                  "built-in phantom --shape");
   cmd->add_option("-o,--output", args->output, "Output mesh (.stl .ply .vtp .obj); format from the extension unless --format")
       ->capture_default_str();
   cmd->add_option("--format", args->format, "Output format: auto | stl | stl-ascii | ply | vtp | obj")
@@ -386,12 +553,15 @@ void add_run_command(CLI::App& app) {
   cmd->add_option("--feature-radius", args->feature_radius,
                   "Phantom: vertices this close to a sharp edge form the feature region, mm")
       ->capture_default_str();
+  cmd->add_option("--sampling", args->sampling, "Contours: largest distance between contour points, mm (0: as drawn)")
+      ->default_str("1");
+  add_contour_options(cmd, args->contour);
   add_detection_options(cmd, args->detection);
   add_input_selection_options(cmd, args->selection, {threshold});
   add_common_options(cmd, args->common);
   add_max_vertices_option(cmd, args->max_vertices);
   cmd->add_flag("--json", args->json, "Print one JSON object on stdout instead of the summary");
-  cmd->callback([args] { set_exit_code(run_guarded("run", [&] { return run_command(*args); })); });
+  cmd->callback([args, cmd] { set_exit_code(run_guarded("run", [&] { return run_any(*args, cmd); })); });
 }
 
 }  // namespace contourmesh::cli

@@ -332,13 +332,15 @@ TEST_F(Cli, ProgressIsOneLinePerStageOffATerminalAndQuietSilencesIt) {
 TEST_F(Cli, HelpListsEveryOptionOfEverySubcommand) {
   const std::map<std::string, std::vector<std::string>> options = {
       {"phantom", {"--shape", "--spacing", "--noise", "--blur", "--seed", "--json"}},
-      {"reconstruct", {"--threshold", "--otsu", "--end-caps", "--keep", "--fill-holes", "--json", "--quiet", "--threads"}},
+      {"reconstruct", {"--threshold", "--otsu", "--end-caps", "--keep", "--fill-holes", "--json", "--quiet", "--threads",
+                       "--roi", "--contours-out", "--sampling", "--slab-thickness", "--align", "--single-slice"}},
+      {"contours", {"--list", "--roi", "--output", "--json", "--planarity-tolerance"}},
       {"detect", {"--gamma", "--delta", "--measure", "--in-slice", "--prefilter", "--window", "--corner-spread", "--slice-axis",
                   "--json"}},
       {"smooth", {"--method", "--iterations", "--gamma", "--delta", "--max-levels", "--keep-adaptive", "--labels-out",
                   "--in-slice", "--json", "--quiet", "--threads"}},
       {"run", {"--shape", "--noise", "--method", "--iterations", "--threshold", "--end-caps", "--in-slice", "--measure",
-               "--json", "--quiet", "--threads"}},
+               "--json", "--quiet", "--threads", "--roi", "--sampling", "--slab-thickness"}},
   };
   for (const auto& [command, names] : options) {
     const CliRun r = run_cli(command + " --help", dir_);

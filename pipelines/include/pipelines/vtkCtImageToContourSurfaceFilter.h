@@ -1,4 +1,4 @@
-// vtkContourStackToSurfaceFilter: libreconstruct's chain (segmentation -> contours -> tiling,
+// vtkCtImageToContourSurfaceFilter: libreconstruct's chain (segmentation -> contours -> tiling,
 // reconstruct()) as a VTK filter: a CT volume in, a closed tiled surface with contour ids out. Gives
 // the same mesh as reconstruct() and as `contourmesh reconstruct` with the same options.
 #pragma once
@@ -25,10 +25,10 @@
 /// AbortExecute (vtkAlgorithm::CheckAbort on VTK >= 9.3), checked once per slice: an aborted run
 /// leaves the output empty and returns 1 (not an error); call Modified() before the next Update() to
 /// run again.
-class vtkContourStackToSurfaceFilter : public vtkPolyDataAlgorithm {
+class vtkCtImageToContourSurfaceFilter : public vtkPolyDataAlgorithm {
  public:
-  static vtkContourStackToSurfaceFilter* New();
-  vtkTypeMacro(vtkContourStackToSurfaceFilter, vtkPolyDataAlgorithm)  // no ";": the macro ends with "public:" (-Wpedantic)
+  static vtkCtImageToContourSurfaceFilter* New();
+  vtkTypeMacro(vtkCtImageToContourSurfaceFilter, vtkPolyDataAlgorithm)  // no ";": the macro ends with "public:" (-Wpedantic)
   void PrintSelf(ostream& os, vtkIndent indent) override;
 
   enum ThresholdMethodType {
@@ -158,8 +158,8 @@ class vtkContourStackToSurfaceFilter : public vtkPolyDataAlgorithm {
   ///@}
 
  protected:
-  vtkContourStackToSurfaceFilter();
-  ~vtkContourStackToSurfaceFilter() override;
+  vtkCtImageToContourSurfaceFilter();
+  ~vtkCtImageToContourSurfaceFilter() override;
 
   int FillInputPortInformation(int port, vtkInformation* info) override;
   int RequestUpdateExtent(vtkInformation* request, vtkInformationVector** inputVector,
@@ -186,8 +186,8 @@ class vtkContourStackToSurfaceFilter : public vtkPolyDataAlgorithm {
   char* ContourIndexArrayName = nullptr;
 
  private:
-  vtkContourStackToSurfaceFilter(const vtkContourStackToSurfaceFilter&) = delete;
-  void operator=(const vtkContourStackToSurfaceFilter&) = delete;
+  vtkCtImageToContourSurfaceFilter(const vtkCtImageToContourSurfaceFilter&) = delete;
+  void operator=(const vtkCtImageToContourSurfaceFilter&) = delete;
 
   bool AbortRequested();
 };
