@@ -222,7 +222,7 @@ TEST_F(BadInput, TruncatedStlBinaryAndAscii) {
 
   const fs::path ascii = dir_ / "cut_ascii.stl";
   write_mesh(stack_, ascii, {MeshFormat::StlAscii, {}, {}});
-  cut(ascii, read_bytes(ascii).size() / 2);
+  cut(ascii, read_bytes(ascii).find('\n', read_bytes(ascii).size() / 2) + 1);  // after a whole line
   expect_rejected(run("smooth " + ascii.string() + " -o " + out.string()),
                   {ascii.string(), "the ASCII STL ends inside a solid", "truncated file?"});
   // A malformed line is named by its number.
