@@ -14,6 +14,9 @@ packages=(
   xvfb xauth libgl1-mesa-dri          # offscreen renders of `contourmesh compare` (VTK draws through X)
   clang libclang-rt-dev llvm          # fuzz targets (scripts/run_fuzzers.sh): clang, libFuzzer, llvm-symbolizer
   strace                              # tests: the atomic writes fsync before they rename (skipped without it)
+  python3-dev pybind11-dev python3-numpy python3-pytest python3-vtk9  # the Python module and its tests
+  libxml2-utils                       # xmllint: the Slicer module description against its schema
+  snakemake                           # the cohort workflow (pipelines/workflows/cohort)
 )
 
 missing=()

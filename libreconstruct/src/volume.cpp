@@ -1,6 +1,7 @@
 #include "reconstruct/volume.h"
 
 #include "detail/captured_output.h"
+#include "detail/image_io.h"
 #include "detail/dicom_series.h"
 #include "detail/volume_file_checks.h"
 
@@ -12,6 +13,8 @@
 #include <itkImageFileReader.h>
 #include <itkImageFileWriter.h>
 #include <itkImageIOFactory.h>
+#include <itkGDCMSeriesFileNames.h>
+#include <itkMetaDataObject.h>
 #include <itkMetaImageIO.h>
 #include <itkMetaImageIOFactory.h>
 #include <itkNiftiImageIO.h>
@@ -37,13 +40,9 @@
 
 namespace contourmesh {
 
-namespace fs = std::filesystem;
+namespace detail {
 
-namespace {
-
-// The IO factories are registered here, once, so that reading does not depend on UseITK.cmake's
-// generated registration code.
-void register_io_factories() {
+void register_image_io_factories() {
   static std::once_flag once;
   std::call_once(once, [] {
     itk::MetaImageIOFactory::RegisterOneFactory();
@@ -52,6 +51,16 @@ void register_io_factories() {
     itk::GDCMImageIOFactory::RegisterOneFactory();
   });
 }
+
+}  // namespace detail
+
+namespace fs = std::filesystem;
+
+namespace {
+
+// The IO factories are registered once, so that reading does not depend on UseITK.cmake's generated
+// registration code (the label-map reader shares them).
+void register_io_factories() { detail::register_image_io_factories(); }
 
 // ITK's description of an exception, on one line (its first meaningful line).
 std::string describe(const itk::ExceptionObject& e) {
@@ -222,13 +231,16 @@ CtImage::Pointer read_volume(const fs::path& path, const VolumeReadOptions& opti
   std::error_code ec;
   const fs::file_status status = fs::status(path, ec);
   if (ec || !fs::exists(status)) throw InvalidInputError(name + ": no such file or directory");
+  if (!options.series_uid.empty() && !fs::is_directory(status)) {
+    throw InvalidInputError(name + ": a DICOM series UID applies to a directory of DICOM files, not to a file");
+  }
   std::vector<std::string> warnings;
   CtImage::Pointer image;
   {
     detail::CapturedOutput captured(options.library_messages == LibraryMessages::Capture);
     if (fs::is_directory(status)) {
       // ITK's own remarks on a series (its uniformity warning) are superseded by the checks made here.
-      image = detail::read_dicom_series(path, name, options.uneven_slices, warnings);
+      image = detail::read_dicom_series(path, name, options.series_uid, options.uneven_slices, warnings);
     } else {
       image = read_image_file(path, name, captured);
       if (const std::string said = detail::first_line(captured.text()); !said.empty()) {
@@ -243,6 +255,51 @@ CtImage::Pointer read_volume(const fs::path& path, const VolumeReadOptions& opti
     for (const std::string& w : warnings) options.on_warning(w);
   }
   return image;
+}
+
+std::vector<DicomSeries> list_dicom_series(const fs::path& directory) {
+  register_io_factories();
+  const std::string name = directory.string();
+  std::error_code ec;
+  if (!fs::is_directory(directory, ec)) throw InvalidInputError(name + ": not a directory");
+  auto names = itk::GDCMSeriesFileNames::New();
+  names->SetUseSeriesDetails(false);  // as read_volume: one entry per Series Instance UID
+  names->SetDirectory(name);
+  std::vector<std::string> uids;
+  try {
+    uids = names->GetSeriesUIDs();
+  } catch (const itk::ExceptionObject& e) {
+    throw InvalidInputError(name + ": cannot scan the directory for DICOM files: " + describe(e));
+  }
+  std::vector<DicomSeries> series;
+  for (const std::string& uid : uids) {
+    DicomSeries s;
+    s.uid = uid;
+    const std::vector<std::string> files = names->GetFileNames(uid);
+    s.files = files.size();
+    if (!files.empty()) {
+      auto io = itk::GDCMImageIO::New();
+      io->SetFileName(files.front());
+      try {
+        io->ReadImageInformation();
+        const auto tag = [&](const char* key) {
+          std::string value;
+          itk::ExposeMetaData<std::string>(io->GetMetaDataDictionary(), key, value);
+          while (!value.empty() && (std::isspace(static_cast<unsigned char>(value.back())) || value.back() == '\0')) {
+            value.pop_back();
+          }
+          return value;
+        };
+        s.number = tag("0020|0011");
+        s.modality = tag("0008|0060");
+        s.description = tag("0008|103e");
+      } catch (const itk::ExceptionObject&) {
+        // The listing still names the series; reading it reports the problem.
+      }
+    }
+    series.push_back(std::move(s));
+  }
+  return series;
 }
 
 void check_volume_geometry(const CtImage& image, const std::string& name) {

@@ -2,6 +2,7 @@
 // or drawn contours (an RT Structure Set with --roi, a contour-stack file) -> tiled mesh.
 #include "cli_common.h"
 #include "contour_input.h"
+#include "input_selection.h"
 #include "progress_display.h"
 #include "volume_options.h"
 
@@ -10,6 +11,7 @@
 #include <pipelines/mesh_io.h>
 #include <reconstruct/contour_deviation.h>
 #include <reconstruct/contour_reconstruction.h>
+#include <reconstruct/label_map.h>
 #include <reconstruct/reconstruction.h>
 #include <reconstruct/threads.h>
 #include <reconstruct/volume.h>
@@ -51,12 +53,13 @@ struct ReconstructArgs {
   bool json = false;
   ContourArgs contour;
   VolumeArgs volume;
+  InputSelectionArgs selection;
   CommonArgs common;
 };
 
 // Options of one route, refused on the other's input.
-const std::vector<std::string> kVolumeOptions{"--threshold", "--otsu", "--smoothing", "--keep", "--min-area",
-                                              "--fill-holes"};
+const std::vector<std::string> kVolumeOptions{"--threshold", "--otsu",   "--smoothing", "--keep",       "--min-area",
+                                              "--fill-holes", "--label", "--labels",    "--series",     "--list-series"};
 const std::vector<std::string> kContourOptions{"--roi", "--align", "--single-slice", "--slab-thickness",
                                                "--planarity-tolerance", "--sampling-tolerance"};
 
@@ -73,8 +76,82 @@ ImageSmoothing parse_smoothing(const std::string& s) {
   throw InvalidInputError("--smoothing must be none, median or anisotropic, got '" + s + "'");
 }
 
+// --label / --labels: one mesh per label of a label map or a 3D Slicer segmentation; every output is
+// checked before any work.
+int run_reconstruct_labels(const ReconstructArgs& a, const ReconstructionOptions& options,
+                           const MeshWriteOptions& write_options, std::chrono::steady_clock::time_point start) {
+  apply_common_options(a.common);
+  ProgressDisplay progress("reconstruct", a.common.quiet);
+  progress.stage("read");
+  const SelectedLabels selected = read_selected_labels(a.input, a.selection);
+  for (const Label& label : selected.labels) check_output_path(label_output_path(a.output, label, a.selection));
+  nlohmann::json meshes = nlohmann::json::array();
+  for (const Label& label : selected.labels) {
+    Reconstruction r;
+    try {
+      r = reconstruct_label(selected.map, label, options, progress.callback());
+    } catch (const LimitError& e) {
+      throw LimitError(a.input + ": " + e.what());
+    } catch (const InvalidInputError& e) {
+      throw InvalidInputError(a.input + ": " + e.what());
+    }
+    const std::filesystem::path output = label_output_path(a.output, label, a.selection);
+    progress.stage("write");
+    write_mesh(r.mesh, output, write_options);
+    const TopologySummary topo = summarize_topology(r.mesh);
+    nlohmann::json j;
+    j["label"] = label.display_name();
+    j["label_value"] = label.value;
+    j["label_layer"] = label.layer;
+    j["label_voxels"] = label.voxels;
+    j["output"] = output.string();
+    j["slices_with_contours"] = r.report.slices_with_contours;
+    j["contours"] = r.report.contours;
+    j["hole_contours"] = r.report.hole_contours;
+    j["branchings"] = r.report.tiling.branchings;
+    j["caps"] = r.report.tiling.caps;
+    j["vertices"] = r.mesh.num_vertices();
+    j["faces"] = r.mesh.num_faces();
+    j["components"] = topo.components;
+    j["is_closed"] = topo.closed;
+    j["is_manifold"] = topo.manifold;
+    j["euler_characteristic"] = topo.euler_characteristic;
+    j["volume"] = enclosed_volume(r.mesh);
+    const auto spacing = selected.map.layers[static_cast<std::size_t>(label.layer)]->GetSpacing();
+    j["voxel_volume"] = static_cast<double>(label.voxels) * spacing[0] * spacing[1] * spacing[2];
+    j["seconds_segment"] = r.report.seconds_segment;
+    j["seconds_tile"] = r.report.seconds_tile;
+    meshes.push_back(j);
+  }
+  progress.finish();
+  if (a.json) {
+    print_json({{"command", "reconstruct"}, {"input", a.input}, {"labels", meshes}, {"seconds", seconds_since(start)}});
+    return kOk;
+  }
+  if (a.common.quiet) return kOk;
+  std::cout << "reconstructed " << meshes.size() << " label" << (meshes.size() == 1 ? "" : "s") << " of " << a.input
+            << "\n";
+  for (const nlohmann::json& j : meshes) {
+    const int components = j["components"].get<int>();
+    std::cout << std::fixed << std::setprecision(1) << "label " << j["label"].get<std::string>() << " (value "
+              << j["label_value"].get<int>() << ", " << j["label_voxels"].get<std::size_t>() << " voxels, "
+              << j["voxel_volume"].get<double>() << " mm^3)\n"
+              << "  mesh       " << j["vertices"].get<Index>() << " vertices, " << j["faces"].get<Index>()
+              << " triangles, " << components << " component" << (components == 1 ? "" : "s") << ", "
+              << (j["is_closed"].get<bool>() ? "closed" : "OPEN") << ", volume " << j["volume"].get<double>()
+              << " mm^3\n"
+              << "  wrote      " << j["output"].get<std::string>() << "\n";
+  }
+  return kOk;
+}
+
 int run_reconstruct(const ReconstructArgs& a) {
   const auto start = std::chrono::steady_clock::now();
+  if (a.selection.list_series) return print_series_list(a.input, a.json);
+  if (a.output.empty()) {
+    std::cerr << "contourmesh reconstruct: --output is required\n";
+    return kUsage;
+  }
   ReconstructionOptions options;
   auto& seg = options.segmentation;
   seg.threshold = a.threshold;
@@ -93,6 +170,11 @@ int run_reconstruct(const ReconstructArgs& a) {
   MeshWriteOptions write_options;
   write_options.format = parse_mesh_format(a.format);
   if (write_options.format == MeshFormat::Auto) (void)format_from_extension(a.output);  // fail before the work
+  options.tiling.limits.max_vertices = a.max_vertices;
+  if (labels_requested(a.selection)) {
+    if (!a.contours_out.empty()) throw InvalidInputError("--contours-out is not available with --label or --labels");
+    return run_reconstruct_labels(a, options, write_options, start);
+  }
   check_output_path(a.output);
   if (!a.contours_out.empty()) {
     if (!is_contour_stack_path(a.contours_out)) throw InvalidInputError(a.contours_out + ": contour files end in .json");
@@ -104,7 +186,9 @@ int run_reconstruct(const ReconstructArgs& a) {
   apply_common_options(a.common);
   ProgressDisplay progress("reconstruct", a.common.quiet);
   progress.stage("read");
-  const CtImage::Pointer image = read_volume(a.input, volume_read_options(a.volume, "reconstruct"));
+  VolumeReadOptions read = volume_read_options(a.volume, "reconstruct");
+  read.series_uid = a.selection.series;
+  const CtImage::Pointer image = read_volume(a.input, read);
   Reconstruction r;
   try {
     r = reconstruct(*image, options, progress.callback());
@@ -141,6 +225,7 @@ int run_reconstruct(const ReconstructArgs& a) {
     j["command"] = "reconstruct";
     j["input"] = a.input;
     j["output"] = a.output;
+    if (!a.selection.series.empty()) j["series"] = a.selection.series;
     j["size"] = {size[0], size[1], size[2]};
     j["spacing"] = {spacing[0], spacing[1], spacing[2]};
     j["threshold"] = r.report.threshold;
@@ -318,6 +403,10 @@ int run_reconstruct_any(const ReconstructArgs& a, const CLI::App* cmd) {
     return run_reconstruct(a);
   }
   reject_options(cmd, kVolumeOptions, "applies to CT volumes, not to contours");
+  if (a.output.empty()) {
+    std::cerr << "contourmesh reconstruct: --output is required\n";
+    return kUsage;
+  }
   return run_reconstruct_contours(a, kind);
 }
 
@@ -329,13 +418,15 @@ void add_reconstruct_command(CLI::App& app) {
       "reconstruct", "Segment a CT volume, or take drawn contours, and tile the contours into a closed mesh");
   cmd->add_option("input", args->input,
                   "CT volume (.mha .mhd .nrrd .nii .nii.gz), DICOM series directory, RT Structure Set (with "
-                  "--roi) or contour file (.json)")
+                  "--roi), contour file (.json), or with --label(s) a label map or 3D Slicer segmentation (.seg.nrrd)")
       ->required();
   cmd->add_option("-o,--output", args->output,
-                  "Output mesh (.vtp or .ply keep the contour ids); with --roi all a directory, or a path with {roi}")
-      ->required();
-  cmd->add_option("--threshold", args->threshold, "Foreground threshold, HU (bone: 300)")->capture_default_str();
-  cmd->add_flag("--otsu", args->otsu, "Use Otsu's threshold instead of --threshold");
+                  "Output mesh (.vtp or .ply keep the contour ids); with --roi all a directory, or a path with {roi}; "
+                  "with --labels a path whose stem gets _<label>, or with {label}");
+  CLI::Option* threshold =
+      cmd->add_option("--threshold", args->threshold, "Foreground threshold, HU (bone: 300)")->capture_default_str();
+  CLI::Option* otsu = cmd->add_flag("--otsu", args->otsu, "Use Otsu's threshold instead of --threshold");
+  add_input_selection_options(cmd, args->selection, {threshold, otsu});
   cmd->add_option("--sampling", args->sampling,
                   "Distance between contour points, mm (CT default 0: the pixel spacing, at most 1 mm; contours "
                   "default 1, 0: as drawn)");

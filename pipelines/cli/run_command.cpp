@@ -4,6 +4,7 @@
 #include "cli_common.h"
 #include "contour_input.h"
 #include "feature_options.h"
+#include "input_selection.h"
 #include "progress_display.h"
 #include "volume_options.h"
 
@@ -11,6 +12,7 @@
 #include <pipelines/mesh_io.h>
 #include <reconstruct/contour_deviation.h>
 #include <reconstruct/contour_reconstruction.h>
+#include <reconstruct/label_map.h>
 #include <reconstruct/phantom.h>
 #include <reconstruct/reconstruction.h>
 #include <reconstruct/threads.h>
@@ -64,6 +66,7 @@ struct RunArgs {
   FeatureArgs detection;
   ContourArgs contour;
   VolumeArgs volume;
+  InputSelectionArgs selection;
   CommonArgs common;
 };
 
@@ -165,22 +168,32 @@ std::vector<Index> vertices_near_features(const Phantom& phantom, const Eigen::M
   return near;
 }
 
-const std::vector<std::string> kVolumeOnly{"--shape", "--spacing", "--noise", "--contour-noise", "--blur", "--seed",
-                                           "--threshold", "--feature-radius"};
+const std::vector<std::string> kVolumeOnly{"--shape",     "--spacing", "--noise",  "--contour-noise",
+                                           "--blur",      "--seed",    "--threshold", "--feature-radius",
+                                           "--label",     "--labels",  "--series", "--list-series"};
+
+// One label of a label map that `run` meshes instead of thresholding the input.
+struct LabelJob {
+  const LabelMap* map = nullptr;
+  Label label;
+};
 const std::vector<std::string> kContourOnly{"--roi", "--align", "--single-slice", "--slab-thickness",
                                             "--planarity-tolerance", "--sampling-tolerance", "--sampling"};
 
-int run_run(const RunArgs& a) {
+// The chain on one volume, or on one label when `job` is set, written to `output` (and `labels_out`).
+// With `collect`, the JSON summary is appended to it instead of being printed.
+int run_run(const RunArgs& a, const std::string& output, const std::string& labels_out, const LabelJob* job,
+            nlohmann::json* collect) {
   const auto start = std::chrono::steady_clock::now();
   if (a.method != "paper") (void)parse_smoothing_method(a.method);  // fail before the work
   // Fail on bad options and output paths before the work.
   MeshWriteOptions write_options;
   write_options.format = parse_mesh_format(a.format);
-  if (write_options.format == MeshFormat::Auto) (void)format_from_extension(a.output);
-  if (!a.labels_out.empty()) {
+  if (write_options.format == MeshFormat::Auto) (void)format_from_extension(output);
+  if (!labels_out.empty()) {
     if (a.method != "paper") throw InvalidInputError("--labels-out needs --method paper (the labels come from its detection)");
-    if (!format_keeps_contour_ids(format_from_extension(a.labels_out))) {
-      throw InvalidInputError(a.labels_out + ": labels need a .vtp or .ply file");
+    if (!format_keeps_contour_ids(format_from_extension(labels_out))) {
+      throw InvalidInputError(labels_out + ": labels need a .vtp or .ply file");
     }
   }
   if (!(a.feature_radius > 0.0)) throw InvalidInputError("--feature-radius must be > 0 mm");
@@ -188,18 +201,18 @@ int run_run(const RunArgs& a) {
   apply_common_options(a.common);
   ProgressDisplay progress("run", a.common.quiet);
   // The default output goes to out/: create the directory, then check it can take the file.
-  const std::filesystem::path out(a.output);
+  const std::filesystem::path out(output);
   if (!out.parent_path().empty() && !std::filesystem::exists(out.parent_path())) {
     std::error_code ec;
     std::filesystem::create_directories(out.parent_path(), ec);
     if (ec) {
-      throw InvalidInputError(a.output + ": cannot create the directory '" + out.parent_path().string() +
+      throw InvalidInputError(output + ": cannot create the directory '" + out.parent_path().string() +
                               "': " + ec.message());
     }
   }
   check_output_path(out);
-  if (!a.labels_out.empty()) check_output_path(a.labels_out);
-  check_distinct_outputs({{"-o", a.output}, {"--labels-out", a.labels_out}});
+  if (!labels_out.empty()) check_output_path(labels_out);
+  check_distinct_outputs({{"-o", output}, {"--labels-out", labels_out}});
 
   // 1. Read or generate the volume.
   auto t = std::chrono::steady_clock::now();
@@ -221,8 +234,13 @@ int run_run(const RunArgs& a) {
     if (vo.contour_noise > 0.0) s << vo.contour_noise << " mm contour noise, ";
     s << vo.blur << " mm blur)";
     source = s.str();
+  } else if (job) {
+    image = label_mask(*job->map, job->label);
+    source = a.input + " label '" + job->label.display_name() + "'";
   } else {
-    image = read_volume(a.input, volume_read_options(a.volume, "run"));
+    VolumeReadOptions read = volume_read_options(a.volume, "run");
+    read.series_uid = a.selection.series;
+    image = read_volume(a.input, read);
     source = a.input;
   }
   const double seconds_volume = seconds_since(t);
@@ -235,6 +253,7 @@ int run_run(const RunArgs& a) {
   const PhantomVolumeOptions phantom_defaults;
   ro.segmentation.threshold =
       a.threshold.value_or(phantom ? 0.5 * (phantom_defaults.bone_hu + phantom_defaults.tissue_hu) : 300.0);
+  if (job) ro.segmentation.threshold = 0.5 * kLabelMaskInside;  // the label's voxels (label_map.h)
   ro.tiling.limits.max_vertices = a.max_vertices;
   ro.segmentation.limits.max_vertices = a.max_vertices;
   Reconstruction rec;
@@ -261,11 +280,11 @@ int run_run(const RunArgs& a) {
   progress.stage("write");
   write_options.progress = progress.callback();
   write_mesh(result, out, write_options);
-  if (paper && !a.labels_out.empty()) {
+  if (paper && !labels_out.empty()) {
     MeshWriteOptions labels;
     labels.point_scalars = detection_arrays(paper->detection);
     labels.progress = progress.callback();
-    write_mesh(mesh, a.labels_out, labels);
+    write_mesh(mesh, labels_out, labels);
   }
   progress.finish();
   const double seconds_write = seconds_since(t);
@@ -276,8 +295,8 @@ int run_run(const RunArgs& a) {
   nlohmann::json j;
   j["command"] = "run";
   j["source"] = source;
-  j["output"] = a.output;
-  if (!a.labels_out.empty()) j["labels_out"] = a.labels_out;
+  j["output"] = output;
+  if (!labels_out.empty()) j["labels_out"] = labels_out;
   j["method"] = a.method;
   j["slices"] = rec.report.slices;
   j["contours"] = rec.report.contours;
@@ -311,6 +330,15 @@ int run_run(const RunArgs& a) {
     j["feature_vertices"] = feature_vertices.size();
   }
   j["seconds"] = seconds_since(start);
+  if (job) {
+    j["label"] = job->label.display_name();
+    j["label_value"] = job->label.value;
+    j["label_voxels"] = job->label.voxels;
+  }
+  if (collect) {
+    collect->push_back(j);
+    if (a.json) return kOk;
+  }
   if (a.json) {
     print_json(j);
     return kOk;
@@ -338,7 +366,30 @@ int run_run(const RunArgs& a) {
   std::cout << std::setprecision(2) << "  seconds     volume " << seconds_volume << ", segment "
             << rec.report.seconds_segment << ", tile " << rec.report.seconds_tile << ", smooth " << seconds_smooth
             << ", write " << seconds_write << ", total " << seconds_since(start) << "\n"
-            << "  wrote       " << a.output << (a.labels_out.empty() ? "" : " and " + a.labels_out) << "\n";
+            << "  wrote       " << output << (labels_out.empty() ? "" : " and " + labels_out) << "\n";
+  return kOk;
+}
+
+// `run` on a volume: --list-series, one label after the other with --label / --labels, or the volume.
+int run_volume(const RunArgs& a) {
+  if (a.selection.list_series) return print_series_list(a.input, a.json);
+  if (!labels_requested(a.selection)) return run_run(a, a.output, a.labels_out, nullptr, nullptr);
+  if (a.input.empty()) throw InvalidInputError("--label and --labels need an input label map");
+  const auto start = std::chrono::steady_clock::now();
+  const SelectedLabels selected = read_selected_labels(a.input, a.selection);
+  for (const Label& label : selected.labels) {
+    check_output_path(label_output_path(a.output, label, a.selection));
+    if (!a.labels_out.empty()) check_output_path(label_output_path(a.labels_out, label, a.selection));
+  }
+  nlohmann::json meshes = nlohmann::json::array();
+  for (const Label& label : selected.labels) {
+    const LabelJob job{&selected.map, label};
+    const std::string labels_out =
+        a.labels_out.empty() ? std::string() : label_output_path(a.labels_out, label, a.selection).string();
+    const int code = run_run(a, label_output_path(a.output, label, a.selection).string(), labels_out, &job, &meshes);
+    if (code != kOk) return code;
+  }
+  if (a.json) print_json({{"command", "run"}, {"input", a.input}, {"labels", meshes}, {"seconds", seconds_since(start)}});
   return kOk;
 }
 
@@ -476,7 +527,7 @@ int run_any(const RunArgs& a, const CLI::App* cmd) {
   const InputKind kind = a.input.empty() ? InputKind::Volume : input_kind(a.input);
   if (kind == InputKind::Volume) {
     reject_options(cmd, kContourOnly, "applies to contours (an RT Structure Set or a .json contour file)");
-    return run_run(a);
+    return run_volume(a);
   }
   reject_options(cmd, kVolumeOnly, "applies to CT volumes and phantoms, not to contours");
   return run_contours(a, kind, cmd->count("--output") > 0);
@@ -504,7 +555,7 @@ void add_run_command(CLI::App& app) {
   add_contour_noise_option(cmd, args->contour_noise)->excludes(input);
   cmd->add_option("--blur", args->blur, "Phantom Gaussian blur, mm")->capture_default_str();
   cmd->add_option("--seed", args->seed, "Phantom noise seed")->capture_default_str();
-  cmd->add_option("--threshold", args->threshold,
+  CLI::Option* threshold = cmd->add_option("--threshold", args->threshold,
                   "Bone threshold, HU (default: 300 for an input volume; 520 for a phantom, halfway between its "
                   "soft tissue and bone)");
   cmd->add_option("--end-caps", args->end_caps, "Where objects end: half-spacing | end-slice")->capture_default_str();
@@ -518,6 +569,7 @@ void add_run_command(CLI::App& app) {
   add_contour_options(cmd, args->contour);
   add_detection_options(cmd, args->detection);
   add_volume_options(cmd, args->volume);
+  add_input_selection_options(cmd, args->selection, {threshold});
   add_common_options(cmd, args->common);
   add_max_vertices_option(cmd, args->max_vertices);
   cmd->add_flag("--json", args->json, "Print one JSON object on stdout instead of the summary");

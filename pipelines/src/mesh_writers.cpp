@@ -1,5 +1,7 @@
 #include "mesh_writers.h"
 
+#include "pipelines/mesh_io.h"
+
 #include <smooth/errors.h>
 
 #include <algorithm>
@@ -112,12 +114,12 @@ void write_stl(const std::filesystem::path& file, const Mesh& mesh, bool binary)
   }
   CheckedFile out(file);
   if (binary) {
-    std::string header = "binary STL written by ContourMesh";
+    std::string header = kStlHeader;  // carries SPACE=LPS, which 3D Slicer reads
     header.resize(80, ' ');
     out.put(header);
     out.put_binary(static_cast<std::uint32_t>(mesh.triangles.size()));
   } else {
-    out.put("solid contourmesh\n");
+    out.put(std::string("solid ") + kStlHeader + "\n");
   }
   for (const Triangle& t : mesh.triangles) {
     const std::array<std::array<float, 3>, 3> c = {points[t[0]], points[t[1]], points[t[2]]};
@@ -144,7 +146,7 @@ void write_stl(const std::filesystem::path& file, const Mesh& mesh, bool binary)
     }
     out.put("  endloop\n endfacet\n");
   }
-  if (!binary) out.put("endsolid contourmesh\n");
+  if (!binary) out.put(std::string("endsolid ") + kStlHeader + "\n");
   out.close();
 }
 

@@ -226,7 +226,7 @@ TEST_F(BadInput, TruncatedStlBinaryAndAscii) {
 
   const fs::path ascii = dir_ / "cut_ascii.stl";
   write_mesh(stack_, ascii, {MeshFormat::StlAscii, {}, {}, {}});
-  cut(ascii, read_bytes(ascii).size() / 2);
+  cut(ascii, read_bytes(ascii).find('\n', read_bytes(ascii).size() / 2) + 1);  // after a whole line
   expect_rejected(run("smooth " + ascii.string() + " -o " + out.string()),
                   {ascii.string(), "the ASCII STL ends inside a solid", "truncated file?"});
   // A malformed line is named by its number.
@@ -586,8 +586,25 @@ TEST_F(BadInput, DicomDirectoryWithTwoSeries) {
   write_dicom_series(two, "1.2.826.0.1.3680043.2.1125.82", 3);
   expect_rejected(run("reconstruct " + two.string() + " -o " + out.string()),
                   {two.string(), "holds 2 DICOM series", "1.2.826.0.1.3680043.2.1125.81",
-                   "1.2.826.0.1.3680043.2.1125.82", "put one series per directory"});
+                   "1.2.826.0.1.3680043.2.1125.82", "pick one with --series UID"});
   expect_rejected(run("run " + two.string() + " -o " + out.string()), {"holds 2 DICOM series"});
+  expect_nothing_written(out);
+  // --list-series names both; --series reads the one asked for (4 slices, not 3).
+  const CliRun list = run("reconstruct " + two.string() + " --list-series");
+  ASSERT_EQ(list.code, 0) << list.err;
+  EXPECT_NE(list.out.find("1.2.826.0.1.3680043.2.1125.81"), std::string::npos) << list.out;
+  EXPECT_NE(list.out.find("1.2.826.0.1.3680043.2.1125.82"), std::string::npos) << list.out;
+  const nlohmann::json listed = json_of(run("reconstruct " + two.string() + " --list-series --json"));
+  ASSERT_EQ(listed["series"].size(), 2u);
+  EXPECT_EQ(listed["series"][1]["files"], 3);
+  EXPECT_EQ(listed["series"][0]["modality"], "CT");
+  const CliRun picked =
+      run("reconstruct " + two.string() + " --series 1.2.826.0.1.3680043.2.1125.81 -o " + out.string() + " --json");
+  ASSERT_EQ(picked.code, 0) << picked.err;
+  EXPECT_EQ(json_of(picked)["slices"], 4);
+  fs::remove(out);
+  expect_rejected(run("reconstruct " + two.string() + " --series 1.2.3 -o " + out.string()),
+                  {"no DICOM series 1.2.3 in the directory"});
   expect_nothing_written(out);
 }
 

@@ -5,9 +5,11 @@
 
 #include <smooth/progress.h>
 
+#include <cstddef>
 #include <filesystem>
 #include <functional>
 #include <string>
+#include <vector>
 
 namespace contourmesh {
 
@@ -41,6 +43,9 @@ enum class LibraryMessages {
 };
 
 struct VolumeReadOptions {
+  /// For a DICOM directory: the Series Instance UID (0020,000E) of the series to read; empty: the
+  /// directory must hold exactly one series. Must be empty for a file.
+  std::string series_uid;
   UnevenSlices uneven_slices = UnevenSlices::Refuse;
   NonFiniteVoxels non_finite = NonFiniteVoxels::Refuse;
   LibraryMessages library_messages = LibraryMessages::Capture;
@@ -54,7 +59,8 @@ struct VolumeReadOptions {
 /// rescale slope/intercept applied, so values are HU), and checks it against what it promised.
 /// Throws InvalidInputError naming the path (one line) for:
 /// - a missing, empty or unreadable file, an image that is not 3-D (a single 2-D slice), an empty
-///   volume, a directory without a DICOM series or with several (their UIDs are listed);
+///   volume, a directory without a DICOM series, with several and no `series_uid`, or without the one
+///   asked for (their UIDs are listed), a `series_uid` given for a file;
 /// - data shorter than the header promises, a compressed stream that is cut or corrupt (MetaImage,
 ///   NIfTI .nii.gz, NRRD gzip), a spacing that is zero, negative or not finite, an origin that is not
 ///   finite, a direction matrix that is singular or not orthonormal (a sheared grid, e.g. a gantry
@@ -66,6 +72,20 @@ struct VolumeReadOptions {
 /// LimitError when the volume's estimated working memory (kVolumeBytesPerVoxel) exceeds the memory
 /// available.
 [[nodiscard]] CtImage::Pointer read_volume(const std::filesystem::path& path, const VolumeReadOptions& options = {});
+
+/// One DICOM series of a directory.
+struct DicomSeries {
+  std::string uid;          ///< Series Instance UID (0020,000E)
+  std::string number;       ///< Series Number (0020,0011), as stored; may be empty
+  std::string modality;     ///< Modality (0008,0060): "CT", "MR", ...
+  std::string description;  ///< Series Description (0008,103E); may be empty
+  std::size_t files = 0;    ///< files (slices) of the series
+};
+
+/// The DICOM series of a directory (files directly in it), in the order of their UIDs, with the tags of
+/// each series' first file. Throws InvalidInputError naming the path when it is not a directory or
+/// cannot be scanned; an empty list when it holds no DICOM file.
+[[nodiscard]] std::vector<DicomSeries> list_dicom_series(const std::filesystem::path& directory);
 
 /// Checks a volume's values: NaN and infinite voxels are refused or replaced per `policy` (the warning,
 /// if any, goes to `on_warning`, starting with `name`). Called by read_volume; for images from

@@ -201,7 +201,8 @@ namespace {
 
 // The files of the one series in `directory`; a DICOM file the scan left out did not decode, and a
 // slice would silently be missing: an error.
-std::vector<std::string> series_files(const fs::path& directory, const std::string& shown) {
+std::vector<std::string> series_files(const fs::path& directory, const std::string& shown,
+                                      const std::string& series_uid) {
   auto names = itk::GDCMSeriesFileNames::New();
   names->SetUseSeriesDetails(false);  // group by Series Instance UID only, so the UIDs listed are real
   names->SetDirectory(directory.string());
@@ -212,13 +213,17 @@ std::vector<std::string> series_files(const fs::path& directory, const std::stri
     throw InvalidInputError(shown + ": cannot scan the directory for DICOM files: " + e.GetDescription());
   }
   if (uids.empty()) throw InvalidInputError(shown + ": a directory without a DICOM series");
-  if (uids.size() > 1) {
-    std::string list;
-    for (const std::string& uid : uids) list += (list.empty() ? "" : ", ") + uid;
+  std::string list;
+  for (const std::string& uid : uids) list += (list.empty() ? "" : ", ") + uid;
+  if (series_uid.empty() && uids.size() > 1) {
     throw InvalidInputError(shown + ": the directory holds " + std::to_string(uids.size()) + " DICOM series (" + list +
-                            "); put one series per directory");
+                            "); pick one with --series UID (--list-series describes them)");
   }
-  std::vector<std::string> files = names->GetFileNames(uids.front());
+  if (!series_uid.empty() && std::find(uids.begin(), uids.end(), series_uid) == uids.end()) {
+    throw InvalidInputError(shown + ": no DICOM series " + series_uid + " in the directory (it holds " + list + ")");
+  }
+  const std::string chosen = series_uid.empty() ? uids.front() : series_uid;
+  std::vector<std::string> files = names->GetFileNames(chosen);
   const std::set<fs::path> listed(files.begin(), files.end());
   std::vector<fs::path> others;
   for (const auto& entry : fs::directory_iterator(directory)) {
@@ -234,7 +239,7 @@ std::vector<std::string> series_files(const fs::path& directory, const std::stri
       throw InvalidInputError(shown + ": " + file.filename().string() +
                               ": cannot be decoded as DICOM (truncated or corrupt file?)");
     }
-    if (text_of(reader.GetFile().GetDataSet(), gdcm::Tag(0x0020, 0x000e)) == uids.front()) {
+    if (text_of(reader.GetFile().GetDataSet(), gdcm::Tag(0x0020, 0x000e)) == chosen) {
       throw InvalidInputError(shown + ": " + file.filename().string() +
                               ": belongs to the series but could not be placed in it (no position?)");
     }
@@ -342,10 +347,12 @@ CtImage::Pointer read_pixels(const std::vector<SliceHeader>& slices, const std::
 
 }  // namespace
 
-CtImage::Pointer read_dicom_series(const fs::path& directory, const std::string& shown, UnevenSlices uneven,
-                                   std::vector<std::string>& warnings) {
+CtImage::Pointer read_dicom_series(const fs::path& directory, const std::string& shown, const std::string& series_uid,
+                                   UnevenSlices uneven, std::vector<std::string>& warnings) {
   std::vector<SliceHeader> slices;
-  for (const std::string& file : series_files(directory, shown)) slices.push_back(read_slice_header(file, shown));
+  for (const std::string& file : series_files(directory, shown, series_uid)) {
+    slices.push_back(read_slice_header(file, shown));
+  }
   check_headers_agree(slices, shown);
   const SlicePlacement placement = place_slices(slices, shown);
   if (!placement.uneven.empty() && uneven == UnevenSlices::Refuse) {

@@ -23,6 +23,13 @@ enum class MeshFormat {
   Obj,
 };
 
+/// The coordinate system of written meshes: LPS, the physical space ITK reads volumes in (patient left,
+/// posterior, superior). STL files carry it in their header and PLY files in a comment, in the form
+/// 3D Slicer writes and reads ("SPACE=LPS"), so that Slicer places the mesh on its volume.
+inline constexpr const char* kCoordinateSystemTag = "SPACE=LPS";
+/// The header of written STL files (binary: the 80-byte header; ASCII: the solid's name).
+inline constexpr const char* kStlHeader = "ContourMesh output. SPACE=LPS";
+
 /// "stl", "stl-ascii", "ply", "vtp", "obj" (and "auto").
 [[nodiscard]] std::string_view to_string(MeshFormat format);
 /// Inverse of to_string; throws InvalidInputError naming the accepted values.
