@@ -165,7 +165,7 @@ DistancePair signed_distance_pair(const std::vector<Polygon>& lower, const std::
   return out;
 }
 
-std::vector<Polygon> zero_level(const DistancePair& fields, double t) {
+std::vector<Polygon> zero_level(const DistancePair& fields, double t, double level) {
   const int nx = fields.nx, ny = fields.ny;
   std::vector<Polygon> loops;
   if (nx < 2 || ny < 2) return loops;
@@ -175,7 +175,10 @@ std::vector<Polygon> zero_level(const DistancePair& fields, double t) {
   const double nudge = 1e-7 * fields.h;
   std::vector<double> f(count);
   for (std::size_t k = 0; k < count; ++k) {
-    const double v = (1.0 - t) * fields.lower[k] + t * fields.upper[k];
+    const double lo = fields.lower[k], up = fields.upper[k];
+    double v = (1.0 - t) * lo + t * up - level;
+    if (level > 0.0) v = std::max(v, std::min(lo, up));  // within the union of the two regions
+    if (level < 0.0) v = std::min(v, std::max(lo, up));  // around their intersection
     f[k] = v < 0.0 ? v : std::max(v, nudge);
   }
   // Grid edges: horizontal (i, j)-(i + 1, j) has id j * nx + i; vertical (i, j)-(i, j + 1) has id
@@ -234,6 +237,53 @@ std::vector<Polygon> zero_level(const DistancePair& fields, double t) {
   return loops;
 }
 
+double level_for_area(const DistancePair& fields, double t, double target_area) {
+  const std::size_t count = static_cast<std::size_t>(std::max(fields.nx, 0)) * static_cast<std::size_t>(std::max(fields.ny, 0));
+  if (count < 4) return 0.0;
+  const double cell = fields.h * fields.h;
+  auto area_at = [&](double iso) {
+    double a = 0.0;
+    for (const Polygon& p : zero_level(fields, t, iso)) a += signed_area(p);
+    return a;
+  };
+  double iso = 0.0;
+  double area = area_at(iso);
+  if (std::abs(area - target_area) <= cell) return 0.0;
+  // The value from which each node is inside the level: its blend, except that a growing level never
+  // takes a node outside both regions and a shrinking one never gives up a node inside both.
+  const bool grow = target_area > area;
+  constexpr double kNever = std::numeric_limits<double>::infinity();
+  std::vector<double> from(count);
+  for (std::size_t k = 0; k < count; ++k) {
+    const double lo = fields.lower[k], up = fields.upper[k];
+    const double blend = (1.0 - t) * lo + t * up;
+    if (grow) from[k] = std::min(lo, up) < 0.0 ? blend : kNever;
+    else from[k] = std::max(lo, up) < 0.0 ? -kNever : blend;
+  }
+  // The area inside grows by about one cell per node that the level passes: the node count to add is
+  // the area missing over a cell, and the level is the value of the node with that rank. Then secant
+  // steps on the area, which is continuous and monotonic in the level.
+  const double tolerance = std::max(cell, 1e-3 * std::abs(target_area));
+  const auto inside = static_cast<double>(std::count_if(from.begin(), from.end(), [&](double v) { return v < iso; }));
+  const double rank = std::clamp(inside + (target_area - area) / cell, 0.0, static_cast<double>(count - 1));
+  std::vector<double> sorted = from;
+  auto nth = sorted.begin() + static_cast<std::ptrdiff_t>(std::round(rank));
+  std::nth_element(sorted.begin(), nth, sorted.end());
+  if (!std::isfinite(*nth)) return 0.0;
+  double previous_iso = iso, previous_area = area;
+  iso = grow ? std::max(*nth, 0.0) : std::min(*nth, 0.0);
+  area = area_at(iso);
+  for (int step = 0; step < 4 && std::abs(area - target_area) > tolerance && area != previous_area; ++step) {
+    double next = iso + (target_area - area) * (iso - previous_iso) / (area - previous_area);
+    next = grow ? std::max(next, 0.0) : std::min(next, 0.0);
+    previous_iso = iso;
+    previous_area = area;
+    iso = next;
+    area = area_at(iso);
+  }
+  return iso;
+}
+
 namespace {
 
 bool level_is_valid(const std::vector<InterpolatedContour>& level) {
@@ -248,8 +298,8 @@ bool level_is_valid(const std::vector<InterpolatedContour>& level) {
 }  // namespace
 
 std::optional<std::vector<InterpolatedContour>> interpolate_contours(const DistancePair& fields, double t,
-                                                                     double spacing) {
-  std::vector<Polygon> loops = zero_level(fields, t);
+                                                                     double spacing, double iso) {
+  std::vector<Polygon> loops = zero_level(fields, t, iso);
   // Loops shorter than three spacings would become triangles or less.
   std::erase_if(loops, [&](const Polygon& p) { return perimeter(p) < 3.0 * spacing; });
   std::vector<double> areas;

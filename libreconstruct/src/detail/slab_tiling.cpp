@@ -38,7 +38,8 @@ double mean_spacing(const Level& a, const Level& b) {
 
 // The shape-based interpolation of one group of a slab: the signed distance fields of its regions on
 // both slices, and the levels extracted from them so far. Every level between the two slices comes
-// from these same fields (the zero set of (1 - t) d_lower + t d_upper), so the halves of a halved slab
+// from these same fields (a level set of (1 - t) d_lower + t d_upper, shifted so that it encloses the
+// linear interpolation of the two regions' areas: level_for_area), so the halves of a halved slab
 // and the steps of a refined band are pieces of one implicit surface. A level's contours are handed
 // out once: the piece of the slab that claims a contour tiles it.
 class Interpolation {
@@ -47,6 +48,8 @@ class Interpolation {
       : spacing_(mean_spacing(lower, upper)),
         w0_(lower.w),
         w1_(upper.w),
+        area0_(region_area(lower)),
+        area1_(region_area(upper)),
         fields_(signed_distance_pair(polygons(lower), polygons(upper), grid * spacing_)) {}
 
   [[nodiscard]] double w(double t) const { return w0_ + t * (w1_ - w0_); }
@@ -142,15 +145,26 @@ class Interpolation {
     auto it = levels_.find(t);
     if (it == levels_.end()) {
       Extracted e;
-      e.contours = interpolate_contours(fields_, t, spacing_);
+      // The level keeps the area of the linear interpolation between the slices' regions: the volume of
+      // the slice-wise (prism) model, which the zero level of averaged distances falls short of where
+      // the two regions differ in shape.
+      const double iso = level_for_area(fields_, t, (1.0 - t) * area0_ + t * area1_);
+      e.contours = interpolate_contours(fields_, t, spacing_, iso);
       if (e.contours) e.claimed.assign(e.contours->size(), 0);
       it = levels_.emplace(t, std::move(e)).first;
     }
     return it->second;
   }
 
+  static double region_area(const Level& level) {
+    double a = 0.0;
+    for (const LevelContour& c : level.contours) a += c.is_hole ? -c.area : c.area;
+    return a;
+  }
+
   double spacing_;
   double w0_, w1_;
+  double area0_, area1_;
   DistancePair fields_;
   std::map<double, Extracted> levels_;
 };

@@ -108,5 +108,40 @@ TEST(ShapeInterpolation, LoopsShorterThanThreeSpacingsAreDropped) {
   EXPECT_TRUE(zero_level(DistancePair{}, 0.5).empty());
 }
 
+// A small blob below an elongated contour (the end of a drawn scar): the zero level of the averaged
+// distances is short, since the elongated contour's ends are far from the blob, and loses a quarter of
+// the area between the slices; the level of level_for_area has the area asked.
+TEST(ShapeInterpolation, TheLevelForAnAreaRestoresTheAreaBetweenDifferentShapes) {
+  Polygon ellipse;
+  for (int k = 0; k < 120; ++k) {
+    const double a = 2.0 * 3.14159265358979 * k / 120.0;
+    ellipse.emplace_back(2.0 * std::cos(a), 7.0 * std::sin(a));
+  }
+  const Polygon blob = circle_points(0, 0, 1.7, 40);
+  const DistancePair g = signed_distance_pair({blob}, {ellipse}, 0.1);
+  const double target = 0.5 * (signed_area(blob) + signed_area(ellipse));
+  auto area_of = [&](const std::vector<Polygon>& loops) {
+    double a = 0.0;
+    for (const Polygon& p : loops) a += signed_area(p);
+    return a;
+  };
+  EXPECT_LT(area_of(zero_level(g, 0.5)), 0.85 * target) << "the zero level loses area";
+  const double iso = level_for_area(g, 0.5, target);
+  EXPECT_GT(iso, 0.0);
+  EXPECT_NEAR(area_of(zero_level(g, 0.5, iso)), target, 1e-3 * target);
+  const auto level = interpolate_contours(g, 0.5, 0.5, iso);
+  ASSERT_TRUE(level);
+  ASSERT_EQ(level->size(), 1u);
+  EXPECT_NEAR(signed_area((*level)[0].points), target, 0.02 * target);
+  // Concentric circles: the zero level at t has radius 10 - 6 t; the level for a smaller area lies
+  // inside it, with the area asked.
+  const DistancePair c = signed_distance_pair({circle_points(0, 0, 10, 200)}, {circle_points(0, 0, 4, 80)}, 0.25);
+  const double small = 0.8 * 3.14159265358979 * 7.0 * 7.0;
+  const double inside = level_for_area(c, 0.5, small);
+  EXPECT_LT(inside, 0.0);
+  EXPECT_NEAR(area_of(zero_level(c, 0.5, inside)), small, 1e-3 * small);
+  EXPECT_EQ(level_for_area(DistancePair{}, 0.5, 1.0), 0.0);
+}
+
 }  // namespace
 }  // namespace contourmesh::detail
