@@ -4,6 +4,7 @@
 #include "contour_input.h"
 #include "input_selection.h"
 #include "progress_display.h"
+#include "tiling_options.h"
 #include "volume_options.h"
 
 #include <pipelines/atomic_file.h>
@@ -45,8 +46,7 @@ struct ReconstructArgs {
   std::string keep = "all";
   double min_area = 2.0;
   bool fill_holes = false;
-  std::string end_caps = "half-spacing";
-  std::string branching = "interpolated";
+  TilingArgs tiling;
   std::string format = "auto";
   std::string contours_out;
   Index max_vertices = kDefaultMaxVertices;
@@ -62,12 +62,6 @@ const std::vector<std::string> kVolumeOptions{"--threshold", "--otsu",   "--smoo
                                               "--fill-holes", "--label", "--labels",    "--series",     "--list-series"};
 const std::vector<std::string> kContourOptions{"--roi", "--align", "--single-slice", "--slab-thickness",
                                                "--planarity-tolerance", "--sampling-tolerance"};
-
-EndCaps parse_end_caps(const std::string& s) {
-  if (s == "half-spacing") return EndCaps::HalfSpacing;
-  if (s == "end-slice") return EndCaps::AtEndSlice;
-  throw InvalidInputError("--end-caps must be half-spacing or end-slice, got '" + s + "'");
-}
 
 ImageSmoothing parse_smoothing(const std::string& s) {
   if (s == "none") return ImageSmoothing::None;
@@ -163,10 +157,7 @@ int run_reconstruct(const ReconstructArgs& a) {
   else throw InvalidInputError("--keep must be all or largest, got '" + a.keep + "'");
   seg.min_region_area = a.min_area;
   seg.fill_holes = a.fill_holes;
-  options.tiling.end_caps = parse_end_caps(a.end_caps);
-  if (a.branching == "interpolated") options.tiling.branching = Branching::Interpolated;
-  else if (a.branching == "mid-plane") options.tiling.branching = Branching::MidPlaneComposite;
-  else throw InvalidInputError("--branching must be interpolated or mid-plane, got '" + a.branching + "'");
+  options.tiling = tiling_options(a.tiling);
   MeshWriteOptions write_options;
   write_options.format = parse_mesh_format(a.format);
   if (write_options.format == MeshFormat::Auto) (void)format_from_extension(a.output);  // fail before the work
@@ -305,7 +296,7 @@ nlohmann::json reconstruct_one(const ReconstructArgs& a, InputKind kind, const C
                                const MeshWriteOptions& write_options, ProgressDisplay& progress) {
   const auto t0 = std::chrono::steady_clock::now();
   const ContourReconstruction r = reconstruct_from_contours(
-      in.stack, in.what, contour_options(a.contour, in, a.sampling, parse_end_caps(a.end_caps), a.max_vertices),
+      in.stack, in.what, contour_options(a.contour, in, a.sampling, tiling_options(a.tiling), a.max_vertices),
       progress.callback());
   print_warnings("reconstruct", r.report.warnings);
   progress.stage("write");
@@ -369,7 +360,7 @@ int run_reconstruct_contours(const ReconstructArgs& a, InputKind kind) {
   const auto start = std::chrono::steady_clock::now();
   MeshWriteOptions write_options;
   write_options.format = parse_mesh_format(a.format);
-  (void)parse_end_caps(a.end_caps);
+  (void)tiling_options(a.tiling);
   apply_common_options(a.common);
   ProgressDisplay progress("reconstruct", a.common.quiet);
   progress.stage("read");
@@ -435,13 +426,7 @@ void add_reconstruct_command(CLI::App& app) {
   cmd->add_option("--min-area", args->min_area, "Drop regions and fill holes smaller than this, mm^2")
       ->capture_default_str();
   cmd->add_flag("--fill-holes", args->fill_holes, "Fill every hole in every slice");
-  cmd->add_option("--end-caps", args->end_caps,
-                  "Where objects end: half-spacing (half a slice beyond the last contour) | end-slice")
-      ->capture_default_str();
-  cmd->add_option("--branching", args->branching,
-                  "Where contours split, merge or a hole opens: interpolated (shape-based interpolation, mid-plane "
-                  "composites only at the finest level) | mid-plane (composites only)")
-      ->capture_default_str();
+  add_tiling_options(cmd, args->tiling);
   cmd->add_option("--format", args->format, "Output format: auto | stl | stl-ascii | ply | vtp | obj")
       ->capture_default_str();
   cmd->add_option("--contours-out", args->contours_out,
