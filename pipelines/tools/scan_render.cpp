@@ -4,7 +4,7 @@
 // scripts/real_scan_renders.sh for docs/real_scans.md; needs an X display (xvfb-run -a).
 //
 //   contourmesh_scan_render VOLUME --threshold T --mesh a.vtp "title a" [--mesh b.vtp "title b" ...]
-//       --focus x,y,z --distance D [--azimuth A] [--elevation E] [--size 1800x600] -o out.png
+//       --focus x,y,z --distance D [--azimuth A] [--elevation E] [--size 1800x600] [--color-levels N] -o out.png
 #include <pipelines/mesh_io.h>
 #include <pipelines/vtk_convert.h>
 #include <reconstruct/volume.h>
@@ -32,6 +32,7 @@
 #include <vtkWindowToImageFilter.h>
 #include <vtkWindowedSincPolyDataFilter.h>
 
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <iostream>
@@ -111,7 +112,7 @@ struct Panel {
 };
 
 void render(const std::vector<Panel>& panels, const Eigen::Vector3d& focus, double distance, double azimuth,
-            double elevation, int width, int height, const std::string& png) {
+            double elevation, int width, int height, const std::string& png, int color_levels) {
   vtkNew<vtkRenderWindow> window;
   window->SetOffScreenRendering(1);
   window->SetSize(width, height);
@@ -150,6 +151,15 @@ void render(const std::vector<Panel>& panels, const Eigen::Vector3d& focus, doub
   vtkNew<vtkWindowToImageFilter> grab;
   grab->SetInput(window);
   grab->Update();
+  if (color_levels < 256) {
+    // Fewer levels per channel: facets of nearly the same shade merge, and the PNG shrinks.
+    const int step = 256 / color_levels;
+    vtkImageData* image = grab->GetOutput();
+    auto* p = static_cast<unsigned char*>(image->GetScalarPointer());
+    const std::size_t n = static_cast<std::size_t>(image->GetNumberOfPoints()) *
+                          static_cast<std::size_t>(image->GetNumberOfScalarComponents());
+    for (std::size_t i = 0; i < n; ++i) p[i] = static_cast<unsigned char>(std::min(255, (p[i] + step / 2) / step * step));
+  }
   vtkNew<vtkPNGWriter> writer;
   writer->SetFileName(png.c_str());
   writer->SetInputConnection(grab->GetOutputPort());
@@ -162,6 +172,7 @@ int main(int argc, char** argv) {
   CLI::App app{"Side-by-side renders of meshes of a CT volume and of its voxel route (3D Slicer's chain)"};
   std::string volume, output, focus_text, size_text = "1800x600";
   double threshold = 300.0, distance = 150.0, azimuth = 30.0, elevation = 20.0;
+  int color_levels = 256;
   std::vector<std::string> meshes;
   app.add_option("volume", volume, "CT volume or DICOM directory")->required();
   app.add_option("--threshold", threshold, "Threshold of the voxel route")->required();
@@ -173,6 +184,9 @@ int main(int argc, char** argv) {
   app.add_option("--azimuth", azimuth, "Camera direction about the slice axis, degrees (0: from -y)")->capture_default_str();
   app.add_option("--elevation", elevation, "Camera elevation above the slice planes, degrees")->capture_default_str();
   app.add_option("--size", size_text, "Picture size WIDTHxHEIGHT in pixels")->capture_default_str();
+  app.add_option("--color-levels", color_levels, "Levels per colour channel, 2 to 256 (32 shrinks the PNG)")
+      ->check(CLI::Range(2, 256))
+      ->capture_default_str();
   app.add_option("-o,--output", output, "PNG file")->required();
   CLI11_PARSE(app, argc, argv);
   try {
@@ -185,7 +199,7 @@ int main(int argc, char** argv) {
     for (std::size_t k = 0; k < meshes.size(); k += 2) panels.push_back({read_mesh(meshes[k]), meshes[k + 1]});
     const CtImage::Pointer image = read_volume(volume);
     panels.push_back({voxel_route(*image, threshold), "voxel route: threshold, flying edges, windowed sinc"});
-    render(panels, parse_vector(focus_text, "--focus"), distance, azimuth, elevation, width, height, output);
+    render(panels, parse_vector(focus_text, "--focus"), distance, azimuth, elevation, width, height, output, color_levels);
   } catch (const std::exception& e) {
     std::cerr << "contourmesh_scan_render: error: " << e.what() << "\n";
     return 2;
