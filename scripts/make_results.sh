@@ -8,7 +8,7 @@ build="${1:-build/release}"
 nice -n 10 cmake --build "$build" --target contourmesh
 cli="$build/pipelines/contourmesh"
 args=(compare --phantom all --out docs/results --markdown docs/results.md --render-size 400x300 --color-levels 32
-      --repeat 3 --note "Made by scripts/make_results.sh, which builds contourmesh and runs this command (under xvfb-run when there is no display). Timings are wall-clock seconds on the machine that ran it, the fastest of 3 runs; they vary with its load.")
+      --repeat 3 --note "Made by scripts/make_results.sh, which builds contourmesh and runs this command (under xvfb-run when there is no display). Timings are wall-clock seconds on the machine that ran it, the fastest of 3 runs; they vary with its load. The real scans of ../shared/data, contour route and voxel route side by side: [real_scans.md](real_scans.md).")
 if [ -n "${DISPLAY:-}" ]; then
   "$cli" "${args[@]}"
 else

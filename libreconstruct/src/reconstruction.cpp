@@ -15,9 +15,9 @@ double seconds_since(std::chrono::steady_clock::time_point t) {
 }
 
 // Removes the connected components enclosing less than `min_volume` (cavity surfaces, which enclose a
-// negative volume, are kept) and vertices in no triangle, and compacts the vertex array. A mesh with
-// nothing to remove is returned as it is.
-Mesh drop_small_components(Mesh mesh, double min_volume, std::size_t& dropped) {
+// negative volume, are kept) and vertices in no triangle, and compacts the vertex array; `roles` (one
+// per face) follow the faces. A mesh with nothing to remove is returned as it is.
+Mesh drop_small_components(Mesh mesh, std::vector<FaceRole>& roles, double min_volume, std::size_t& dropped) {
   const Index n = mesh.num_vertices();
   const ComponentLabels components = component_labels(mesh);
   std::vector<double> volume(static_cast<std::size_t>(components.count), 0.0);
@@ -52,9 +52,15 @@ Mesh drop_small_components(Mesh mesh, double min_volume, std::size_t& dropped) {
     kept.contour_ids[k] = mesh.contour_ids[i];
   }
   kept.triangles.reserve(mesh.triangles.size());
-  for (const Triangle& t : mesh.triangles) {
-    if (remap[t[0]] >= 0) kept.triangles.push_back({remap[t[0]], remap[t[1]], remap[t[2]]});
+  std::vector<FaceRole> kept_roles;
+  kept_roles.reserve(roles.size());
+  for (std::size_t f = 0; f < mesh.triangles.size(); ++f) {
+    const Triangle& t = mesh.triangles[f];
+    if (remap[t[0]] < 0) continue;
+    kept.triangles.push_back({remap[t[0]], remap[t[1]], remap[t[2]]});
+    kept_roles.push_back(roles[f]);
   }
+  roles = std::move(kept_roles);
   return kept;
 }
 
@@ -106,7 +112,8 @@ Reconstruction reconstruct(const CtImage& image, const ReconstructionOptions& op
   }
   const auto spacing = image.GetSpacing();
   const double min_volume = options.min_component_voxels * spacing[0] * spacing[1] * spacing[2];
-  out.mesh = drop_small_components(std::move(tiled.mesh), min_volume, out.report.dropped_components);
+  out.face_roles = std::move(tiled.face_roles);
+  out.mesh = drop_small_components(std::move(tiled.mesh), out.face_roles, min_volume, out.report.dropped_components);
   if (out.mesh.num_faces() == 0) {
     throw InvalidInputError("every reconstructed piece is smaller than " + std::to_string(options.min_component_voxels) +
                             " voxels");

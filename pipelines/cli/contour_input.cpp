@@ -145,7 +145,8 @@ ContourInputs load_contour_inputs(const std::string& path, InputKind kind, const
 }
 
 ContourReconstructionOptions contour_options(const ContourArgs& args, const ContourInput& input,
-                                             std::optional<double> sampling, EndCaps end_caps, Index max_vertices) {
+                                             std::optional<double> sampling, const TilingOptions& tiling,
+                                             Index max_vertices) {
   ContourReconstructionOptions o;
   if (sampling) {
     if (!(*sampling >= 0.0)) throw InvalidInputError("--sampling must be >= 0 mm (0: the contours as drawn)");
@@ -161,7 +162,7 @@ ContourReconstructionOptions contour_options(const ContourArgs& args, const Cont
   else throw InvalidInputError("--single-slice must be slab or drop, got '" + args.single_slice + "'");
   if (args.slab_thickness && !(*args.slab_thickness > 0.0)) throw InvalidInputError("--slab-thickness must be > 0 mm");
   o.slab_thickness = args.slab_thickness.value_or(input.default_slab_thickness);
-  o.tiling.end_caps = end_caps;
+  o.tiling = tiling;
   o.tiling.limits.max_vertices = max_vertices;
   return o;
 }

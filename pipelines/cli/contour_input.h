@@ -78,9 +78,10 @@ struct ContourInputs {
 /// file its one stack (--roi must be empty). Throws InvalidInputError naming the file otherwise.
 [[nodiscard]] ContourInputs load_contour_inputs(const std::string& path, InputKind kind, const ContourArgs& args);
 
-/// Options of reconstruct_from_contours from the command line.
+/// Options of reconstruct_from_contours from the command line (`tiling` with its vertex limit set to
+/// `max_vertices`).
 [[nodiscard]] ContourReconstructionOptions contour_options(const ContourArgs& args, const ContourInput& input,
-                                                           std::optional<double> sampling, EndCaps end_caps,
+                                                           std::optional<double> sampling, const TilingOptions& tiling,
                                                            Index max_vertices);
 
 /// Output of one ROI: `output` itself for a single ROI; with --roi all, `output` with "{roi}" replaced

@@ -4,6 +4,7 @@
 #include "contour_input.h"
 #include "input_selection.h"
 #include "progress_display.h"
+#include "tiling_options.h"
 #include "volume_options.h"
 
 #include <pipelines/atomic_file.h>
@@ -17,6 +18,7 @@
 #include <reconstruct/volume.h>
 #include <smooth/errors.h>
 #include <smooth/limits.h>
+#include <smooth/mesh_quality.h>
 #include <smooth/metrics.h>
 #include <smooth/topology.h>
 
@@ -44,7 +46,7 @@ struct ReconstructArgs {
   std::string keep = "all";
   double min_area = 2.0;
   bool fill_holes = false;
-  std::string end_caps = "half-spacing";
+  TilingArgs tiling;
   std::string format = "auto";
   std::string contours_out;
   Index max_vertices = kDefaultMaxVertices;
@@ -60,12 +62,6 @@ const std::vector<std::string> kVolumeOptions{"--threshold", "--otsu",   "--smoo
                                               "--fill-holes", "--label", "--labels",    "--series",     "--list-series"};
 const std::vector<std::string> kContourOptions{"--roi", "--align", "--single-slice", "--slab-thickness",
                                                "--planarity-tolerance", "--sampling-tolerance"};
-
-EndCaps parse_end_caps(const std::string& s) {
-  if (s == "half-spacing") return EndCaps::HalfSpacing;
-  if (s == "end-slice") return EndCaps::AtEndSlice;
-  throw InvalidInputError("--end-caps must be half-spacing or end-slice, got '" + s + "'");
-}
 
 ImageSmoothing parse_smoothing(const std::string& s) {
   if (s == "none") return ImageSmoothing::None;
@@ -161,7 +157,7 @@ int run_reconstruct(const ReconstructArgs& a) {
   else throw InvalidInputError("--keep must be all or largest, got '" + a.keep + "'");
   seg.min_region_area = a.min_area;
   seg.fill_holes = a.fill_holes;
-  options.tiling.end_caps = parse_end_caps(a.end_caps);
+  options.tiling = tiling_options(a.tiling);
   MeshWriteOptions write_options;
   write_options.format = parse_mesh_format(a.format);
   if (write_options.format == MeshFormat::Auto) (void)format_from_extension(a.output);  // fail before the work
@@ -207,6 +203,12 @@ int run_reconstruct(const ReconstructArgs& a) {
   progress.finish();
   const TopologySummary topo = topology.get();
   const double volume = enclosed_volume(r.mesh);
+  // Caps are flat by construction: the shelf measure counts the other faces parallel to the slices.
+  std::vector<std::uint8_t> caps(r.face_roles.size(), 0);
+  for (std::size_t f = 0; f < caps.size(); ++f) caps[f] = r.face_roles[f] == FaceRole::Cap ? 1 : 0;
+  MeshQualityOptions quality_options;
+  quality_options.slice_axis = r.contours.axis_w;
+  const MeshQuality quality = mesh_quality(r.mesh, quality_options, caps);
   const auto size = image->GetLargestPossibleRegion().GetSize();
   const auto spacing = image->GetSpacing();
   if (a.json) {
@@ -223,6 +225,11 @@ int run_reconstruct(const ReconstructArgs& a) {
     j["contours"] = r.report.contours;
     j["hole_contours"] = r.report.hole_contours;
     j["branchings"] = r.report.tiling.branchings;
+    j["one_to_one"] = r.report.tiling.one_to_one;
+    j["refined_bands"] = r.report.tiling.refined_bands;
+    j["intermediate_contours"] = r.report.tiling.intermediate_contours;
+    j["composites"] = r.report.tiling.composites;
+    j["partings"] = r.report.tiling.partings;
     j["caps"] = r.report.tiling.caps;
     j["dropped_contours"] = r.report.tiling.dropped_contours;
     j["dropped_components"] = r.report.dropped_components;
@@ -233,6 +240,12 @@ int run_reconstruct(const ReconstructArgs& a) {
     j["is_manifold"] = topo.manifold;
     j["euler_characteristic"] = topo.euler_characteristic;
     j["volume"] = volume;
+    j["area"] = quality.area;
+    j["sliver_area_share"] = quality.sliver_area_share;
+    j["min_angle_degrees"] = quality.min_angle_degrees;
+    j["shelf_area"] = quality.shelf_area;
+    j["shelf_area_share"] = quality.shelf_area_share;
+    j["share_without_ids"] = quality.share_without_ids;
     if (!a.contours_out.empty()) j["contours_out"] = a.contours_out;
     j["seconds_segment"] = r.report.seconds_segment;
     j["seconds_tile"] = r.report.seconds_tile;
@@ -247,11 +260,18 @@ int run_reconstruct(const ReconstructArgs& a) {
             << "  contours   " << r.report.contours << " (" << r.report.hole_contours << " holes) on "
             << r.report.slices_with_contours << " slices, " << r.report.tiling.branchings << " branchings, "
             << r.report.tiling.caps << " caps\n"
+            << "  tiling     " << r.report.tiling.intermediate_contours << " intermediate contours, "
+            << r.report.tiling.refined_bands << " bands refined, " << r.report.tiling.composites << " composites, "
+            << r.report.tiling.partings << " partings\n"
             << "  mesh       " << r.mesh.num_vertices() << " vertices, " << r.mesh.num_faces() << " triangles, "
             << topo.components << " component" << (topo.components == 1 ? "" : "s") << ", "
             << (topo.closed ? "closed" : "OPEN") << ", " << (topo.manifold ? "manifold" : "NOT manifold")
             << ", Euler characteristic " << topo.euler_characteristic << ", volume " << std::setprecision(1) << volume
             << " mm^3\n"
+            << "  quality    " << std::setprecision(1) << 100.0 * quality.sliver_area_share
+            << " % of the area in faces with an angle under 10 degrees, " << 100.0 * quality.shelf_area_share
+            << " % in faces within 10 degrees of the slices (caps left out), " << 100.0 * quality.share_without_ids
+            << " % of the vertices without ids\n"
             << "  wrote      " << a.output << (a.contours_out.empty() ? "" : " and " + a.contours_out) << " in "
             << std::setprecision(2) << seconds_since(start) << " s\n";
   return kOk;
@@ -276,7 +296,7 @@ nlohmann::json reconstruct_one(const ReconstructArgs& a, InputKind kind, const C
                                const MeshWriteOptions& write_options, ProgressDisplay& progress) {
   const auto t0 = std::chrono::steady_clock::now();
   const ContourReconstruction r = reconstruct_from_contours(
-      in.stack, in.what, contour_options(a.contour, in, a.sampling, parse_end_caps(a.end_caps), a.max_vertices),
+      in.stack, in.what, contour_options(a.contour, in, a.sampling, tiling_options(a.tiling), a.max_vertices),
       progress.callback());
   print_warnings("reconstruct", r.report.warnings);
   progress.stage("write");
@@ -340,7 +360,7 @@ int run_reconstruct_contours(const ReconstructArgs& a, InputKind kind) {
   const auto start = std::chrono::steady_clock::now();
   MeshWriteOptions write_options;
   write_options.format = parse_mesh_format(a.format);
-  (void)parse_end_caps(a.end_caps);
+  (void)tiling_options(a.tiling);
   apply_common_options(a.common);
   ProgressDisplay progress("reconstruct", a.common.quiet);
   progress.stage("read");
@@ -406,9 +426,7 @@ void add_reconstruct_command(CLI::App& app) {
   cmd->add_option("--min-area", args->min_area, "Drop regions and fill holes smaller than this, mm^2")
       ->capture_default_str();
   cmd->add_flag("--fill-holes", args->fill_holes, "Fill every hole in every slice");
-  cmd->add_option("--end-caps", args->end_caps,
-                  "Where objects end: half-spacing (half a slice beyond the last contour) | end-slice")
-      ->capture_default_str();
+  add_tiling_options(cmd, args->tiling);
   cmd->add_option("--format", args->format, "Output format: auto | stl | stl-ascii | ply | vtp | obj")
       ->capture_default_str();
   cmd->add_option("--contours-out", args->contours_out,

@@ -6,6 +6,7 @@
 #include "feature_options.h"
 #include "input_selection.h"
 #include "progress_display.h"
+#include "tiling_options.h"
 #include "volume_options.h"
 
 #include <pipelines/atomic_file.h>
@@ -57,7 +58,7 @@ struct RunArgs {
   std::string method = "paper";
   std::optional<int> iterations;
   double feature_radius = 2.0;
-  std::string end_caps = "half-spacing";
+  TilingArgs tiling;
   std::string format = "auto";
   std::string labels_out;
   Index max_vertices = kDefaultMaxVertices;
@@ -247,8 +248,7 @@ int run_run(const RunArgs& a, const std::string& output, const std::string& labe
 
   // 2. Reconstruct.
   ReconstructionOptions ro;
-  if (a.end_caps == "end-slice") ro.tiling.end_caps = EndCaps::AtEndSlice;
-  else if (a.end_caps != "half-spacing") throw InvalidInputError("--end-caps must be half-spacing or end-slice");
+  ro.tiling = tiling_options(a.tiling);
   // A phantom is segmented at its partial-volume iso-level, real CT at the bone default.
   const PhantomVolumeOptions phantom_defaults;
   ro.segmentation.threshold =
@@ -373,6 +373,7 @@ int run_run(const RunArgs& a, const std::string& output, const std::string& labe
 // `run` on a volume: --list-series, one label after the other with --label / --labels, or the volume.
 int run_volume(const RunArgs& a) {
   if (a.selection.list_series) return print_series_list(a.input, a.json);
+  (void)tiling_options(a.tiling);  // refuse bad tiling options before any work
   if (!labels_requested(a.selection)) return run_run(a, a.output, a.labels_out, nullptr, nullptr);
   if (a.input.empty()) throw InvalidInputError("--label and --labels need an input label map");
   const auto start = std::chrono::steady_clock::now();
@@ -399,9 +400,9 @@ nlohmann::json run_one(const RunArgs& a, InputKind kind, const ContourInput& in,
                        const std::filesystem::path& labels, const MeshWriteOptions& write_options,
                        ProgressDisplay& progress) {
   const auto t0 = std::chrono::steady_clock::now();
-  const EndCaps end_caps = a.end_caps == "end-slice" ? EndCaps::AtEndSlice : EndCaps::HalfSpacing;
   const ContourReconstruction rec = reconstruct_from_contours(
-      in.stack, in.what, contour_options(a.contour, in, a.sampling, end_caps, a.max_vertices), progress.callback());
+      in.stack, in.what, contour_options(a.contour, in, a.sampling, tiling_options(a.tiling), a.max_vertices),
+      progress.callback());
   print_warnings("run", rec.report.warnings);
   const Smoothed smoothed = smooth_reconstruction(rec.mesh, a, progress, in.what);
   const auto t = std::chrono::steady_clock::now();
@@ -483,9 +484,7 @@ int run_contours(const RunArgs& a, InputKind kind, bool output_given) {
   if (!a.labels_out.empty() && a.method != "paper") {
     throw InvalidInputError("--labels-out needs --method paper (the labels come from its detection)");
   }
-  if (a.end_caps != "end-slice" && a.end_caps != "half-spacing") {
-    throw InvalidInputError("--end-caps must be half-spacing or end-slice");
-  }
+  (void)tiling_options(a.tiling);
   (void)detection_options(a.detection);
   MeshWriteOptions write_options;
   write_options.format = parse_mesh_format(a.format);
@@ -558,7 +557,7 @@ void add_run_command(CLI::App& app) {
   CLI::Option* threshold = cmd->add_option("--threshold", args->threshold,
                   "Bone threshold, HU (default: 300 for an input volume; 520 for a phantom, halfway between its "
                   "soft tissue and bone)");
-  cmd->add_option("--end-caps", args->end_caps, "Where objects end: half-spacing | end-slice")->capture_default_str();
+  add_tiling_options(cmd, args->tiling);
   cmd->add_option("--method", args->method, "paper | none | laplacian | taubin | mcf | mindist")->capture_default_str();
   cmd->add_option("--iterations", args->iterations, "Smoothing iterations (default 40 for paper, 20 otherwise)");
   cmd->add_option("--feature-radius", args->feature_radius,

@@ -108,6 +108,16 @@ int vtkCtImageToContourSurfaceFilter::RequestData(vtkInformation*, vtkInformatio
     o.tiling.min_overlap_fraction = this->MinOverlapFraction;
     o.tiling.full_dp_limit = static_cast<std::size_t>(this->FullDynamicProgrammingLimit);
     o.tiling.band_fraction = this->BandFraction;
+    o.tiling.branching = this->Branching == BRANCHING_MID_PLANE ? contourmesh::Branching::MidPlaneComposite
+                                                                : contourmesh::Branching::Interpolated;
+    o.tiling.max_branching_depth = this->MaxBranchingDepth;
+    o.tiling.band_refinement = this->BandRefinement == BAND_REFINEMENT_NONE ? contourmesh::BandRefinement::None
+                                                                            : contourmesh::BandRefinement::Interpolated;
+    o.tiling.max_band_sliver_share = this->MaxBandSliverShare;
+    o.tiling.max_band_aspect = this->MaxBandAspect;
+    o.tiling.max_intermediate_contours = this->MaxIntermediateContours;
+    o.tiling.interpolation_grid = this->InterpolationGrid;
+    o.tiling.min_overlap_of_larger = this->MinOverlapOfLarger;
     o.min_component_voxels = this->MinComponentVoxels;
 
     filter_detail::StageProgress stages(
@@ -152,6 +162,14 @@ void vtkCtImageToContourSurfaceFilter::PrintSelf(ostream& os, vtkIndent indent) 
   os << indent << "MinOverlapFraction: " << this->MinOverlapFraction << "\n";
   os << indent << "FullDynamicProgrammingLimit: " << this->FullDynamicProgrammingLimit << "\n";
   os << indent << "BandFraction: " << this->BandFraction << "\n";
+  os << indent << "Branching: " << (this->Branching == BRANCHING_MID_PLANE ? "MidPlane" : "Interpolated") << "\n";
+  os << indent << "MaxBranchingDepth: " << this->MaxBranchingDepth << "\n";
+  os << indent << "BandRefinement: " << (this->BandRefinement == BAND_REFINEMENT_NONE ? "None" : "Interpolated") << "\n";
+  os << indent << "MaxBandSliverShare: " << this->MaxBandSliverShare << "\n";
+  os << indent << "MaxBandAspect: " << this->MaxBandAspect << "\n";
+  os << indent << "MaxIntermediateContours: " << this->MaxIntermediateContours << "\n";
+  os << indent << "InterpolationGrid: " << this->InterpolationGrid << "\n";
+  os << indent << "MinOverlapOfLarger: " << this->MinOverlapOfLarger << "\n";
   os << indent << "MinComponentVoxels: " << this->MinComponentVoxels << "\n";
   os << indent << "ContourIdArrayName: " << str(this->ContourIdArrayName) << "\n";
   os << indent << "ContourIndexArrayName: " << str(this->ContourIndexArrayName) << "\n";

@@ -194,6 +194,31 @@ TEST_F(Cli, PhantomThenReconstructGivesAClosedMeshWithIds) {
   EXPECT_EQ(m.num_vertices(), j["vertices"].get<int>());
 }
 
+// The tiling options reach the tiler on the volume route and on the contour route, and bad values are
+// refused with exit code 2 naming the option.
+TEST_F(Cli, TilingOptionsReachTheTilerOnBothRoutes) {
+  const fs::path volume = dir_ / "branch.nrrd", contours = dir_ / "branch.json";
+  ASSERT_EQ(run_cli("phantom --shape branch -o " + volume.string() + " --spacing 1,1,2.5 -q", dir_).code, 0);
+  auto vertices = [&](const fs::path& input, const std::string& options) {
+    const CliRun r = run_cli("reconstruct " + input.string() + " -o " + (dir_ / "out.vtp").string() + " --json " + options, dir_);
+    EXPECT_EQ(r.code, 0) << options << ": " << r.err;
+    return r.code == 0 ? nlohmann::json::parse(r.out)["vertices"].get<long>() : -1L;
+  };
+  const long interpolated = vertices(volume, "--threshold 520 --contours-out " + contours.string());
+  EXPECT_NE(vertices(volume, "--threshold 520 --band-refinement none"), interpolated);
+  EXPECT_NE(vertices(volume, "--threshold 520 --cap-refinement ear-clipping"), interpolated);
+  const long drawn = vertices(contours, "");
+  EXPECT_NE(vertices(contours, "--branching mid-plane"), drawn);
+  EXPECT_NE(vertices(contours, "--max-band-aspect 1"), drawn);
+  for (const std::string bad : {"--band-refinement some", "--max-band-aspect 0", "--interpolation-grid 2",
+                                "--min-overlap-of-larger 1", "--cap-refinement none"}) {
+    const CliRun r = run_cli("reconstruct " + volume.string() + " -o " + (dir_ / "bad.vtp").string() + " " + bad, dir_);
+    EXPECT_EQ(r.code, 2) << bad;
+    EXPECT_NE(r.err.find(bad.substr(0, bad.find(' '))), std::string::npos) << r.err;
+    EXPECT_FALSE(fs::exists(dir_ / "bad.vtp"));
+  }
+}
+
 // --contour-noise reaches the volume on phantom and run, is range-checked (exit 2), and is refused
 // next to an input volume (exit 1), which it could not change.
 TEST_F(Cli, ContourNoiseOption) {
@@ -332,14 +357,16 @@ TEST_F(Cli, ProgressIsOneLinePerStageOffATerminalAndQuietSilencesIt) {
 TEST_F(Cli, HelpListsEveryOptionOfEverySubcommand) {
   const std::map<std::string, std::vector<std::string>> options = {
       {"phantom", {"--shape", "--spacing", "--noise", "--blur", "--seed", "--json"}},
-      {"reconstruct", {"--threshold", "--otsu", "--end-caps", "--keep", "--fill-holes", "--json", "--quiet", "--threads",
+      {"reconstruct", {"--threshold", "--otsu", "--end-caps", "--branching", "--band-refinement", "--full-dp-limit",
+                       "--min-overlap-of-larger", "--keep", "--fill-holes", "--json", "--quiet", "--threads",
                        "--roi", "--contours-out", "--sampling", "--slab-thickness", "--align", "--single-slice"}},
       {"contours", {"--list", "--roi", "--output", "--json", "--planarity-tolerance"}},
       {"detect", {"--gamma", "--delta", "--measure", "--in-slice", "--prefilter", "--window", "--corner-spread", "--slice-axis",
                   "--json"}},
       {"smooth", {"--method", "--iterations", "--gamma", "--delta", "--max-levels", "--keep-adaptive", "--labels-out",
                   "--in-slice", "--json", "--quiet", "--threads"}},
-      {"run", {"--shape", "--noise", "--method", "--iterations", "--threshold", "--end-caps", "--in-slice", "--measure",
+      {"run", {"--shape", "--noise", "--method", "--iterations", "--threshold", "--end-caps", "--branching",
+               "--max-band-aspect", "--interpolation-grid", "--in-slice", "--measure",
                "--json", "--quiet", "--threads", "--roi", "--sampling", "--slab-thickness"}},
   };
   for (const auto& [command, names] : options) {

@@ -568,15 +568,19 @@ TEST_F(VtkFilters, NonDefaultReconstructionOptionsReachTheLibrary) {
   base.segmentation.min_region_area = 0.0;
   base.segmentation.min_contour_length = 0.0;
 
-  std::map<const CtImage*, Mesh> references;
+  // `plain`: both the reference and the checked run tile every band by the minimum-area programme alone
+  // (BandRefinement::None), for the options of that programme.
+  std::map<std::pair<const CtImage*, bool>, Mesh> references;
   auto check = [&](const char* name, const CtImage::Pointer& image,
                    const std::function<void(ReconstructionOptions&)>& library,
-                   const std::function<void(Filter*)>& configure) {
+                   const std::function<void(Filter*)>& configure, bool plain = false) {
     SCOPED_TRACE(name);
-    auto [cached, missing] = references.try_emplace(image.GetPointer());
-    if (missing) cached->second = reconstruct(*image, base).mesh;
+    ReconstructionOptions start = base;
+    if (plain) start.tiling.band_refinement = BandRefinement::None;
+    auto [cached, missing] = references.try_emplace(std::pair{image.GetPointer(), plain});
+    if (missing) cached->second = reconstruct(*image, start).mesh;
     const Mesh& reference = cached->second;
-    ReconstructionOptions o = base;
+    ReconstructionOptions o = start;
     library(o);
     const Mesh expected = reconstruct(*image, o).mesh;
     EXPECT_TRUE(expected.num_vertices() != reference.num_vertices() ||
@@ -588,6 +592,7 @@ TEST_F(VtkFilters, NonDefaultReconstructionOptionsReachTheLibrary) {
     filter->SetThreshold(350.0);
     filter->SetMinRegionArea(0.0);
     filter->SetMinContourLength(0.0);
+    if (plain) filter->SetBandRefinementToNone();
     configure(filter.GetPointer());
     vtkNew<MessageObserver> messages;
     observe_messages(filter, messages);
@@ -621,7 +626,9 @@ TEST_F(VtkFilters, NonDefaultReconstructionOptionsReachTheLibrary) {
         [](Filter* f) { f->SetCapRefinementToEarClipping(); });
   check("min overlap", pelvis, [](auto& o) { o.tiling.min_overlap_fraction = 0.9; },
         [](Filter* f) { f->SetMinOverlapFraction(0.9); });
-  check("band", cavity,
+  // The narrowest corridor (8 points either side of the arc-length diagonal) holds the optimum of every
+  // band of the cavity; the pelvis's contours shift between slices, and some of its optima lie outside.
+  check("band", pelvis,
         [](auto& o) {
           o.tiling.full_dp_limit = 0;
           o.tiling.band_fraction = 0.0;
@@ -629,7 +636,24 @@ TEST_F(VtkFilters, NonDefaultReconstructionOptionsReachTheLibrary) {
         [](Filter* f) {
           f->SetFullDynamicProgrammingLimit(0);
           f->SetBandFraction(0.0);
-        });
+        },
+        true);
+  check("min overlap of larger", cavity, [](auto& o) { o.tiling.min_overlap_of_larger = 0.0; },
+        [](Filter* f) { f->SetMinOverlapOfLarger(0.0); });
+  check("mid-plane branching", cavity, [](auto& o) { o.tiling.branching = Branching::MidPlaneComposite; },
+        [](Filter* f) { f->SetBranchingToMidPlane(); });
+  check("max branching depth", cavity, [](auto& o) { o.tiling.max_branching_depth = 0; },
+        [](Filter* f) { f->SetMaxBranchingDepth(0); });
+  check("no band refinement", cavity, [](auto& o) { o.tiling.band_refinement = BandRefinement::None; },
+        [](Filter* f) { f->SetBandRefinementToNone(); });
+  check("max band sliver share", cavity, [](auto& o) { o.tiling.max_band_sliver_share = 0.2; },
+        [](Filter* f) { f->SetMaxBandSliverShare(0.2); });
+  check("max band aspect", cavity, [](auto& o) { o.tiling.max_band_aspect = 1.0; },
+        [](Filter* f) { f->SetMaxBandAspect(1.0); });
+  check("max intermediate contours", cavity, [](auto& o) { o.tiling.max_intermediate_contours = 1; },
+        [](Filter* f) { f->SetMaxIntermediateContours(1); });
+  check("interpolation grid", cavity, [](auto& o) { o.tiling.interpolation_grid = 1.0; },
+        [](Filter* f) { f->SetInterpolationGrid(1.0); });
   check("min component voxels", cavity, [](auto& o) { o.min_component_voxels = 0.0; },
         [](Filter* f) { f->SetMinComponentVoxels(0.0); });
 
@@ -823,6 +847,22 @@ TEST_F(VtkFilters, OptionsClampAndPrintSelfListsThem) {
   EXPECT_EQ(s->GetDenoising(), vtkCtImageToContourSurfaceFilter::DENOISING_CURVATURE_ANISOTROPIC);
   s->SetFullDynamicProgrammingLimit(-3);
   EXPECT_EQ(s->GetFullDynamicProgrammingLimit(), 0);
+  s->SetBranching(5);
+  EXPECT_EQ(s->GetBranching(), vtkCtImageToContourSurfaceFilter::BRANCHING_MID_PLANE);
+  s->SetMaxIntermediateContours(0);
+  EXPECT_EQ(s->GetMaxIntermediateContours(), 1);
+  // The defaults are the library's.
+  vtkNew<vtkCtImageToContourSurfaceFilter> d;
+  const TilingOptions t;
+  EXPECT_EQ(d->GetMaxBranchingDepth(), t.max_branching_depth);
+  EXPECT_EQ(d->GetMaxBandSliverShare(), t.max_band_sliver_share);
+  EXPECT_EQ(d->GetMaxBandAspect(), t.max_band_aspect);
+  EXPECT_EQ(d->GetMaxIntermediateContours(), t.max_intermediate_contours);
+  EXPECT_EQ(d->GetInterpolationGrid(), t.interpolation_grid);
+  EXPECT_EQ(d->GetMinOverlapOfLarger(), t.min_overlap_of_larger);
+  EXPECT_EQ(d->GetMinOverlapFraction(), t.min_overlap_fraction);
+  EXPECT_EQ(d->GetBandFraction(), t.band_fraction);
+  EXPECT_EQ(static_cast<std::size_t>(d->GetFullDynamicProgrammingLimit()), t.full_dp_limit);
 
   // Mu clamped to 0 is outside Taubin's [-1, 0): an error naming it when run, output empty.
   vtkNew<vtkContourFeatureSmoothingFilter> taubin;
@@ -850,6 +890,8 @@ TEST_F(VtkFilters, OptionsClampAndPrintSelfListsThem) {
   for (const char* option : {"ThresholdMethod", "Threshold", "Denoising", "KeepLargestComponent", "MinRegionArea",
                              "FillHoles", "Sampling", "MinContourLength", "EndCaps", "CapRefinement",
                              "MinOverlapFraction: 1", "FullDynamicProgrammingLimit", "BandFraction",
+                             "Branching", "MaxBranchingDepth", "BandRefinement", "MaxBandSliverShare", "MaxBandAspect",
+                             "MaxIntermediateContours", "InterpolationGrid", "MinOverlapOfLarger",
                              "MinComponentVoxels", "ContourIdArrayName"}) {
     EXPECT_NE(printed_surface.str().find(option), std::string::npos) << option;
   }

@@ -244,6 +244,8 @@ TEST(VtkPolylinesFilter, SettersClampAndPrintSelfListsEveryOption) {
   for (const char* option : {"SliceIdArrayName", "SliceAxis", "PlanarityTolerance", "SliceTolerance", "Sampling",
                              "SamplingTolerance", "DriftAlignment", "SingleSliceContours", "SlabThickness", "EndCaps",
                              "CapRefinement", "MinOverlapFraction", "FullDynamicProgrammingLimit", "BandFraction",
+                             "Branching", "MaxBranchingDepth", "BandRefinement", "MaxBandSliverShare", "MaxBandAspect",
+                             "MaxIntermediateContours", "InterpolationGrid", "MinOverlapOfLarger",
                              "ContourIdArrayName", "ContourIndexArrayName"}) {
     EXPECT_NE(os.str().find(option), std::string::npos) << option;
   }

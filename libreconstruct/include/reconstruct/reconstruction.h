@@ -34,6 +34,7 @@ struct ReconstructionReport {
 
 struct Reconstruction {
   Mesh mesh;  ///< tiled mesh with slice and contour ids (see tile_contours)
+  std::vector<FaceRole> face_roles;  ///< one per face of `mesh` (see tile_contours)
   ContourStack contours;
   ReconstructionReport report;
 };

@@ -173,8 +173,16 @@ RefinedCap triangulate_refined(const Polygon& outer, const std::vector<Polygon>&
       const auto& C = tr.pos[tri[2]];
       const double longest = std::max({(A - B).squaredNorm(), (B - C).squaredNorm(), (C - A).squaredNorm()});
       if (longest <= limit2) continue;
+      // A thin triangle's centroid lies next to its corners: inserting it makes slivers, and again at the
+      // same place in the next pass (a narrow slit of a C-shaped cap filled up with coincident points).
+      const Eigen::Vector2d centroid = (A + B + C) / 3.0;
+      const double too_near2 = 0.09 * target_edge * target_edge;
+      if ((centroid - A).squaredNorm() < too_near2 || (centroid - B).squaredNorm() < too_near2 ||
+          (centroid - C).squaredNorm() < too_near2) {
+        continue;
+      }
       const int p = static_cast<int>(tr.pos.size());
-      tr.pos.push_back((A + B + C) / 3.0);
+      tr.pos.push_back(centroid);
       tr.id.push_back({-1, static_cast<int>(cap.interior.size())});
       cap.interior.push_back(tr.pos.back());
       tr.kill(static_cast<int>(t));

@@ -8,21 +8,63 @@ namespace contourmesh::detail {
 
 namespace {
 
-void crossings(const Polygon& poly, double y, std::vector<double>& xs) {
-  xs.clear();
-  const std::size_t n = poly.size();
-  for (std::size_t i = 0, j = n - 1; i < n; j = i++) {
-    const Eigen::Vector2d& p = poly[j];
-    const Eigen::Vector2d& q = poly[i];
-    if ((p.y() > y) != (q.y() > y)) xs.push_back(p.x() + (y - p.y()) * (q.x() - p.x()) / (q.y() - p.y()));
-  }
-  std::sort(xs.begin(), xs.end());
-}
-
 Eigen::AlignedBox2d box_of(const Polygon& p) {
   Eigen::AlignedBox2d b;
   for (const auto& v : p) b.extend(v);
   return b;
+}
+
+}  // namespace
+
+namespace {
+
+// The crossings of every scanline y_r = y0 + (r + 0.5) h, r < rows, with the polygon's edges, sorted per
+// row, in one array: row r holds xs[start[r] .. start[r + 1]). Each edge visits only the rows it spans.
+struct RowCrossings {
+  std::vector<double> xs;
+  std::vector<int> start;
+};
+
+RowCrossings row_crossings(const Polygon& poly, double y0, double h, int rows) {
+  RowCrossings out;
+  out.start.assign(static_cast<std::size_t>(rows) + 1, 0);
+  const std::size_t n = poly.size();
+  auto span = [&](const Eigen::Vector2d& p, const Eigen::Vector2d& q, int& r0, int& r1) {
+    const double lo = std::min(p.y(), q.y()), hi = std::max(p.y(), q.y());
+    r0 = std::max(0, static_cast<int>(std::floor((lo - y0) / h - 0.5)));
+    r1 = std::min(rows - 1, static_cast<int>(std::ceil((hi - y0) / h - 0.5)));
+  };
+  auto crosses = [&](const Eigen::Vector2d& p, const Eigen::Vector2d& q, int r) {
+    const double y = y0 + (r + 0.5) * h;
+    return (p.y() > y) != (q.y() > y);
+  };
+  // Count, then fill.
+  for (int pass = 0; pass < 2; ++pass) {
+    std::vector<int> fill;
+    if (pass == 1) {
+      for (int r = 0; r < rows; ++r) out.start[r + 1] += out.start[r];
+      out.xs.resize(static_cast<std::size_t>(out.start[rows]));
+      fill.assign(out.start.begin(), out.start.end() - 1);
+    }
+    for (std::size_t i = 0, j = n - 1; i < n; j = i++) {
+      const Eigen::Vector2d& p = poly[j];
+      const Eigen::Vector2d& q = poly[i];
+      if (p.y() == q.y()) continue;
+      int r0 = 0, r1 = -1;
+      span(p, q, r0, r1);
+      for (int r = r0; r <= r1; ++r) {
+        if (!crosses(p, q, r)) continue;
+        if (pass == 0) {
+          ++out.start[r + 1];
+        } else {
+          const double y = y0 + (r + 0.5) * h;
+          out.xs[static_cast<std::size_t>(fill[r]++)] = p.x() + (y - p.y()) * (q.x() - p.x()) / (q.y() - p.y());
+        }
+      }
+    }
+  }
+  for (int r = 0; r < rows; ++r) std::sort(out.xs.begin() + out.start[r], out.xs.begin() + out.start[r + 1]);
+  return out;
 }
 
 }  // namespace
@@ -33,15 +75,16 @@ double overlap_area(const Polygon& a, const Polygon& b, int rows) {
   const Eigen::AlignedBox2d common = ba.intersection(bb);
   if (common.isEmpty() || common.sizes().x() <= 0.0 || common.sizes().y() <= 0.0) return 0.0;
   const double h = common.sizes().y() / rows;
-  std::vector<double> xa, xb;
+  const RowCrossings ca = row_crossings(a, common.min().y(), h, rows);
+  const RowCrossings cb = row_crossings(b, common.min().y(), h, rows);
   double area = 0.0;
   for (int r = 0; r < rows; ++r) {
-    const double y = common.min().y() + (r + 0.5) * h;
-    crossings(a, y, xa);
-    crossings(b, y, xb);
+    const double* xa = ca.xs.data() + ca.start[r];
+    const double* xb = cb.xs.data() + cb.start[r];
+    const int na = ca.start[r + 1] - ca.start[r], nb = cb.start[r + 1] - cb.start[r];
     // Intersect the two sorted interval lists [x0, x1], [x2, x3], ...
-    std::size_t i = 0, j = 0;
-    while (i + 1 < xa.size() && j + 1 < xb.size()) {
+    int i = 0, j = 0;
+    while (i + 1 < na && j + 1 < nb) {
       const double lo = std::max(xa[i], xb[j]);
       const double hi = std::min(xa[i + 1], xb[j + 1]);
       if (hi > lo) area += (hi - lo) * h;

@@ -1,0 +1,317 @@
+#include "detail/band_tiling.h"
+
+#include <smooth/limits.h>
+#include <smooth/mesh_quality.h>
+
+#include <algorithm>
+#include <cmath>
+#include <cstdint>
+#include <limits>
+#include <string>
+
+namespace contourmesh::detail {
+
+namespace {
+
+// Above this many point pairs the programme first solves every k-th point and then the full rings in a
+// corridor around that path.
+constexpr double kCoarseToFineCells = 90'000.0;
+constexpr double kCoarseCells = 40'000.0;
+// Programmes smaller than this are not checked against the available memory.
+constexpr double kCheckedBytes = 16e6;
+
+double triangle_area(const Eigen::Vector3d& a, const Eigen::Vector3d& b, const Eigen::Vector3d& c) {
+  return 0.5 * (b - a).cross(c - a).norm();
+}
+
+// The least-cost monotone path through grid nodes (i, j), 0 <= i <= m, 0 <= j <= n, row i restricted to
+// lo[i] <= j <= hi[i], between rings P (m + 1 points, P[m] = P[0]) and Q (likewise). Node (i, j) is the
+// edge P[i] - Q[j]; (0, j) and (m, j) are the same edge, as are (i, 0) and (i, n). So that the start
+// edge (0, 0) = (m, n) is the only edge met twice, the path leaves (0, 0) along P and enters (m, n) along
+// Q: nodes (0, j > 0), (m, 0) and (i < m, n) are never used. Moves: 1 = advance i (triangle P[i-1] P[i]
+// Q[j]), 0 = advance j (triangle P[i] Q[j] Q[j-1]), listed from the end; empty when (m, n) cannot be
+// reached in the corridor.
+std::vector<std::uint8_t> least_cost_path(const std::vector<Eigen::Vector3d>& P, const std::vector<Eigen::Vector3d>& Q,
+                                          const std::vector<int>& lo, const std::vector<int>& hi, double span_weight,
+                                          const TilingOptions& options) {
+  const int m = static_cast<int>(P.size()) - 1, n = static_cast<int>(Q.size()) - 1;
+  std::vector<std::size_t> row_start(static_cast<std::size_t>(m) + 2, 0);
+  for (int i = 0; i <= m; ++i) row_start[i + 1] = row_start[i] + static_cast<std::size_t>(hi[i] - lo[i] + 1);
+  const double bytes = static_cast<double>(row_start[m + 1]) * (sizeof(double) + sizeof(std::uint8_t));
+  if (bytes > kCheckedBytes || options.limits.max_memory_bytes > 0) {  // asking the system costs a file read
+    check_allocation("tiling: contours of " + std::to_string(m) + " and " + std::to_string(n) + " points", 0.0, bytes,
+                     options.limits);
+  }
+  const double inf = std::numeric_limits<double>::infinity();
+  std::vector<double> cost(row_start[m + 1], inf);
+  std::vector<std::uint8_t> from_lower(row_start[m + 1], 0);
+  auto at = [&](int i, int j) { return row_start[i] + static_cast<std::size_t>(j - lo[i]); };
+  cost[at(0, 0)] = 0.0;
+  for (int i = 0; i <= m; ++i) {
+    for (int j = lo[i]; j <= hi[i]; ++j) {
+      if (i == 0 && j == 0) continue;
+      if ((i == 0 && j > 0) || (i == m && j == 0) || (j == n && i < m)) continue;
+      double c = inf;
+      std::uint8_t fl = 0;
+      if (i > 0 && j >= lo[i - 1] && j <= hi[i - 1] && cost[at(i - 1, j)] < inf) {
+        c = cost[at(i - 1, j)] + triangle_area(P[i - 1], P[i], Q[j]);
+        fl = 1;
+      }
+      if (j > lo[i] && cost[at(i, j - 1)] < inf) {
+        const double c2 = cost[at(i, j - 1)] + triangle_area(P[i], Q[j], Q[j - 1]);
+        if (c2 < c) {
+          c = c2;
+          fl = 0;
+        }
+      }
+      cost[at(i, j)] = c + (span_weight > 0.0 && c < inf ? span_weight * (P[i] - Q[j]).squaredNorm() : 0.0);
+      from_lower[at(i, j)] = fl;
+    }
+  }
+  std::vector<std::uint8_t> moves;
+  if (!(cost[at(m, n)] < inf)) return moves;
+  moves.reserve(static_cast<std::size_t>(m + n));
+  for (int i = m, j = n; i > 0 || j > 0;) {
+    const std::uint8_t fl = from_lower[at(i, j)];
+    moves.push_back(fl);
+    if (fl) --i;
+    else --j;
+  }
+  return moves;
+}
+
+// The corridor around the arc-length diagonal j = i n / m: +/- half points.
+void diagonal_corridor(int m, int n, int half, std::vector<int>& lo, std::vector<int>& hi) {
+  lo.assign(static_cast<std::size_t>(m) + 1, 0);
+  hi.assign(static_cast<std::size_t>(m) + 1, n);
+  for (int i = 0; i <= m; ++i) {
+    const double c = static_cast<double>(i) * n / m;
+    lo[i] = std::max(0, static_cast<int>(std::floor(c)) - half);
+    hi[i] = std::min(n, static_cast<int>(std::ceil(c)) + half);
+  }
+  lo[0] = 0;
+  hi[m] = n;
+}
+
+// The programme on every k-th point, and the corridor of +/- margin points around its path at full
+// resolution.
+void coarse_corridor(const std::vector<Eigen::Vector3d>& P, const std::vector<Eigen::Vector3d>& Q, int k, int margin,
+                     double span_weight, const TilingOptions& options, std::vector<int>& lo, std::vector<int>& hi) {
+  const int m = static_cast<int>(P.size()) - 1, n = static_cast<int>(Q.size()) - 1;
+  const int mc = (m + k - 1) / k, nc = (n + k - 1) / k;
+  std::vector<Eigen::Vector3d> Pc(static_cast<std::size_t>(mc) + 1), Qc(static_cast<std::size_t>(nc) + 1);
+  for (int i = 0; i <= mc; ++i) Pc[i] = P[std::min(i * k, m)];
+  for (int j = 0; j <= nc; ++j) Qc[j] = Q[std::min(j * k, n)];
+  std::vector<int> clo, chi;
+  diagonal_corridor(mc, nc, nc, clo, chi);
+  const std::vector<std::uint8_t> moves = least_cost_path(Pc, Qc, clo, chi, span_weight, options);
+  lo.assign(static_cast<std::size_t>(m) + 1, n);
+  hi.assign(static_cast<std::size_t>(m) + 1, 0);
+  // Each coarse node (ic, jc) covers fine rows ic k - k .. ic k + k around column jc k.
+  auto cover = [&](int ic, int jc) {
+    const int j = std::min(jc * k, n);
+    for (int i = std::max(0, ic * k - k); i <= std::min(m, ic * k + k); ++i) {
+      lo[i] = std::min(lo[i], std::max(0, j - margin));
+      hi[i] = std::max(hi[i], std::min(n, j + margin));
+    }
+  };
+  int ic = mc, jc = nc;
+  cover(ic, jc);
+  for (std::uint8_t fl : moves) {
+    if (fl) --ic;
+    else --jc;
+    cover(ic, jc);
+  }
+  lo[0] = 0;
+  hi[m] = n;
+  for (int i = 0; i <= m; ++i) hi[i] = std::max(hi[i], lo[i]);
+}
+
+}  // namespace
+
+std::vector<BandTriangle> minimum_area_band(const Polygon& lower, double wl, const Polygon& upper, double wu,
+                                            const TilingOptions& options, int lower_start, double span_weight) {
+  const int m = static_cast<int>(lower.size());
+  const int r0 = ((lower_start % m) + m) % m;
+  const int n = static_cast<int>(upper.size());
+  // The start: lower[r0] and the nearest upper point where the upper contour runs the same way. On a
+  // thin wall or a narrow crack the nearest point may lie on the far side, running back: starting there
+  // twists the whole band.
+  int q0 = -1;
+  {
+    const Eigen::Vector2d tangent = lower[static_cast<std::size_t>((r0 + 1) % m)] - lower[static_cast<std::size_t>((r0 + m - 1) % m)];
+    double best = std::numeric_limits<double>::infinity(), best_any = best;
+    int any = 0;
+    for (int j = 0; j < n; ++j) {
+      const double d = (upper[static_cast<std::size_t>(j)] - lower[static_cast<std::size_t>(r0)]).squaredNorm();
+      if (d < best_any) {
+        best_any = d;
+        any = j;
+      }
+      if (d < best && tangent.dot(upper[static_cast<std::size_t>((j + 1) % n)] - upper[static_cast<std::size_t>((j + n - 1) % n)]) > 0.0) {
+        best = d;
+        q0 = j;
+      }
+    }
+    if (q0 < 0) q0 = any;
+  }
+  // The rings as 3-D points in programme order (lower from r0, upper from q0), made once: each cell of
+  // the programme reads four of them, and wrapping the index (two integer divisions per point read)
+  // was a quarter of the tiler's instructions.
+  std::vector<Eigen::Vector3d> P(static_cast<std::size_t>(m) + 1), Q(static_cast<std::size_t>(n) + 1);
+  for (int i = 0; i <= m; ++i) {
+    const Eigen::Vector2d& p = lower[static_cast<std::size_t>((r0 + i) % m)];
+    P[i] = Eigen::Vector3d(p.x(), p.y(), wl);
+  }
+  for (int j = 0; j <= n; ++j) {
+    const Eigen::Vector2d& q = upper[static_cast<std::size_t>((q0 + j) % n)];
+    Q[j] = Eigen::Vector3d(q.x(), q.y(), wu);
+  }
+  const double cells = static_cast<double>(m) * static_cast<double>(n);
+  std::vector<int> lo, hi;
+  std::vector<std::uint8_t> moves;
+  if (cells > static_cast<double>(options.full_dp_limit)) {
+    diagonal_corridor(m, n, std::max({8, static_cast<int>(std::ceil(options.band_fraction * n)), (n + m - 1) / m + 2}), lo, hi);
+    moves = least_cost_path(P, Q, lo, hi, span_weight, options);
+  } else if (cells > kCoarseToFineCells && std::min(m, n) >= 32) {
+    const int k = std::max(2, static_cast<int>(std::round(std::sqrt(cells / kCoarseCells))));
+    coarse_corridor(P, Q, k, 2 * k + 2, span_weight, options, lo, hi);
+    moves = least_cost_path(P, Q, lo, hi, span_weight, options);
+  }
+  if (moves.empty()) {  // small rings, or a corridor that missed the end
+    diagonal_corridor(m, n, n, lo, hi);
+    moves = least_cost_path(P, Q, lo, hi, span_weight, options);
+  }
+  std::vector<BandTriangle> band;
+  band.reserve(moves.size());
+  auto L = [&](int k) { return BandCorner{0, (r0 + k) % m}; };
+  auto U = [&](int k) { return BandCorner{1, (q0 + k) % n}; };
+  int i = m, j = n;
+  for (std::uint8_t fl : moves) {
+    if (fl) {
+      band.push_back({L(i - 1), L(i), U(j)});
+      --i;
+    } else {
+      band.push_back({L(i), U(j), U(j - 1)});
+      --j;
+    }
+  }
+  return band;
+}
+
+BandQuality band_quality(const Polygon& lower, double wl, const Polygon& upper, double wu,
+                         const std::vector<BandTriangle>& band) {
+  BandQuality q;
+  auto point = [&](const BandCorner& c) {
+    const Eigen::Vector2d& p = c.ring == 0 ? lower[static_cast<std::size_t>(c.index)] : upper[static_cast<std::size_t>(c.index)];
+    return Eigen::Vector3d(p.x(), p.y(), c.ring == 0 ? wl : wu);
+  };
+  for (const BandTriangle& t : band) {
+    const Eigen::Vector3d a = point(t[0]), b = point(t[1]), c = point(t[2]);
+    const double area = triangle_area(a, b, c);
+    q.area += area;
+    if (is_sliver(a, b, c)) q.sliver_area += area;
+    for (int k = 0; k < 3; ++k) {
+      if (t[k].ring != t[(k + 1) % 3].ring) {
+        q.longest_cross_edge = std::max(q.longest_cross_edge, (point(t[k]) - point(t[(k + 1) % 3])).norm());
+      }
+    }
+  }
+  return q;
+}
+
+namespace {
+
+// max over p in a of the distance from p to the nearest point of b. Each point's search stops as soon as
+// it finds a point of b nearer than the current maximum (it cannot raise it); starting the search where
+// the previous point's ended makes that quick for curves sampled in order.
+double directed_distance(const Polygon& a, const Polygon& b) {
+  double worst2 = 0.0;
+  std::size_t start = 0;
+  const std::size_t n = b.size();
+  for (const Eigen::Vector2d& p : a) {
+    double best2 = std::numeric_limits<double>::infinity();
+    std::size_t nearest = start;
+    for (std::size_t k = 0; k < n; ++k) {
+      const std::size_t j = (start + k) % n;
+      const double d2 = (b[j] - p).squaredNorm();
+      if (d2 < best2) {
+        best2 = d2;
+        nearest = j;
+        if (best2 <= worst2) break;
+      }
+    }
+    start = nearest;
+    worst2 = std::max(worst2, best2);
+  }
+  return std::sqrt(worst2);
+}
+
+}  // namespace
+
+double contour_distance(const Polygon& a, const Polygon& b) {
+  return std::max(directed_distance(a, b), directed_distance(b, a));
+}
+
+bool band_is_twisted(const Polygon& lower, double wl, const Polygon& upper, double wu, const BandQuality& quality,
+                     double spacing) {
+  // Cheap bound first: no edge across can be longer than what the curves' distance allows.
+  const double gap = wu - wl;
+  const double apart = std::hypot(contour_distance(lower, upper), gap);
+  return quality.longest_cross_edge > 2.0 * apart + 2.0 * spacing;
+}
+
+std::vector<BandTriangle> untwisted_band(const Polygon& lower, double wl, const Polygon& upper, double wu,
+                                         const TilingOptions& options, double spacing, bool* twisted) {
+  std::vector<BandTriangle> first = minimum_area_band(lower, wl, upper, wu, options);
+  BandQuality q = band_quality(lower, wl, upper, wu, first);
+  if (twisted) *twisted = false;
+  if (!band_is_twisted(lower, wl, upper, wu, q, spacing)) return first;
+  // Other starts, and the least area plus the squared lengths across (which keeps the band from jumping
+  // along a crack narrower than the spacing, whose two sides the least area alone cannot tell apart).
+  std::vector<BandTriangle> best = std::move(first), untwisted;
+  double best_edge = q.longest_cross_edge, untwisted_area = std::numeric_limits<double>::infinity();
+  const int m = static_cast<int>(lower.size());
+  for (int k = 0; k < 5; ++k) {
+    std::vector<BandTriangle> band = k < 4 ? minimum_area_band(lower, wl, upper, wu, options, (k + 1) * m / 4 % m)
+                                           : minimum_area_band(lower, wl, upper, wu, options, 0, 1.0);
+    q = band_quality(lower, wl, upper, wu, band);
+    if (!band_is_twisted(lower, wl, upper, wu, q, spacing)) {
+      if (q.area < untwisted_area) {
+        untwisted_area = q.area;
+        untwisted = std::move(band);
+      }
+    } else if (q.longest_cross_edge < best_edge) {
+      best_edge = q.longest_cross_edge;
+      best = std::move(band);
+    }
+  }
+  if (!untwisted.empty()) return untwisted;
+  if (twisted) *twisted = true;
+  return best;
+}
+
+void emit_band(const LevelContour& lower, const LevelContour& upper, const std::vector<BandTriangle>& band,
+               SlabMesh& out) {
+  auto id = [&](const BandCorner& c) {
+    return c.ring == 0 ? lower.ids[static_cast<std::size_t>(c.index)] : upper.ids[static_cast<std::size_t>(c.index)];
+  };
+  for (const BandTriangle& t : band) out.add_triangle(id(t[0]), id(t[1]), id(t[2]), FaceRole::Band);
+}
+
+void emit_copy_band(const std::vector<VertexRef>& lower, const std::vector<VertexRef>& upper, SlabMesh& out) {
+  const std::size_t n = lower.size();
+  for (std::size_t i = 0; i < n; ++i) {
+    const std::size_t k = (i + 1) % n;
+    out.add_triangle(lower[i], lower[k], upper[k], FaceRole::Band);
+    out.add_triangle(lower[i], upper[k], upper[i], FaceRole::Band);
+  }
+}
+
+LevelContour copy_contour(const LevelContour& c, double w, SlabMesh& out) {
+  LevelContour copy = c;
+  for (std::size_t k = 0; k < c.points.size(); ++k) copy.ids[k] = out.add_vertex(c.points[k], w);
+  return copy;
+}
+
+}  // namespace contourmesh::detail

@@ -1,0 +1,318 @@
+#include "detail/branching.h"
+
+#include "detail/band_tiling.h"
+#include "detail/caps.h"
+#include "detail/correspondence.h"
+#include "reconstruct/contours.h"
+
+#include <algorithm>
+#include <array>
+#include <limits>
+#include <numeric>
+#include <tuple>
+
+namespace contourmesh::detail {
+
+namespace {
+
+// Copies of several contours on one plane, joined by bridges into one composite contour. Each bridge
+// leaves a quad (a_i, a_i+1 of the composite so far; b_j, b_j+1 of the joined contour) to be closed by
+// two faces, recorded as the cycle (a_i, b_j+1, b_j, a_i+1) that follows the composite's direction.
+struct Composite {
+  LevelContour ring;
+  std::vector<std::array<VertexRef, 4>> quads;
+  std::vector<std::array<Eigen::Vector2d, 4>> quad_points;
+};
+
+// Whether p lies inside one of the outer contours of `level` (its holes filled: a hole is background
+// enclosed by material, not an opening of the wall).
+bool in_outline(const Level& level, const Eigen::Vector2d& p) {
+  return std::any_of(level.contours.begin(), level.contours.end(), [&](const LevelContour& c) {
+    return !c.is_hole && c.box.contains(p) && point_in_polygon(c.points, p);
+  });
+}
+
+// The pair (point of `a`, point of `b`) a bridge joins: the nearest pair; for a hole that opens (`gap`
+// given: the other level), the nearest pair whose midpoint lies outside the other level's outer contours, where the wall between hole and outer contour is open on
+// the other side (the nearest pair overall when
+// there is none).
+std::pair<std::size_t, std::size_t> bridge_ends(const LevelContour& a, const LevelContour& b, const Level* gap,
+                                                double& distance) {
+  std::vector<std::tuple<double, std::size_t, std::size_t>> nearest;
+  nearest.reserve(a.points.size());
+  for (std::size_t i = 0; i < a.points.size(); ++i) {
+    double best = std::numeric_limits<double>::infinity();
+    std::size_t bj = 0;
+    for (std::size_t j = 0; j < b.points.size(); ++j) {
+      const double d = (a.points[i] - b.points[j]).squaredNorm();
+      if (d < best) {
+        best = d;
+        bj = j;
+      }
+    }
+    nearest.emplace_back(best, i, bj);
+  }
+  std::sort(nearest.begin(), nearest.end());
+  if (gap) {
+    for (const auto& [d, i, j] : nearest) {
+      if (!in_outline(*gap, 0.5 * (a.points[i] + b.points[j]))) {
+        distance = d;
+        return {i, j};
+      }
+    }
+  }
+  distance = std::get<0>(nearest.front());
+  return {std::get<1>(nearest.front()), std::get<2>(nearest.front())};
+}
+
+Composite make_composite(const std::vector<LevelContour>& copies, const Level& other) {
+  Composite comp;
+  comp.ring = copies[0];
+  std::vector<bool> used(copies.size(), false);
+  used[0] = true;
+  const bool opening = std::any_of(copies.begin(), copies.end(), [](const LevelContour& c) { return c.is_hole; });
+  for (std::size_t round = 1; round < copies.size(); ++round) {
+    // The contour not yet joined that is nearest to the composite.
+    double best = std::numeric_limits<double>::infinity();
+    std::size_t which = 0, ba = 0, bb = 0;
+    for (std::size_t r = 0; r < copies.size(); ++r) {
+      if (used[r]) continue;
+      double d = 0.0;
+      const auto [a, b] = bridge_ends(comp.ring, copies[r], opening ? &other : nullptr, d);
+      if (d < best) {
+        best = d;
+        which = r;
+        ba = a;
+        bb = b;
+      }
+    }
+    used[which] = true;
+    const LevelContour& x = copies[which];
+    const std::size_t na = comp.ring.points.size(), nb = x.points.size();
+    LevelContour merged;
+    for (std::size_t k = 1; k <= na; ++k) {  // a_i+1 ... a_i
+      merged.ids.push_back(comp.ring.ids[(ba + k) % na]);
+      merged.points.push_back(comp.ring.points[(ba + k) % na]);
+    }
+    for (std::size_t k = 0; k < nb; ++k) {  // b_j+1 = x[bb] ... b_j = x[bb - 1]
+      merged.ids.push_back(x.ids[(bb + k) % nb]);
+      merged.points.push_back(x.points[(bb + k) % nb]);
+    }
+    const std::size_t bj = (bb + nb - 1) % nb, ai1 = (ba + 1) % na;
+    comp.quads.push_back({comp.ring.ids[ba], x.ids[bb], x.ids[bj], comp.ring.ids[ai1]});
+    comp.quad_points.push_back({comp.ring.points[ba], x.points[bb], x.points[bj], comp.ring.points[ai1]});
+    comp.ring = std::move(merged);
+  }
+  return comp;
+}
+
+// Closes a bridge quad by its shorter diagonal; `forward` keeps the cycle's direction (the composite is
+// the upper contour of its band).
+void close_quad(std::array<VertexRef, 4> c, std::array<Eigen::Vector2d, 4> p, bool forward, SlabMesh& out) {
+  if (!forward) {
+    std::reverse(c.begin(), c.end());
+    std::reverse(p.begin(), p.end());
+  }
+  if ((p[0] - p[2]).squaredNorm() <= (p[1] - p[3]).squaredNorm()) {
+    out.add_triangle(c[0], c[1], c[2], FaceRole::Bridge);
+    out.add_triangle(c[0], c[2], c[3], FaceRole::Bridge);
+  } else {
+    out.add_triangle(c[1], c[2], c[3], FaceRole::Bridge);
+    out.add_triangle(c[1], c[3], c[0], FaceRole::Bridge);
+  }
+}
+
+class UnionFind {
+ public:
+  explicit UnionFind(std::size_t n) : parent_(n) { std::iota(parent_.begin(), parent_.end(), 0); }
+  std::size_t find(std::size_t x) {
+    while (parent_[x] != x) x = parent_[x] = parent_[parent_[x]];
+    return x;
+  }
+  void unite(std::size_t a, std::size_t b) {
+    a = find(a);
+    b = find(b);
+    if (a != b) parent_[std::max(a, b)] = std::min(a, b);
+  }
+
+ private:
+  std::vector<std::size_t> parent_;
+};
+
+// The contours `members` of `level` copied onto plane w and joined into one composite contour; `below`
+// says whether the originals lie below the plane.
+LevelContour composite_of(const Level& level, const std::vector<int>& members, const Level& other, double w, bool below,
+                          SlabMesh& out) {
+  std::vector<LevelContour> copies;
+  for (int i : members) {
+    const LevelContour& c = level.contours[static_cast<std::size_t>(i)];
+    copies.push_back(copy_contour(c, w, out));
+    if (below) emit_copy_band(c.ids, copies.back().ids, out);
+    else emit_copy_band(copies.back().ids, c.ids, out);
+  }
+  const Composite comp = make_composite(copies, other);
+  for (std::size_t q = 0; q < comp.quads.size(); ++q) close_quad(comp.quads[q], comp.quad_points[q], !below, out);
+  ++out.stats.composites;
+  return comp.ring;
+}
+
+// When every contour of `inner` (of level `in`) lies inside one contour of `outer` (of level `of`), the
+// contours of `outer` that hold them, one per contour of `inner`; empty otherwise. The holders must be
+// outer contours without holes in their level, the others outer contours, and none may touch another.
+std::vector<int> holders(const Level& of, const std::vector<int>& outer, const Level& in, const std::vector<int>& inner) {
+  std::vector<Polygon> polygons;
+  for (int o : outer) {
+    const LevelContour& c = of.contours[static_cast<std::size_t>(o)];
+    if (c.is_hole) return {};
+    for (const LevelContour& h : of.contours) {
+      if (h.is_hole && h.parent == o) return {};
+    }
+    polygons.push_back(c.points);
+  }
+  std::vector<int> holder;
+  for (int i : inner) {
+    const LevelContour& c = in.contours[static_cast<std::size_t>(i)];
+    if (c.is_hole) return {};
+    int found = -1;
+    for (int o : outer) {
+      const LevelContour& h = of.contours[static_cast<std::size_t>(o)];
+      if (h.box.contains(c.box) && std::all_of(c.points.begin(), c.points.end(),
+                                               [&](const Eigen::Vector2d& p) { return point_in_polygon(h.points, p); })) {
+        found = o;
+        break;
+      }
+    }
+    if (found < 0) return {};
+    holder.push_back(found);
+    polygons.push_back(c.points);
+  }
+  if (find_polygon_crossing(polygons)) return {};
+  return holder;
+}
+
+// Contours `inner` of level `in` inside one contour `single` of the other level: all are copied onto
+// plane w and joined to their originals by straight bands, and the flat region between the copy of
+// `single` and the others is triangulated like a cap with holes (faces of role Bridge): well-shaped
+// faces where a composite's band would fan long slivers across the region.
+void nested_fill(const LevelContour& single, bool single_below, const Level& in, const std::vector<int>& inner,
+                 double w, const TilingOptions& options, SlabMesh& out) {
+  const LevelContour outer = copy_contour(single, w, out);
+  if (single_below) emit_copy_band(single.ids, outer.ids, out);
+  else emit_copy_band(outer.ids, single.ids, out);
+  std::vector<LevelContour> holes;
+  for (int m : inner) {
+    const LevelContour& c = in.contours[static_cast<std::size_t>(m)];
+    LevelContour copy = copy_contour(c, w, out);
+    if (single_below) emit_copy_band(copy.ids, c.ids, out);
+    else emit_copy_band(c.ids, copy.ids, out);
+    std::reverse(copy.points.begin(), copy.points.end());
+    std::reverse(copy.ids.begin(), copy.ids.end());
+    holes.push_back(std::move(copy));
+  }
+  fill_planar(outer, holes, w, single_below, FaceRole::Bridge, options, out);
+  ++out.stats.composites;
+}
+
+// Tiles a group whose contours on one side each lie inside a contour of the other side: each holder
+// with one contour inside gets a band, with several a nested fill, with none a cap. False when the
+// group is not nested so.
+bool tile_nested(const Level& lower, const Level& upper, const std::vector<int>& L, const std::vector<int>& U,
+                 double extension, const TilingOptions& options, SlabMesh& out) {
+  for (const bool holders_below : {true, false}) {
+    const Level& of = holders_below ? lower : upper;
+    const Level& in = holders_below ? upper : lower;
+    const std::vector<int>& outer = holders_below ? L : U;
+    const std::vector<int>& inner = holders_below ? U : L;
+    const std::vector<int> holder = holders(of, outer, in, inner);
+    if (holder.empty()) continue;
+    for (int o : outer) {
+      std::vector<int> inside;
+      for (std::size_t k = 0; k < inner.size(); ++k) {
+        if (holder[k] == o) inside.push_back(inner[k]);
+      }
+      const LevelContour& h = of.contours[static_cast<std::size_t>(o)];
+      if (inside.empty()) {
+        cap_end(h, {}, of.w, extension, holders_below, options, out);
+      } else if (inside.size() == 1) {
+        const LevelContour& c = in.contours[static_cast<std::size_t>(inside[0])];
+        if (holders_below) emit_band(h, c, untwisted_band(h.points, lower.w, c.points, upper.w, options, h.spacing()), out);
+        else emit_band(c, h, untwisted_band(c.points, lower.w, h.points, upper.w, options, h.spacing()), out);
+      } else {
+        nested_fill(h, holders_below, in, inside, 0.5 * (lower.w + upper.w), options, out);
+      }
+    }
+    return true;
+  }
+  return false;
+}
+
+}  // namespace
+
+void tile_composite(const Level& lower, const Level& upper, const TilingOptions& options, SlabMesh& out) {
+  const Correspondence links = correspond(lower, upper, options);
+  const std::size_t na = lower.contours.size(), nb = upper.contours.size();
+  const double w0 = lower.w, w1 = upper.w;
+  const double extension = options.end_caps == EndCaps::HalfSpacing ? 0.5 * (w1 - w0) : 0.0;
+  UnionFind groups(na + nb);
+  for (std::size_t i = 0; i < na; ++i) {
+    for (int j : links.up[i]) groups.unite(i, na + static_cast<std::size_t>(j));
+  }
+  // Members of each group on each side: contours with partners, and opening holes with their outer's.
+  std::vector<std::vector<int>> lower_of(na + nb), upper_of(na + nb);
+  for (std::size_t i = 0; i < na; ++i) {
+    const LevelContour& c = lower.contours[i];
+    if (!links.up[i].empty()) lower_of[groups.find(i)].push_back(static_cast<int>(i));
+    else if (links.opens_up[i]) lower_of[groups.find(static_cast<std::size_t>(c.parent))].push_back(static_cast<int>(i));
+  }
+  for (std::size_t j = 0; j < nb; ++j) {
+    const LevelContour& c = upper.contours[j];
+    if (!links.down[j].empty()) upper_of[groups.find(na + j)].push_back(static_cast<int>(j));
+    else if (links.opens_down[j]) {
+      upper_of[groups.find(na + static_cast<std::size_t>(c.parent))].push_back(static_cast<int>(j));
+    }
+  }
+  for (std::size_t g = 0; g < na + nb; ++g) {
+    const auto& L = lower_of[g];
+    const auto& U = upper_of[g];
+    if (L.empty() || U.empty()) continue;
+    if (L.size() == 1 && U.size() == 1) {
+      const LevelContour& a = lower.contours[static_cast<std::size_t>(L[0])];
+      const LevelContour& b = upper.contours[static_cast<std::size_t>(U[0])];
+      emit_band(a, b, untwisted_band(a.points, w0, b.points, w1, options, 0.5 * (a.spacing() + b.spacing())), out);
+      continue;
+    }
+    if (tile_nested(lower, upper, L, U, extension, options, out)) continue;
+    const bool both = L.size() > 1 && U.size() > 1;
+    const LevelContour lower_ring = L.size() > 1 ? composite_of(lower, L, upper, both ? w0 + (w1 - w0) / 3.0 : 0.5 * (w0 + w1), true, out)
+                                                 : lower.contours[static_cast<std::size_t>(L[0])];
+    const double wl = L.size() > 1 ? (both ? w0 + (w1 - w0) / 3.0 : 0.5 * (w0 + w1)) : w0;
+    const LevelContour upper_ring = U.size() > 1 ? composite_of(upper, U, lower, both ? w0 + 2.0 * (w1 - w0) / 3.0 : 0.5 * (w0 + w1), false, out)
+                                                 : upper.contours[static_cast<std::size_t>(U[0])];
+    const double wu = U.size() > 1 ? (both ? w0 + 2.0 * (w1 - w0) / 3.0 : 0.5 * (w0 + w1)) : w1;
+    emit_band(lower_ring, upper_ring,
+              untwisted_band(lower_ring.points, wl, upper_ring.points, wu, options, 0.5 * (lower_ring.spacing() + upper_ring.spacing())),
+              out);
+  }
+  // Ends: outer contours with no partner (with their holes), and holes that end inside a continuing
+  // outer contour.
+  auto close_ends = [&](const Level& level, const std::vector<std::vector<int>>& partners,
+                        const std::vector<std::uint8_t>& opens, bool upward) {
+    for (std::size_t c = 0; c < level.contours.size(); ++c) {
+      const LevelContour& k = level.contours[c];
+      if (!partners[c].empty() || opens[c]) continue;
+      if (!k.is_hole) {
+        std::vector<const LevelContour*> holes;
+        for (const LevelContour& h : level.contours) {
+          if (h.is_hole && h.parent == static_cast<int>(c)) holes.push_back(&h);
+        }
+        cap_end(k, holes, level.w, extension, upward, options, out);
+      } else if (k.parent >= 0 && !partners[static_cast<std::size_t>(k.parent)].empty()) {
+        cap_hole_end(k, level.w, extension, upward, options, out);
+      }
+    }
+  };
+  close_ends(lower, links.up, links.opens_up, true);
+  close_ends(upper, links.down, links.opens_down, false);
+}
+
+}  // namespace contourmesh::detail

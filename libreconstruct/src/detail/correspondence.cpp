@@ -1,0 +1,165 @@
+#include "detail/correspondence.h"
+
+#include <algorithm>
+#include <numeric>
+
+namespace contourmesh::detail {
+
+namespace {
+
+class UnionFind {
+ public:
+  explicit UnionFind(std::size_t n) : parent_(n) { std::iota(parent_.begin(), parent_.end(), 0); }
+  std::size_t find(std::size_t x) {
+    while (parent_[x] != x) x = parent_[x] = parent_[parent_[x]];
+    return x;
+  }
+  void unite(std::size_t a, std::size_t b) {
+    a = find(a);
+    b = find(b);
+    if (a != b) parent_[std::max(a, b)] = std::min(a, b);
+  }
+
+ private:
+  std::vector<std::size_t> parent_;
+};
+
+bool overlaps(const LevelContour& a, const LevelContour& b, double of_smaller, double of_larger) {
+  const double needed = std::max(of_smaller * std::min(a.area, b.area), of_larger * std::max(a.area, b.area));
+  // The regions cannot overlap by more than their boxes do.
+  if (!a.box.intersects(b.box) || a.box.intersection(b.box).volume() <= needed) return false;
+  // A coarse estimate decides unless it is near the threshold (its error is about 1/32 of the common
+  // height times the width).
+  const double coarse = overlap_area(a.points, b.points, 32);
+  if (coarse > 2.0 * needed) return true;
+  if (coarse < 0.5 * needed) return false;
+  return overlap_area(a.points, b.points) > needed;
+}
+
+// Share of hole `h` covered by the regions of `outers` of `other` (their holes excluded).
+double covered_fraction(const LevelContour& h, const Level& other, const std::vector<int>& outers) {
+  double covered = 0.0;
+  for (int o : outers) {
+    const LevelContour& outer = other.contours[static_cast<std::size_t>(o)];
+    if (!outer.box.intersects(h.box)) continue;
+    covered += overlap_area(h.points, outer.points);
+    for (const LevelContour& g : other.contours) {
+      if (g.is_hole && g.parent == o && g.box.intersects(h.box)) covered -= overlap_area(h.points, g.points);
+    }
+  }
+  return h.area > 0.0 ? covered / h.area : 1.0;
+}
+
+}  // namespace
+
+Correspondence correspond(const Level& lower, const Level& upper, const TilingOptions& options) {
+  return correspond(lower, upper, options.min_overlap_fraction, options.min_overlap_of_larger);
+}
+
+Correspondence correspond(const Level& lower, const Level& upper, double of_smaller, double of_larger) {
+  const auto& a = lower.contours;
+  const auto& b = upper.contours;
+  Correspondence c;
+  c.up.resize(a.size());
+  c.down.resize(b.size());
+  c.opens_up.assign(a.size(), 0);
+  c.opens_down.assign(b.size(), 0);
+  auto link = [&](std::size_t i, std::size_t j) {
+    c.up[i].push_back(static_cast<int>(j));
+    c.down[j].push_back(static_cast<int>(i));
+  };
+  for (std::size_t i = 0; i < a.size(); ++i) {
+    if (a[i].is_hole) continue;
+    for (std::size_t j = 0; j < b.size(); ++j) {
+      if (!b[j].is_hole && overlaps(a[i], b[j], of_smaller, of_larger)) link(i, j);
+    }
+  }
+  // Holes correspond only when their outer contours do.
+  for (std::size_t i = 0; i < a.size(); ++i) {
+    if (!a[i].is_hole || a[i].parent < 0) continue;
+    const auto& parents_up = c.up[static_cast<std::size_t>(a[i].parent)];
+    for (std::size_t j = 0; j < b.size(); ++j) {
+      if (!b[j].is_hole || b[j].parent < 0) continue;
+      if (std::find(parents_up.begin(), parents_up.end(), b[j].parent) == parents_up.end()) continue;
+      if (overlaps(a[i], b[j], of_smaller, of_larger)) link(i, j);
+    }
+  }
+  // A hole with no partner whose outer continues either ends (the material on the other side covers it)
+  // or opens (its region is background there).
+  for (std::size_t i = 0; i < a.size(); ++i) {
+    if (a[i].is_hole && a[i].parent >= 0 && c.up[i].empty() && !c.up[static_cast<std::size_t>(a[i].parent)].empty()) {
+      c.opens_up[i] = covered_fraction(a[i], upper, c.up[static_cast<std::size_t>(a[i].parent)]) < 0.5;
+    }
+  }
+  for (std::size_t j = 0; j < b.size(); ++j) {
+    if (b[j].is_hole && b[j].parent >= 0 && c.down[j].empty() &&
+        !c.down[static_cast<std::size_t>(b[j].parent)].empty()) {
+      c.opens_down[j] = covered_fraction(b[j], lower, c.down[static_cast<std::size_t>(b[j].parent)]) < 0.5;
+    }
+  }
+  return c;
+}
+
+std::vector<ContourGroup> contour_groups(const Level& lower, const Level& upper, const Correspondence& links) {
+  const std::size_t na = lower.contours.size(), nb = upper.contours.size();
+  UnionFind uf(na + nb);
+  for (std::size_t i = 0; i < na; ++i) {
+    for (int j : links.up[i]) uf.unite(i, na + static_cast<std::size_t>(j));
+    if (lower.contours[i].is_hole && lower.contours[i].parent >= 0) uf.unite(i, static_cast<std::size_t>(lower.contours[i].parent));
+  }
+  for (std::size_t j = 0; j < nb; ++j) {
+    if (upper.contours[j].is_hole && upper.contours[j].parent >= 0) {
+      uf.unite(na + j, na + static_cast<std::size_t>(upper.contours[j].parent));
+    }
+  }
+  // The union-find keeps the smallest index as the root: groups come out ordered by first contour.
+  std::vector<int> slot(na + nb, -1);
+  std::vector<ContourGroup> groups;
+  for (std::size_t k = 0; k < na + nb; ++k) {
+    const std::size_t r = uf.find(k);
+    if (slot[r] < 0) {
+      slot[r] = static_cast<int>(groups.size());
+      groups.emplace_back();
+    }
+    ContourGroup& g = groups[static_cast<std::size_t>(slot[r])];
+    if (k < na) g.lower.push_back(static_cast<int>(k));
+    else g.upper.push_back(static_cast<int>(k - na));
+  }
+  return groups;
+}
+
+GroupChange classify_group(const ContourGroup& group, const Level& lower, const Level& upper,
+                           const Correspondence& links, std::vector<std::pair<int, int>>* pairs) {
+  if (group.upper.empty()) return GroupChange::EndsAbove;
+  if (group.lower.empty()) return GroupChange::EndsBelow;
+  int outer_lower = -1, outer_upper = -1, outers = 0;
+  for (int i : group.lower) {
+    if (!lower.contours[static_cast<std::size_t>(i)].is_hole) {
+      outer_lower = i;
+      ++outers;
+    }
+  }
+  for (int j : group.upper) {
+    if (!upper.contours[static_cast<std::size_t>(j)].is_hole) {
+      outer_upper = j;
+      ++outers;
+    }
+  }
+  if (outers != 2 || outer_lower < 0 || outer_upper < 0) return GroupChange::Topology;
+  std::vector<std::pair<int, int>> found{{outer_lower, outer_upper}};
+  for (int i : group.lower) {
+    if (!lower.contours[static_cast<std::size_t>(i)].is_hole) continue;
+    const auto& up = links.up[static_cast<std::size_t>(i)];
+    if (up.size() != 1 || links.down[static_cast<std::size_t>(up[0])].size() != 1) return GroupChange::Topology;
+    found.emplace_back(i, up[0]);
+  }
+  for (int j : group.upper) {
+    if (upper.contours[static_cast<std::size_t>(j)].is_hole && links.down[static_cast<std::size_t>(j)].size() != 1) {
+      return GroupChange::Topology;
+    }
+  }
+  if (pairs) *pairs = std::move(found);
+  return GroupChange::OneToOne;
+}
+
+}  // namespace contourmesh::detail

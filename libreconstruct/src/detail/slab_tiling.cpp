@@ -1,0 +1,416 @@
+#include "detail/slab_tiling.h"
+
+#include "detail/band_tiling.h"
+#include "detail/branching.h"
+#include "detail/caps.h"
+#include "detail/correspondence.h"
+#include "detail/lifted_transition.h"
+#include "detail/shape_interpolation.h"
+
+#include <algorithm>
+#include <cmath>
+#include <map>
+#include <memory>
+#include <numeric>
+#include <optional>
+
+namespace contourmesh::detail {
+
+namespace {
+
+std::vector<Polygon> polygons(const Level& level) {
+  std::vector<Polygon> out;
+  for (const LevelContour& c : level.contours) out.push_back(c.points);
+  return out;
+}
+
+double mean_spacing(const Level& a, const Level& b) {
+  double sum = 0.0;
+  std::size_t n = 0;
+  for (const Level* level : {&a, &b}) {
+    for (const LevelContour& c : level->contours) {
+      sum += c.spacing() * static_cast<double>(c.points.size());
+      n += c.points.size();
+    }
+  }
+  return n ? sum / static_cast<double>(n) : 1.0;
+}
+
+// The shape-based interpolation of one group of a slab: the signed distance fields of its regions on
+// both slices, and the levels extracted from them so far. Every level between the two slices comes
+// from these same fields (a level set of (1 - t) d_lower + t d_upper, shifted so that it encloses the
+// linear interpolation of the two regions' areas: level_for_area), so the halves of a halved slab
+// and the steps of a refined band are pieces of one implicit surface. A level's contours are handed
+// out once: the piece of the slab that claims a contour tiles it.
+class Interpolation {
+ public:
+  Interpolation(const Level& lower, const Level& upper, double grid)
+      : spacing_(mean_spacing(lower, upper)),
+        w0_(lower.w),
+        w1_(upper.w),
+        area0_(region_area(lower)),
+        area1_(region_area(upper)),
+        fields_(signed_distance_pair(polygons(lower), polygons(upper), grid * spacing_)) {}
+
+  [[nodiscard]] double w(double t) const { return w0_ + t * (w1_ - w0_); }
+
+  // The contours of level t that belong to the piece whose contours are `lower` and `upper` and that
+  // no other piece has taken: outer contours that meet the piece's outer contours, and their holes. Empty when the level cannot be made or nothing belongs to the piece.
+  std::vector<std::size_t> select(double t, const Level& lower, const Level& upper) {
+    Extracted& e = level(t);
+    std::vector<std::size_t> chosen;
+    if (!e.contours) return chosen;
+    const auto& contours = *e.contours;
+    std::vector<std::uint8_t> is_chosen(contours.size(), 0);
+    // A level's contours lie in the union of the regions of the two levels it comes between, and the
+    // pieces' regions are apart: a contour belongs to the piece when it and one of the piece's outer
+    // contours hold a point of each other.
+    auto meets = [](const Polygon& a, const Eigen::AlignedBox2d& box_a, const LevelContour& b) {
+      if (!box_a.intersects(b.box)) return false;
+      const std::size_t step_a = std::max<std::size_t>(1, a.size() / 8), step_b = std::max<std::size_t>(1, b.points.size() / 8);
+      for (std::size_t i = 0; i < a.size(); i += step_a) {
+        if (b.box.contains(a[i]) && point_in_polygon(b.points, a[i])) return true;
+      }
+      for (std::size_t i = 0; i < b.points.size(); i += step_b) {
+        if (box_a.contains(b.points[i]) && point_in_polygon(a, b.points[i])) return true;
+      }
+      return false;
+    };
+    for (std::size_t k = 0; k < contours.size(); ++k) {
+      const InterpolatedContour& c = contours[k];
+      if (c.is_hole || e.claimed[k]) continue;
+      Eigen::AlignedBox2d box;
+      for (const Eigen::Vector2d& p : c.points) box.extend(p);
+      bool belongs = false;
+      for (const Level* level : {&lower, &upper}) {
+        for (const LevelContour& o : level->contours) belongs = belongs || (!o.is_hole && meets(c.points, box, o));
+      }
+      if (belongs) {
+        is_chosen[k] = 1;
+        chosen.push_back(k);
+      }
+    }
+    for (std::size_t k = 0; k < contours.size(); ++k) {
+      const InterpolatedContour& c = contours[k];
+      if (c.is_hole && !e.claimed[k] && is_chosen[static_cast<std::size_t>(c.parent)]) chosen.push_back(k);
+    }
+    return chosen;
+  }
+
+  // Takes the `chosen` contours of level t (from select) as a new level with new vertices.
+  Level take(double t, const std::vector<std::size_t>& chosen, SlabMesh& out) {
+    Extracted& e = level(t);
+    const auto& contours = *e.contours;
+    std::vector<int> index(contours.size(), -1);
+    Level result;
+    result.w = w(t);
+    for (std::size_t k : chosen) {
+      const InterpolatedContour& c = contours[k];
+      LevelContour lc;
+      lc.points = c.points;
+      lc.is_hole = c.is_hole;
+      lc.parent = c.is_hole ? index[static_cast<std::size_t>(c.parent)] : -1;
+      for (const Eigen::Vector2d& p : lc.points) lc.ids.push_back(out.add_vertex(p, result.w));
+      finish_contour(lc);
+      index[k] = static_cast<int>(result.contours.size());
+      result.contours.push_back(std::move(lc));
+      e.claimed[k] = 1;
+    }
+    out.stats.intermediate_contours += result.contours.size();
+    return result;
+  }
+
+  /// Which contours are taken, to undo the claims of a candidate tiling that is dropped.
+  using Claims = std::map<double, std::vector<std::uint8_t>>;
+  [[nodiscard]] Claims claims() const {
+    Claims c;
+    for (const auto& [t, e] : levels_) c[t] = e.claimed;
+    return c;
+  }
+  void restore(const Claims& c) {
+    for (auto& [t, e] : levels_) {
+      const auto it = c.find(t);
+      if (it != c.end()) e.claimed = it->second;
+      else std::fill(e.claimed.begin(), e.claimed.end(), 0);
+    }
+  }
+
+ private:
+  struct Extracted {
+    std::optional<std::vector<InterpolatedContour>> contours;
+    std::vector<std::uint8_t> claimed;
+  };
+
+  Extracted& level(double t) {
+    auto it = levels_.find(t);
+    if (it == levels_.end()) {
+      Extracted e;
+      // The level keeps the area of the linear interpolation between the slices' regions: the volume of
+      // the slice-wise (prism) model, which the zero level of averaged distances falls short of where
+      // the two regions differ in shape.
+      const double iso = level_for_area(fields_, t, (1.0 - t) * area0_ + t * area1_);
+      e.contours = interpolate_contours(fields_, t, spacing_, iso);
+      if (e.contours) e.claimed.assign(e.contours->size(), 0);
+      it = levels_.emplace(t, std::move(e)).first;
+    }
+    return it->second;
+  }
+
+  static double region_area(const Level& level) {
+    double a = 0.0;
+    for (const LevelContour& c : level.contours) a += c.is_hole ? -c.area : c.area;
+    return a;
+  }
+
+  double spacing_;
+  double w0_, w1_;
+  double area0_, area1_;
+  DistancePair fields_;
+  std::map<double, Extracted> levels_;
+};
+
+// A candidate tiling whose flat and sliver area (TilingDefects::score) is at most this share of its area
+// is kept without trying the costlier ones.
+constexpr double kGoodEnough = 0.02;
+
+// Where a slab lies in its group's interpolation: levels t0 and t1 of `interpolation`, or, without
+// one, between two slices (t0 = 0, t1 = 1 of the interpolation a group makes when it needs one).
+struct Span {
+  Interpolation* interpolation = nullptr;
+  double t0 = 0.0;
+  double t1 = 1.0;
+};
+
+class SlabTiler {
+ public:
+  explicit SlabTiler(const TilingOptions& options) : options_(options) {}
+
+  // `depth`: how many times the slab has been halved; `refine`: whether bands may be refined (not
+  // inside a refinement); `top`: the slab between two slices, whose groups the statistics count.
+  void tile(const Level& lower, const Level& upper, Span span, int depth, bool refine, bool top, SlabMesh& out) {
+    const Correspondence links = correspond(lower, upper, options_);
+    const double extension = options_.end_caps == EndCaps::HalfSpacing ? 0.5 * (upper.w - lower.w) : 0.0;
+    for (const ContourGroup& group : contour_groups(lower, upper, links)) {
+      std::vector<std::pair<int, int>> pairs;
+      switch (classify_group(group, lower, upper, links, &pairs)) {
+        case GroupChange::EndsAbove:
+          cap_outers(lower, group.lower, extension, true, out);
+          break;
+        case GroupChange::EndsBelow:
+          cap_outers(upper, group.upper, extension, false, out);
+          break;
+        case GroupChange::OneToOne:
+          one_to_one(lower, upper, group, pairs, span, depth, refine, top, out);
+          break;
+        case GroupChange::Topology:
+          if (top) ++out.stats.branchings;
+          topology_change(restrict_level(lower, group.lower), restrict_level(upper, group.upper), span, depth, out);
+          break;
+      }
+    }
+  }
+
+ private:
+  void cap_outers(const Level& level, const std::vector<int>& members, double extension, bool upward, SlabMesh& out,
+                  FaceRole role = FaceRole::Cap) {
+    for (int c : members) {
+      const LevelContour& outer = level.contours[static_cast<std::size_t>(c)];
+      if (outer.is_hole) continue;
+      std::vector<const LevelContour*> holes;
+      for (int h : members) {
+        const LevelContour& k = level.contours[static_cast<std::size_t>(h)];
+        if (k.is_hole && k.parent == c) holes.push_back(&k);
+      }
+      cap_end(outer, holes, level.w, extension, upward, options_, out, role);
+    }
+  }
+
+  // The interpolation of `span`, or a new one for the group (lower, upper) between two slices.
+  Span with_interpolation(const Level& lower, const Level& upper, Span span,
+                          std::unique_ptr<Interpolation>& owned) const {
+    if (span.interpolation) return span;
+    owned = std::make_unique<Interpolation>(lower, upper, options_.interpolation_grid);
+    return {owned.get(), 0.0, 1.0};
+  }
+
+  void one_to_one(const Level& lower, const Level& upper, const ContourGroup& group,
+                  const std::vector<std::pair<int, int>>& pairs, Span span, int depth, bool refine, bool top,
+                  SlabMesh& out) {
+    SlabMesh direct = out.scratch();
+    BandQuality quality;
+    bool twisted = false;
+    for (const auto& [a, b] : pairs) {
+      const LevelContour& lo = lower.contours[static_cast<std::size_t>(a)];
+      const LevelContour& hi = upper.contours[static_cast<std::size_t>(b)];
+      bool pair_twisted = false;
+      const std::vector<BandTriangle> band = untwisted_band(lo.points, lower.w, hi.points, upper.w, options_,
+                                                            0.5 * (lo.spacing() + hi.spacing()), &pair_twisted);
+      const BandQuality q = band_quality(lo.points, lower.w, hi.points, upper.w, band);
+      emit_band(lo, hi, band, direct);
+      quality.area += q.area;
+      quality.sliver_area += q.sliver_area;
+      quality.longest_cross_edge = std::max(quality.longest_cross_edge, q.longest_cross_edge);
+      twisted = twisted || pair_twisted;
+    }
+    if (top) direct.stats.one_to_one += pairs.size();
+    if (options_.band_refinement == BandRefinement::Interpolated && quality.sliver_share() > options_.max_band_sliver_share) {
+      // A nearly flat band between nested contours: the lifted triangulation of the region between.
+      SlabMesh lifted = out.scratch();
+      if (lifted_transition(restrict_level(lower, group.lower), restrict_level(upper, group.upper), lifted) &&
+          measure_defects(lifted).score() < measure_defects(direct).score()) {
+        if (top) lifted.stats.one_to_one += pairs.size();
+        direct = std::move(lifted);
+        const TilingDefects d = measure_defects(direct);
+        quality.area = d.area;
+        quality.sliver_area = d.sliver_area;
+        twisted = false;
+      }
+    }
+    if (twisted && options_.branching == Branching::Interpolated && depth < options_.max_branching_depth) {
+      // A topology change in disguise: the halves through the mid-level, if they do better.
+      const Level lo = restrict_level(lower, group.lower), hi = restrict_level(upper, group.upper);
+      if (top) ++direct.stats.branchings;
+      if (try_halves(lo, hi, span, depth, measure_defects(direct), out)) return;
+      if (try_parting(lo, hi, measure_defects(direct), out)) return;
+    }
+    if (refine && options_.band_refinement == BandRefinement::Interpolated &&
+        quality.sliver_share() > options_.max_band_sliver_share) {
+      // Tile the group again through intermediate contours and keep whichever has less poorly shaped area.
+      const Level lo = restrict_level(lower, group.lower), hi = restrict_level(upper, group.upper);
+      const double spacing = mean_spacing(lo, hi);
+      const int steps = static_cast<int>(
+          std::clamp(std::ceil(quality.longest_cross_edge / (options_.max_band_aspect * spacing)), 2.0,
+                     static_cast<double>(options_.max_intermediate_contours) + 1.0));
+      SlabMesh refined = out.scratch();
+      std::unique_ptr<Interpolation> owned;
+      const Span s = with_interpolation(lo, hi, span, owned);
+      const Interpolation::Claims before = s.interpolation->claims();
+      if (refine_band(lo, hi, s, steps, depth, refined) &&
+          measure_defects(refined).score() < measure_defects(direct).score()) {
+        if (top) ++refined.stats.refined_bands;
+        out.absorb(std::move(refined));
+        return;
+      }
+      s.interpolation->restore(before);
+    }
+    out.absorb(std::move(direct));
+  }
+
+  // Tiles lower -> upper through `steps` - 1 intermediate levels; false when an intermediate level
+  // cannot be made.
+  bool refine_band(const Level& lower, const Level& upper, Span span, int steps, int depth, SlabMesh& out) {
+    std::vector<double> ts;
+    std::vector<std::vector<std::size_t>> chosen;
+    for (int k = 1; k < steps; ++k) {
+      ts.push_back(span.t0 + (span.t1 - span.t0) * k / steps);
+      chosen.push_back(span.interpolation->select(ts.back(), lower, upper));
+      if (chosen.back().empty()) return false;
+    }
+    Level previous = lower;
+    double t_previous = span.t0;
+    for (std::size_t k = 0; k < ts.size(); ++k) {
+      Level next = span.interpolation->take(ts[k], chosen[k], out);
+      tile(previous, next, {span.interpolation, t_previous, ts[k]}, depth, false, false, out);
+      previous = std::move(next);
+      t_previous = ts[k];
+    }
+    tile(previous, upper, {span.interpolation, t_previous, span.t1}, depth, false, false, out);
+    return true;
+  }
+
+  // A group whose topology changes: the composite of the finest level, or the halves of the slab
+  // through the interpolated mid-level, whichever leaves less poorly shaped area; when both are worse
+  // than parting the group, the parting.
+  void topology_change(const Level& lower, const Level& upper, Span span, int depth, SlabMesh& out) {
+    SlabMesh composite = out.scratch();
+    tile_composite(lower, upper, options_, composite);
+    TilingDefects best = measure_defects(composite);
+    if (best.poor_area > 0.0) {
+      SlabMesh lifted = out.scratch();
+      if (lifted_transition(lower, upper, lifted)) {
+        const TilingDefects d = measure_defects(lifted);
+        if (d.score() < best.score()) {
+          best = d;
+          composite = std::move(lifted);
+        }
+      }
+    }
+    // The halves cost a level of interpolation and the tilings of both; they are tried when the
+    // composite has flat bridges or leaves a noticeable share of its area flat or in slivers.
+    if (options_.branching == Branching::Interpolated && depth < options_.max_branching_depth &&
+        (best.bridge_area > 0.0 || best.score() > kGoodEnough * best.area)) {
+      SlabMesh halves = out.scratch();
+      if (try_halves(lower, upper, span, depth, best, halves)) {
+        best = measure_defects(halves);
+        if (!try_parting(lower, upper, best, out)) out.absorb(std::move(halves));
+        return;
+      }
+    }
+    if (!try_parting(lower, upper, best, out)) out.absorb(std::move(composite));
+  }
+
+  // Where every way of joining the group across the slab leaves more poorly shaped area than capping
+  // both sides (a thin wall whose slits and pockets change from slice to slice gives bands that cross
+  // the wall's inside), the lower contours are capped a quarter of the slab above their plane and the
+  // upper ones a quarter below theirs: a flat cut through the piece instead of a sheet across it. Adds
+  // the caps to `out` and returns true when the rival has more poorly shaped area than the caps and
+  // joins the levels across far more than they are apart (parting changes the piece's topology: it is
+  // kept for tilings that fail outright).
+  bool try_parting(const Level& lower, const Level& upper, const TilingDefects& rival, SlabMesh& out) {
+    if (rival.poor_area <= 0.0) return false;
+    double cap_area = 0.0;  // the caps cover both levels' regions
+    for (const Level* level : {&lower, &upper}) {
+      for (const LevelContour& c : level->contours) cap_area += c.is_hole ? -c.area : c.area;
+    }
+    if (cap_area >= rival.score()) return false;
+    // Only a tiling that joins the levels across far more than they are apart has failed.
+    Polygon lower_points, upper_points;
+    for (const LevelContour& c : lower.contours) lower_points.insert(lower_points.end(), c.points.begin(), c.points.end());
+    for (const LevelContour& c : upper.contours) upper_points.insert(upper_points.end(), c.points.begin(), c.points.end());
+    const double spacing = mean_spacing(lower, upper);
+    if (rival.longest_edge <= 2.0 * std::hypot(contour_distance(lower_points, upper_points), upper.w - lower.w) + 2.0 * spacing) {
+      return false;
+    }
+    const double quarter = 0.25 * (upper.w - lower.w);
+    std::vector<int> all_lower(lower.contours.size()), all_upper(upper.contours.size());
+    std::iota(all_lower.begin(), all_lower.end(), 0);
+    std::iota(all_upper.begin(), all_upper.end(), 0);
+    cap_outers(lower, all_lower, quarter, true, out, FaceRole::Bridge);
+    cap_outers(upper, all_upper, quarter, false, out, FaceRole::Bridge);
+    ++out.stats.partings;
+    return true;
+  }
+
+  // Tiles lower -> mid-level -> upper into `out` and returns true when that leaves less poorly shaped
+  // area than `rival`; otherwise adds nothing.
+  bool try_halves(const Level& lower, const Level& upper, Span span, int depth, const TilingDefects& rival,
+                  SlabMesh& out) {
+    std::unique_ptr<Interpolation> owned;
+    span = with_interpolation(lower, upper, span, owned);
+    const Interpolation::Claims before = span.interpolation->claims();
+    const double tm = 0.5 * (span.t0 + span.t1);
+    const std::vector<std::size_t> chosen = span.interpolation->select(tm, lower, upper);
+    if (!chosen.empty()) {
+      SlabMesh halves = out.scratch();
+      const Level middle = span.interpolation->take(tm, chosen, halves);
+      tile(lower, middle, {span.interpolation, span.t0, tm}, depth + 1, true, false, halves);
+      tile(middle, upper, {span.interpolation, tm, span.t1}, depth + 1, true, false, halves);
+      if (measure_defects(halves).score() < rival.score()) {
+        out.absorb(std::move(halves));
+        return true;
+      }
+    }
+    span.interpolation->restore(before);
+    return false;
+  }
+
+  const TilingOptions& options_;
+};
+
+}  // namespace
+
+void tile_slab(const Level& lower, const Level& upper, const TilingOptions& options, SlabMesh& out) {
+  SlabTiler(options).tile(lower, upper, {}, 0, true, true, out);
+}
+
+}  // namespace contourmesh::detail

@@ -1,0 +1,114 @@
+#include "detail/tiling_types.h"
+
+#include "reconstruct/contours.h"
+
+#include <smooth/errors.h>
+#include <smooth/mesh_quality.h>
+
+#include <algorithm>
+#include <cmath>
+#include <numbers>
+#include <string>
+
+namespace contourmesh::detail {
+
+double LevelContour::spacing() const {
+  return points.empty() ? 0.0 : perimeter(points) / static_cast<double>(points.size());
+}
+
+void finish_contour(LevelContour& c) {
+  c.area = std::abs(signed_area(c.points));
+  c.box = Eigen::AlignedBox2d();
+  for (const Eigen::Vector2d& p : c.points) c.box.extend(p);
+}
+
+Level restrict_level(const Level& level, const std::vector<int>& which) {
+  Level out;
+  out.w = level.w;
+  std::vector<int> renumber(level.contours.size(), -1);
+  for (std::size_t k = 0; k < which.size(); ++k) renumber[static_cast<std::size_t>(which[k])] = static_cast<int>(k);
+  for (int c : which) {
+    LevelContour copy = level.contours[static_cast<std::size_t>(c)];
+    copy.parent = copy.parent >= 0 ? renumber[static_cast<std::size_t>(copy.parent)] : -1;
+    out.contours.push_back(std::move(copy));
+  }
+  return out;
+}
+
+VertexRef SlabMesh::add_vertex(const Eigen::Vector2d& uv, double w) {
+  if (first_local_ + vertices.size() >= static_cast<std::size_t>(vertex_budget)) {
+    throw LimitError("tiling: the mesh would have more than " + std::to_string(vertex_limit) + " vertices");
+  }
+  vertices.emplace_back(uv.x(), uv.y(), w);
+  return local_ref(first_local_ + vertices.size() - 1);
+}
+
+Eigen::Vector3d SlabMesh::position(VertexRef v) const {
+  if (!is_local(v)) return (*stack_vertices)[static_cast<std::size_t>(v)];
+  const std::size_t k = local_index(v);
+  return k >= first_local_ ? vertices[k - first_local_] : parent_->position(v);
+}
+
+SlabMesh SlabMesh::scratch() const {
+  SlabMesh child;
+  child.stack_vertices = stack_vertices;
+  child.vertex_budget = vertex_budget;
+  child.vertex_limit = vertex_limit;
+  child.first_local_ = first_local_ + vertices.size();
+  child.parent_ = this;
+  return child;
+}
+
+void SlabMesh::absorb(SlabMesh&& child) {
+  vertices.insert(vertices.end(), child.vertices.begin(), child.vertices.end());
+  triangles.insert(triangles.end(), child.triangles.begin(), child.triangles.end());
+  roles.insert(roles.end(), child.roles.begin(), child.roles.end());
+  stats += child.stats;
+}
+
+bool is_sliver(const Eigen::Vector3d& a, const Eigen::Vector3d& b, const Eigen::Vector3d& c) {
+  // The smallest angle is opposite the shortest edge; it is under 10 degrees when its cosine, from the
+  // other two edges, exceeds cos 10 degrees. Degenerate triangles are slivers.
+  static const double cos10 = std::cos(10.0 * std::numbers::pi / 180.0);
+  const Eigen::Vector3d ab = b - a, bc = c - b, ca = a - c;
+  const double lab = ab.squaredNorm(), lbc = bc.squaredNorm(), lca = ca.squaredNorm();
+  Eigen::Vector3d u, v;  // the two edges leaving the corner opposite the shortest edge
+  if (lab <= lbc && lab <= lca) {
+    u = -bc;  // corner c: c -> b and c -> a
+    v = ca;
+  } else if (lbc <= lca) {
+    u = -ca;  // corner a: a -> c and a -> b
+    v = ab;
+  } else {
+    u = -ab;  // corner b: b -> a and b -> c
+    v = bc;
+  }
+  const double uu = u.squaredNorm(), vv = v.squaredNorm();
+  if (uu == 0.0 || vv == 0.0) return true;
+  const double d = u.dot(v);
+  return d > 0.0 && d * d > cos10 * cos10 * uu * vv;
+}
+
+TilingDefects measure_defects(const SlabMesh& mesh) {
+  TilingDefects d;
+  const double cos_flat = std::cos(10.0 * std::numbers::pi / 180.0);
+  for (std::size_t f = 0; f < mesh.triangles.size(); ++f) {
+    const Triangle& t = mesh.triangles[f];
+    const Eigen::Vector3d a = mesh.position(t[0]), b = mesh.position(t[1]), c = mesh.position(t[2]);
+    const Eigen::Vector3d n = (b - a).cross(c - a);
+    d.longest_edge = std::max({d.longest_edge, (b - a).norm(), (c - b).norm(), (a - c).norm()});
+    const double twice = n.norm();
+    if (twice == 0.0) continue;
+    const double area = 0.5 * twice;
+    d.area += area;
+    const bool flat = mesh.roles[f] != FaceRole::Cap && std::abs(n.z()) >= cos_flat * twice;
+    const bool sliver = is_sliver(a, b, c);
+    if (flat) d.flat_area += area;
+    if (sliver) d.sliver_area += area;
+    if (flat || sliver) d.poor_area += area;
+    if (mesh.roles[f] == FaceRole::Bridge) d.bridge_area += area;
+  }
+  return d;
+}
+
+}  // namespace contourmesh::detail

@@ -1,0 +1,108 @@
+// The mid-plane composite and the nested fill left for the finest level of a topology change.
+#include "detail/branching.h"
+
+#include "detail/caps.h"
+
+#include <smooth/mesh_quality.h>
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <numbers>
+
+#include "reconstruct/detail/level_helpers.h"
+#include "reconstruct/mesh_checks.h"
+
+namespace contourmesh::detail {
+namespace {
+
+using test::arc_points;
+using test::circle_points;
+
+// The two levels joined by `middle` and capped below and above, as one mesh.
+Mesh closed(test::TestStack& stack, const Level& lower, const Level& upper, const SlabMesh& middle) {
+  SlabMesh below = stack.slab(), above = stack.slab();
+  for (const LevelContour& c : lower.contours) {
+    std::vector<const LevelContour*> holes;
+    for (const LevelContour& h : lower.contours) {
+      if (h.is_hole && &lower.contours[static_cast<std::size_t>(h.parent)] == &c) holes.push_back(&h);
+    }
+    if (!c.is_hole) cap_end(c, holes, lower.w, 0.0, false, TilingOptions{}, below);
+  }
+  for (const LevelContour& c : upper.contours) {
+    std::vector<const LevelContour*> holes;
+    for (const LevelContour& h : upper.contours) {
+      if (h.is_hole && &upper.contours[static_cast<std::size_t>(h.parent)] == &c) holes.push_back(&h);
+    }
+    if (!c.is_hole) cap_end(c, holes, upper.w, 0.0, true, TilingOptions{}, above);
+  }
+  return stack.assemble({&below, &middle, &above});
+}
+
+TEST(Branching, OneToTwoIsBridgedOnTheMidPlane) {
+  test::TestStack stack;
+  const Level lower{0.0, {stack.contour(circle_points(0, 0, 10, 64), 0.0)}};
+  // Two discs that poke out of the lower one: not nested, so a composite.
+  const Level upper{2.0, {stack.contour(circle_points(-8, 0, 5, 32), 2.0), stack.contour(circle_points(8, 0, 5, 32), 2.0)}};
+  SlabMesh out = stack.slab();
+  tile_composite(lower, upper, TilingOptions{}, out);
+  EXPECT_EQ(out.stats.composites, 1u);
+  int bridges = 0;
+  for (std::size_t f = 0; f < out.triangles.size(); ++f) {
+    if (out.roles[f] != FaceRole::Bridge) continue;
+    ++bridges;
+    for (int k = 0; k < 3; ++k) EXPECT_DOUBLE_EQ(out.position(out.triangles[f][k]).z(), 1.0);  // on the mid-plane
+  }
+  EXPECT_EQ(bridges, 2);
+  const test::Topology t = test::topology_of(closed(stack, lower, upper, out));
+  EXPECT_TRUE(t.closed && t.manifold) << t.problems;
+  EXPECT_EQ(t.euler, 2);
+}
+
+TEST(Branching, ContoursInsideOneAreJoinedByAWellShapedFill) {
+  // Three small discs inside a large one (the noisy end of a flat-topped bone): the composite's band
+  // would fan slivers across the flat region between them; the nested fill triangulates it.
+  test::TestStack stack;
+  const Level lower{0.0, {stack.contour(circle_points(0, 0, 15, 120), 0.0)}};
+  const Level upper{0.5, {stack.contour(circle_points(-6, 0, 2, 16), 0.5), stack.contour(circle_points(6, 0, 2, 16), 0.5),
+                          stack.contour(circle_points(0, 7, 2, 16), 0.5)}};
+  SlabMesh out = stack.slab();
+  tile_composite(lower, upper, TilingOptions{}, out);
+  double fill = 0.0;
+  for (std::size_t f = 0; f < out.triangles.size(); ++f) {
+    const Triangle& t = out.triangles[f];
+    const Eigen::Vector3d a = out.position(t[0]), b = out.position(t[1]), c = out.position(t[2]);
+    if (out.roles[f] == FaceRole::Bridge) {
+      fill += 0.5 * (b - a).cross(c - a).norm();
+      EXPECT_GT(minimum_angle_degrees(a, b, c), 12.0);
+      EXPECT_GT((b - a).cross(c - a).z(), 0.0) << "faces up: material below";
+    }
+  }
+  EXPECT_NEAR(fill, std::numbers::pi * (225.0 - 3 * 4.0), 0.02 * std::numbers::pi * 225.0);
+  const test::Topology t = test::topology_of(closed(stack, lower, upper, out));
+  EXPECT_TRUE(t.closed && t.manifold) << t.problems;
+  EXPECT_EQ(t.components, 1);
+}
+
+TEST(Branching, AnOpeningHoleIsBridgedWhereTheWallIsOpenAbove) {
+  // A ring below a ring wall with one slit at angle 2 rad: the composite of outer contour and hole is
+  // bridged across the wall at the slit, so that the band above follows the wall.
+  test::TestStack stack;
+  const Level lower{0.0, {stack.contour(circle_points(0, 0, 20, 120), 0.0), stack.contour(circle_points(0, 0, 15, 90, true), 0.0, true, 0)}};
+  const Level upper{1.0, {stack.contour(arc_points(2.1, 2.0 + 2 * std::numbers::pi - 0.1, 15, 20, 110), 1.0)}};
+  SlabMesh out = stack.slab();
+  tile_composite(lower, upper, TilingOptions{}, out);
+  int bridges = 0;
+  for (std::size_t f = 0; f < out.triangles.size(); ++f) {
+    if (out.roles[f] != FaceRole::Bridge) continue;
+    ++bridges;
+    const Eigen::Vector3d c = (out.position(out.triangles[f][0]) + out.position(out.triangles[f][1]) + out.position(out.triangles[f][2])) / 3.0;
+    EXPECT_NEAR(std::atan2(c.y(), c.x()), 2.0, 0.17);  // the slit spans 1.9 to 2.1 rad
+  }
+  EXPECT_EQ(bridges, 2);
+  const test::Topology t = test::topology_of(closed(stack, lower, upper, out));
+  EXPECT_TRUE(t.closed && t.manifold) << t.problems;
+}
+
+}  // namespace
+}  // namespace contourmesh::detail

@@ -1,0 +1,94 @@
+// Which contours of adjacent levels belong together, and how a group changes.
+#include "detail/correspondence.h"
+
+#include <gtest/gtest.h>
+
+#include "reconstruct/detail/level_helpers.h"
+
+namespace contourmesh::detail {
+namespace {
+
+using test::arc_points;
+using test::circle_points;
+
+TEST(Correspondence, OverlappingOuterContoursLinkAndFarOnesDoNot) {
+  test::TestStack stack;
+  Level lower{0.0, {stack.contour(circle_points(0, 0, 10, 60), 0.0), stack.contour(circle_points(40, 0, 5, 30), 0.0)}};
+  Level upper{2.0, {stack.contour(circle_points(3, 0, 10, 60), 2.0), stack.contour(circle_points(-40, 0, 5, 30), 2.0)}};
+  const Correspondence c = correspond(lower, upper, 0.05, 0.01);
+  EXPECT_EQ(c.up[0], std::vector<int>{0});
+  EXPECT_TRUE(c.up[1].empty());
+  EXPECT_EQ(c.down[0], std::vector<int>{0});
+  EXPECT_TRUE(c.down[1].empty());
+  const auto groups = contour_groups(lower, upper, c);
+  ASSERT_EQ(groups.size(), 3u);
+  EXPECT_EQ(classify_group(groups[0], lower, upper, c), GroupChange::OneToOne);
+  EXPECT_EQ(classify_group(groups[1], lower, upper, c), GroupChange::EndsAbove);
+  EXPECT_EQ(classify_group(groups[2], lower, upper, c), GroupChange::EndsBelow);
+}
+
+TEST(Correspondence, AnOverlapBelowTheFractionOfTheSmallerIsNoLink) {
+  test::TestStack stack;
+  // Two unit squares overlapping by 0.1 x 1.
+  const Polygon a = {{0, 0}, {1, 0}, {1, 1}, {0, 1}}, b = {{0.9, 0}, {1.9, 0}, {1.9, 1}, {0.9, 1}};
+  const Level lower{0.0, {stack.contour(a, 0.0)}}, upper{1.0, {stack.contour(b, 1.0)}};
+  EXPECT_TRUE(correspond(lower, upper, 0.05, 0.01).up[0].size() == 1);
+  EXPECT_TRUE(correspond(lower, upper, 0.2, 0.01).up[0].empty());
+}
+
+TEST(Correspondence, HolesLinkOnlyWhenTheirOuterContoursDo) {
+  test::TestStack stack;
+  Level lower{0.0, {stack.contour(circle_points(0, 0, 10, 60), 0.0), stack.contour(circle_points(0, 0, 4, 30, true), 0.0, true, 0)}};
+  Level upper{2.0, {stack.contour(circle_points(0, 0, 10, 60), 2.0), stack.contour(circle_points(0, 0, 4, 30, true), 2.0, true, 0)}};
+  std::vector<std::pair<int, int>> pairs;
+  const Correspondence c = correspond(lower, upper, 0.05, 0.01);
+  EXPECT_EQ(c.up[1], std::vector<int>{1});
+  const auto groups = contour_groups(lower, upper, c);
+  ASSERT_EQ(groups.size(), 1u);  // the hole goes with its outer contour
+  EXPECT_EQ(classify_group(groups[0], lower, upper, c, &pairs), GroupChange::OneToOne);
+  EXPECT_EQ(pairs, (std::vector<std::pair<int, int>>{{0, 0}, {1, 1}}));
+  // Without the outer link (far outer contour above), the holes do not link either.
+  Level far{2.0, {stack.contour(circle_points(100, 0, 10, 60), 2.0), stack.contour(circle_points(100, 0, 4, 30, true), 2.0, true, 0)}};
+  EXPECT_TRUE(correspond(lower, far, 0.05, 0.01).up[1].empty());
+}
+
+TEST(Correspondence, AHoleOpensWhereTheOtherLevelHasNoWallAndEndsWhereItIsCovered) {
+  test::TestStack stack;
+  // A tube's ring below two arcs of its wall (the hole's region is background above: it opens) ...
+  Level ring{0.0, {stack.contour(circle_points(0, 0, 12, 80), 0.0), stack.contour(circle_points(0, 0, 8, 60, true), 0.0, true, 0)}};
+  Level arcs{2.0, {stack.contour(arc_points(0.3, 2.84, 8, 12, 30), 2.0), stack.contour(arc_points(3.44, 5.98, 8, 12, 30), 2.0)}};
+  const Correspondence open = correspond(ring, arcs, 0.05, 0.01);
+  EXPECT_TRUE(open.up[1].empty());
+  EXPECT_TRUE(open.opens_up[1]);
+  const auto groups = contour_groups(ring, arcs, open);
+  ASSERT_EQ(groups.size(), 1u);
+  EXPECT_EQ(classify_group(groups[0], ring, arcs, open), GroupChange::Topology);
+  // ... and below a full disc (the material covers it: the cavity ends).
+  Level disc{2.0, {stack.contour(circle_points(0, 0, 12, 80), 2.0)}};
+  const Correspondence covered = correspond(ring, disc, 0.05, 0.01);
+  EXPECT_FALSE(covered.opens_up[1]);
+  EXPECT_EQ(classify_group(contour_groups(ring, disc, covered)[0], ring, disc, covered), GroupChange::Topology);
+}
+
+TEST(Correspondence, ASpeckInsideALargeContourDoesNotContinueIt) {
+  // A 1 mm^2 speck wholly inside a 300 mm^2 disc: all of the speck overlaps, but under 1 % of the disc.
+  test::TestStack stack;
+  const Level lower{0.0, {stack.contour(circle_points(0, 0, 10, 60), 0.0)}};
+  const Level upper{1.0, {stack.contour(circle_points(3, 0, 0.6, 8), 1.0)}};
+  EXPECT_TRUE(correspond(lower, upper, 0.05, 0.01).up[0].empty());
+  EXPECT_EQ(correspond(lower, upper, 0.05, 0.0).up[0].size(), 1u);
+}
+
+TEST(Correspondence, OneContourOverTwoIsATopologyChange) {
+  test::TestStack stack;
+  Level lower{0.0, {stack.contour(circle_points(0, 0, 10, 60), 0.0)}};
+  Level upper{2.0, {stack.contour(circle_points(-6, 0, 5, 30), 2.0), stack.contour(circle_points(6, 0, 5, 30), 2.0)}};
+  const Correspondence c = correspond(lower, upper, 0.05, 0.01);
+  const auto groups = contour_groups(lower, upper, c);
+  ASSERT_EQ(groups.size(), 1u);
+  EXPECT_EQ(groups[0].upper, (std::vector<int>{0, 1}));
+  EXPECT_EQ(classify_group(groups[0], lower, upper, c), GroupChange::Topology);
+}
+
+}  // namespace
+}  // namespace contourmesh::detail
