@@ -249,6 +249,7 @@ int run_run(const RunArgs& a, const std::string& output, const std::string& labe
   ReconstructionOptions ro;
   if (a.end_caps == "end-slice") ro.tiling.end_caps = EndCaps::AtEndSlice;
   else if (a.end_caps != "half-spacing") throw InvalidInputError("--end-caps must be half-spacing or end-slice");
+  ro.off_slice.placement = off_slice_placement(a.volume);
   // A phantom is segmented at its partial-volume iso-level, real CT at the bone default.
   const PhantomVolumeOptions phantom_defaults;
   ro.segmentation.threshold =
