@@ -110,6 +110,12 @@ Reconstruction reconstruct(const CtImage& image, const ReconstructionOptions& op
   if (tiled.mesh.num_faces() == 0) {
     throw InvalidInputError("no contour continues into an adjacent slice: nothing to tile (slices too far apart?)");
   }
+  t0 = std::chrono::steady_clock::now();
+  OffSliceResult placed = fit_off_slice_heights(std::move(tiled.mesh), seg.smoothed_image ? *seg.smoothed_image : image,
+                                                seg.threshold, options.off_slice);
+  tiled.mesh = std::move(placed.mesh);
+  out.report.off_slice = placed.report;
+  out.report.seconds_off_slice = seconds_since(t0);
   const auto spacing = image.GetSpacing();
   const double min_volume = options.min_component_voxels * spacing[0] * spacing[1] * spacing[2];
   out.face_roles = std::move(tiled.face_roles);

@@ -409,6 +409,7 @@ SegmentationResult segment_contours(const CtImage& input, const SegmentationOpti
 
   const CtImage::Pointer image = smoothed(input, options.smoothing);
   SegmentationResult result;
+  if (options.smoothing != ImageSmoothing::None) result.smoothed_image = image;
   result.threshold = options.threshold_method == ThresholdMethod::Otsu ? otsu_threshold(image) : options.threshold;
   const SliceSetup setup{nx,
                          ny,

@@ -56,12 +56,15 @@ void check_options(const TilingOptions& o) {
 }
 
 // Runs task(k) for k = 0 .. count - 1 on `threads` threads (the caller's among them), taking tasks in
-// order. The caller's thread reports progress after each task it finishes; when that returns false,
+// order. The caller's thread reports progress before the first task and after each task it finishes; when that returns false,
 // no new task starts and CancelledError is thrown. When tasks throw, the exception of the first such
 // task is rethrown (every task before it has run), so the outcome does not depend on the thread count.
 template <typename Task>
 void run_in_order(std::size_t count, unsigned threads, const Task& task, const ProgressCallback& progress) {
   if (count == 0) return;
+  // Asked once before any work: with few tasks the other threads may take them all, and the caller's
+  // thread would never report.
+  if (progress && !progress("tile", 0.0)) throw CancelledError("tiling");
   std::atomic<std::size_t> next{0}, done{0};
   std::atomic<std::size_t> first_failure{std::numeric_limits<std::size_t>::max()};
   std::atomic<bool> cancelled{false};

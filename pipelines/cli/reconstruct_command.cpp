@@ -59,7 +59,8 @@ struct ReconstructArgs {
 
 // Options of one route, refused on the other's input.
 const std::vector<std::string> kVolumeOptions{"--threshold", "--otsu",   "--smoothing", "--keep",       "--min-area",
-                                              "--fill-holes", "--label", "--labels",    "--series",     "--list-series"};
+                                              "--fill-holes", "--label", "--labels",    "--series",     "--list-series",
+                                              "--off-slice"};
 const std::vector<std::string> kContourOptions{"--roi", "--align", "--single-slice", "--slab-thickness",
                                                "--planarity-tolerance", "--sampling-tolerance"};
 
@@ -158,6 +159,7 @@ int run_reconstruct(const ReconstructArgs& a) {
   seg.min_region_area = a.min_area;
   seg.fill_holes = a.fill_holes;
   options.tiling = tiling_options(a.tiling);
+  options.off_slice.placement = off_slice_placement(a.volume);
   MeshWriteOptions write_options;
   write_options.format = parse_mesh_format(a.format);
   if (write_options.format == MeshFormat::Auto) (void)format_from_extension(a.output);  // fail before the work
@@ -247,8 +249,12 @@ int run_reconstruct(const ReconstructArgs& a) {
     j["shelf_area_share"] = quality.shelf_area_share;
     j["share_without_ids"] = quality.share_without_ids;
     if (!a.contours_out.empty()) j["contours_out"] = a.contours_out;
+    j["off_slice_candidates"] = r.report.off_slice.candidates;
+    j["off_slice_fitted"] = r.report.off_slice.fitted;
+    j["off_slice_damped"] = r.report.off_slice.damped;
     j["seconds_segment"] = r.report.seconds_segment;
     j["seconds_tile"] = r.report.seconds_tile;
+    j["seconds_off_slice"] = r.report.seconds_off_slice;
     j["seconds"] = seconds_since(start);
     print_json(j);
     return kOk;
@@ -263,6 +269,8 @@ int run_reconstruct(const ReconstructArgs& a) {
             << "  tiling     " << r.report.tiling.intermediate_contours << " intermediate contours, "
             << r.report.tiling.refined_bands << " bands refined, " << r.report.tiling.composites << " composites, "
             << r.report.tiling.partings << " partings\n"
+            << "  off-slice  " << r.report.off_slice.fitted << " of " << r.report.off_slice.candidates
+            << " vertices between the slices placed from the image (" << r.report.off_slice.damped << " damped)\n"
             << "  mesh       " << r.mesh.num_vertices() << " vertices, " << r.mesh.num_faces() << " triangles, "
             << topo.components << " component" << (topo.components == 1 ? "" : "s") << ", "
             << (topo.closed ? "closed" : "OPEN") << ", " << (topo.manifold ? "manifold" : "NOT manifold")

@@ -4,6 +4,7 @@
 #include "progress_display.h"
 
 #include <CLI/CLI.hpp>
+#include <smooth/errors.h>
 
 #include <iostream>
 
@@ -16,6 +17,18 @@ void add_volume_options(CLI::App* command, VolumeArgs& args) {
   command->add_flag("--non-finite-as-air", args.non_finite_as_air,
                     "Read NaN and infinite voxels as air (the volume's lowest value), with a warning, instead of "
                     "refusing the volume");
+  command
+      ->add_option("--off-slice", args.off_slice,
+                   "Heights of the vertices between the slices (end caps, intermediate contours): image (where the "
+                   "intensity between the two slices crosses the threshold) | tiled (end caps half a spacing beyond "
+                   "the last contour)")
+      ->capture_default_str();
+}
+
+OffSlicePlacement off_slice_placement(const VolumeArgs& args) {
+  if (args.off_slice == "image") return OffSlicePlacement::ImageCrossing;
+  if (args.off_slice == "tiled") return OffSlicePlacement::Tiled;
+  throw InvalidInputError("--off-slice must be image or tiled, got '" + args.off_slice + "'");
 }
 
 VolumeReadOptions volume_read_options(const VolumeArgs& args, const std::string& command) {

@@ -2,6 +2,7 @@
 // spaced DICOM slices and with NaN or infinite voxels.
 #pragma once
 
+#include <reconstruct/off_slice_heights.h>
 #include <reconstruct/volume.h>
 
 #include <string>
@@ -15,10 +16,14 @@ namespace contourmesh::cli {
 struct VolumeArgs {
   bool allow_uneven_slices = false;
   bool non_finite_as_air = false;
+  std::string off_slice = "image";
 };
 
-/// Registers --allow-uneven-slices and --non-finite-as-air.
+/// Registers --allow-uneven-slices, --non-finite-as-air and --off-slice.
 void add_volume_options(CLI::App* command, VolumeArgs& args);
+
+/// The placement --off-slice names (image | tiled); InvalidInputError for anything else.
+[[nodiscard]] OffSlicePlacement off_slice_placement(const VolumeArgs& args);
 
 /// The read options for `args`; warnings are printed as "contourmesh COMMAND: warning: ..." lines, and
 /// the libraries' own messages pass through with --verbose.

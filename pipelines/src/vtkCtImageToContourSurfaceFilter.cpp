@@ -105,6 +105,8 @@ int vtkCtImageToContourSurfaceFilter::RequestData(vtkInformation*, vtkInformatio
     o.tiling.cap_refinement = this->CapRefinement == CAP_REFINEMENT_EAR_CLIPPING
                                   ? contourmesh::CapRefinement::EarClipping
                                   : contourmesh::CapRefinement::Interior;
+    o.off_slice.placement = this->OffSlicePlacement == OFF_SLICE_TILED ? contourmesh::OffSlicePlacement::Tiled
+                                                                       : contourmesh::OffSlicePlacement::ImageCrossing;
     o.tiling.min_overlap_fraction = this->MinOverlapFraction;
     o.tiling.full_dp_limit = static_cast<std::size_t>(this->FullDynamicProgrammingLimit);
     o.tiling.band_fraction = this->BandFraction;
@@ -158,6 +160,8 @@ void vtkCtImageToContourSurfaceFilter::PrintSelf(ostream& os, vtkIndent indent) 
   os << indent << "MinContourLength: " << this->MinContourLength << "\n";
   os << indent << "EndCaps: " << (this->EndCaps == END_CAPS_AT_END_SLICE ? "AtEndSlice" : "HalfSpacing") << "\n";
   os << indent << "CapRefinement: " << (this->CapRefinement == CAP_REFINEMENT_EAR_CLIPPING ? "EarClipping" : "Interior")
+     << "\n";
+  os << indent << "OffSlicePlacement: " << (this->OffSlicePlacement == OFF_SLICE_TILED ? "Tiled" : "ImageCrossing")
      << "\n";
   os << indent << "MinOverlapFraction: " << this->MinOverlapFraction << "\n";
   os << indent << "FullDynamicProgrammingLimit: " << this->FullDynamicProgrammingLimit << "\n";

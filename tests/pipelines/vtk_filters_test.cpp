@@ -624,6 +624,8 @@ TEST_F(VtkFilters, NonDefaultReconstructionOptionsReachTheLibrary) {
         [](Filter* f) { f->SetEndCapsToAtEndSlice(); });
   check("cap refinement", cavity, [](auto& o) { o.tiling.cap_refinement = CapRefinement::EarClipping; },
         [](Filter* f) { f->SetCapRefinementToEarClipping(); });
+  check("off-slice placement", cavity, [](auto& o) { o.off_slice.placement = OffSlicePlacement::Tiled; },
+        [](Filter* f) { f->SetOffSlicePlacementToTiled(); });
   check("min overlap", pelvis, [](auto& o) { o.tiling.min_overlap_fraction = 0.9; },
         [](Filter* f) { f->SetMinOverlapFraction(0.9); });
   // The narrowest corridor (8 points either side of the arc-length diagonal) holds the optimum of every

@@ -1,6 +1,7 @@
 // The reconstruction chain of SPEC 1: CT volume -> segmentation -> contours -> tiling -> mesh.
 #pragma once
 
+#include "reconstruct/off_slice_heights.h"
 #include "reconstruct/segmentation.h"
 #include "reconstruct/tiling.h"
 #include "reconstruct/volume.h"
@@ -17,6 +18,9 @@ struct ReconstructionOptions {
   /// few voxels are noise, and smoothing collapses their few-vertex rings into degenerate triangles).
   /// >= 0; 0 keeps everything.
   double min_component_voxels = 4.0;
+  /// Heights of the vertices the tiler puts between the slices (caps, intermediate contours): from the
+  /// image by default (off_slice_heights.h).
+  OffSliceOptions off_slice;
 };
 
 struct ReconstructionReport {
@@ -30,6 +34,8 @@ struct ReconstructionReport {
   TilingStats tiling;
   double seconds_segment = 0.0;
   double seconds_tile = 0.0;
+  OffSliceReport off_slice;     ///< vertices between the slices placed from the image
+  double seconds_off_slice = 0.0;
 };
 
 struct Reconstruction {

@@ -63,6 +63,8 @@ struct SegmentationResult {
   std::size_t dropped_regions = 0;  ///< regions dropped as too small or too short
   std::size_t voxels = 0;             ///< voxels of the volume
   std::size_t foreground_voxels = 0;  ///< voxels at or above the threshold (before component selection)
+  /// The image the contours were traced on when `smoothing` made a new one; null otherwise (the input).
+  CtImage::Pointer smoothed_image;
 };
 
 /// Segments every slice (index axis 2) of `image` and extracts its contours in the slice frame

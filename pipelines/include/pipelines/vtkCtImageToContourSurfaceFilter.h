@@ -45,6 +45,10 @@ class vtkCtImageToContourSurfaceFilter : public vtkPolyDataAlgorithm {
     END_CAPS_HALF_SPACING = 0,  ///< half a slice spacing beyond the last contour (default)
     END_CAPS_AT_END_SLICE = 1,  ///< in the plane of the last contour
   };
+  enum OffSlicePlacementType {
+    OFF_SLICE_IMAGE_CROSSING = 0,  ///< vertices between the slices where the image crosses the threshold (default)
+    OFF_SLICE_TILED = 1,           ///< where the tiler put them (caps half a spacing beyond the last contour)
+  };
   enum CapRefinementType {
     CAP_REFINEMENT_INTERIOR = 0,      ///< constrained Delaunay with interior vertices (default)
     CAP_REFINEMENT_EAR_CLIPPING = 1,  ///< ear clipping only
@@ -125,6 +129,15 @@ class vtkCtImageToContourSurfaceFilter : public vtkPolyDataAlgorithm {
   vtkGetMacro(EndCaps, int);
   void SetEndCapsToHalfSpacing() { this->SetEndCaps(END_CAPS_HALF_SPACING); }
   void SetEndCapsToAtEndSlice() { this->SetEndCaps(END_CAPS_AT_END_SLICE); }
+  ///@}
+
+  ///@{
+  /// Heights of the vertices between the slices (end caps, intermediate contours): from the image
+  /// (default) or as tiled.
+  vtkSetClampMacro(OffSlicePlacement, int, OFF_SLICE_IMAGE_CROSSING, OFF_SLICE_TILED);
+  vtkGetMacro(OffSlicePlacement, int);
+  void SetOffSlicePlacementToImageCrossing() { this->SetOffSlicePlacement(OFF_SLICE_IMAGE_CROSSING); }
+  void SetOffSlicePlacementToTiled() { this->SetOffSlicePlacement(OFF_SLICE_TILED); }
   ///@}
 
   ///@{
@@ -225,6 +238,7 @@ class vtkCtImageToContourSurfaceFilter : public vtkPolyDataAlgorithm {
   double MinContourLength = 3.0;
   int EndCaps = END_CAPS_HALF_SPACING;
   int CapRefinement = CAP_REFINEMENT_INTERIOR;
+  int OffSlicePlacement = OFF_SLICE_IMAGE_CROSSING;
   double MinOverlapFraction = 0.05;
   vtkIdType FullDynamicProgrammingLimit = 4'000'000;
   double BandFraction = 0.15;

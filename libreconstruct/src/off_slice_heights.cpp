@@ -1,0 +1,182 @@
+#include "reconstruct/off_slice_heights.h"
+
+#include <smooth/adjacency.h>
+#include <smooth/errors.h>
+#include <smooth/normals.h>
+
+#include <Eigen/Core>
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <string>
+#include <vector>
+
+namespace contourmesh {
+
+namespace {
+
+// The image in its own index frame: continuous (i, j, k) of a physical point, bilinear values in a slice.
+class SliceSampler {
+ public:
+  explicit SliceSampler(const CtImage& image) : values_(image.GetBufferPointer()) {
+    const auto size = image.GetLargestPossibleRegion().GetSize();
+    for (int d = 0; d < 3; ++d) size_[d] = static_cast<long>(size[d]);
+    const auto origin = image.GetOrigin();
+    const auto spacing = image.GetSpacing();
+    const auto dir = image.GetDirection();
+    for (int d = 0; d < 3; ++d) {
+      origin_[d] = origin[d];
+      spacing_[d] = spacing[d];
+      for (int r = 0; r < 3; ++r) axes_(r, d) = dir[r][d];
+    }
+  }
+  [[nodiscard]] Eigen::Vector3d index_of(const Eigen::Vector3d& p) const {
+    const Eigen::Vector3d local = axes_.transpose() * (p - origin_);
+    return local.cwiseQuotient(spacing_);
+  }
+  [[nodiscard]] Eigen::Vector3d axis(int d) const { return axes_.col(d); }
+  [[nodiscard]] double spacing(int d) const { return spacing_[d]; }
+  [[nodiscard]] long slices() const { return size_[2]; }
+  [[nodiscard]] bool has_slice(long k) const { return k >= 0 && k < size_[2]; }
+  // Bilinear value at continuous in-plane index (x, y) of slice k (clamped to the image).
+  [[nodiscard]] double at(double x, double y, long k) const {
+    const double fx = std::clamp(x, 0.0, static_cast<double>(size_[0] - 1));
+    const double fy = std::clamp(y, 0.0, static_cast<double>(size_[1] - 1));
+    const long ix = std::min(static_cast<long>(fx), std::max(size_[0] - 2, 0L));
+    const long iy = std::min(static_cast<long>(fy), std::max(size_[1] - 2, 0L));
+    const long jx = std::min(ix + 1, size_[0] - 1), jy = std::min(iy + 1, size_[1] - 1);
+    const double tx = fx - static_cast<double>(ix), ty = fy - static_cast<double>(iy);
+    auto v = [&](long x0, long y0) { return static_cast<double>(values_[(k * size_[1] + y0) * size_[0] + x0]); };
+    return (1.0 - ty) * ((1.0 - tx) * v(ix, iy) + tx * v(jx, iy)) + ty * ((1.0 - tx) * v(ix, jy) + tx * v(jx, jy));
+  }
+
+ private:
+  const float* values_;
+  std::array<long, 3> size_{};
+  Eigen::Vector3d origin_, spacing_;
+  Eigen::Matrix3d axes_;
+};
+
+void check(const Mesh& mesh, const OffSliceOptions& o) {
+  if (!mesh.has_contour_ids()) throw InvalidInputError("off-slice heights: the mesh carries no slice ids");
+  if (!(o.smoothness > 0.0) || !std::isfinite(o.smoothness)) {
+    throw InvalidInputError("off-slice heights: smoothness must be > 0, got " + std::to_string(o.smoothness));
+  }
+  if (o.iterations < 1) throw InvalidInputError("off-slice heights: iterations must be >= 1");
+  if (!(o.min_fraction >= 0.0 && o.min_fraction < 0.5)) {
+    throw InvalidInputError("off-slice heights: min_fraction must be in [0, 0.5), got " + std::to_string(o.min_fraction));
+  }
+  if (!(o.inward_pixels >= 0.0) || !std::isfinite(o.inward_pixels)) {
+    throw InvalidInputError("off-slice heights: inward_pixels must be >= 0");
+  }
+}
+
+// Where between slices k (t = 0) and k + 1 (t = 1) the column at in-plane index (x, y) crosses the
+// threshold, normalised by the levels one slice further inside and outside; false without a crossing.
+bool crossing(const SliceSampler& s, double x, double y, long k, double threshold, double& t) {
+  const double va = s.at(x, y, k), vb = s.at(x, y, k + 1);
+  double a = va - threshold, b = vb - threshold;
+  if (a * b >= 0.0) return false;
+  const long inside = a > 0.0 ? k - 1 : k + 2, outside = a > 0.0 ? k + 2 : k - 1;
+  if (s.has_slice(inside) && s.has_slice(outside)) {
+    const double vin = s.at(x, y, inside), vout = s.at(x, y, outside);
+    if (vin > threshold && vout < threshold) {
+      a = (va - vout) / (vin - vout) - 0.5;
+      b = (vb - vout) / (vin - vout) - 0.5;
+      if (a * b >= 0.0) return false;
+    }
+  }
+  t = a / (a - b);
+  return true;
+}
+
+Eigen::Vector3d face_normal(const Eigen::Matrix3Xd& x, const Triangle& t) {
+  return (x.col(t[1]) - x.col(t[0])).cross(x.col(t[2]) - x.col(t[0]));
+}
+
+}  // namespace
+
+OffSliceResult fit_off_slice_heights(Mesh mesh, const CtImage& image, double threshold, const OffSliceOptions& options) {
+  check(mesh, options);
+  OffSliceResult result;
+  if (options.placement == OffSlicePlacement::Tiled || mesh.num_vertices() == 0) {
+    result.mesh = std::move(mesh);
+    return result;
+  }
+  const SliceSampler sampler(image);
+  const Index n = mesh.num_vertices();
+  const Eigen::Vector3d w = sampler.axis(2);
+  const double h = sampler.spacing(2);
+  const Eigen::Matrix3Xd normals = vertex_normals(mesh.positions, mesh.triangles);
+  const MeshAdjacency adjacency = build_adjacency(mesh);
+
+  // Data term and bounds per vertex, all as displacements along w in mm.
+  std::vector<double> target(n, 0.0), weight(n, 0.0), low(n, 0.0), high(n, 0.0);
+  std::vector<std::uint8_t> free_vertex(n, 0);
+  for (Index v = 0; v < n; ++v) {
+    if (mesh.slice_ids[v] >= 0) continue;
+    const Eigen::Vector3d index = sampler.index_of(mesh.positions.col(v));
+    const double kz = index.z();
+    const long k = static_cast<long>(std::floor(kz));
+    const double frac = kz - static_cast<double>(k);
+    if (k < 0 || k + 1 >= sampler.slices() || frac < 1e-6 || frac > 1.0 - 1e-6) continue;
+    free_vertex[v] = 1;
+    ++result.report.candidates;
+    low[v] = (options.min_fraction - frac) * h;
+    high[v] = (1.0 - options.min_fraction - frac) * h;
+    const Eigen::Vector3d nv = normals.col(v);
+    const double nu = nv.dot(sampler.axis(0)), nw = nv.dot(w), nvv = nv.dot(sampler.axis(1));
+    const double x = index.x() - options.inward_pixels * nu, y = index.y() - options.inward_pixels * nvv;
+    double t = 0.0;
+    if (!crossing(sampler, x, y, k, threshold, t)) continue;
+    t = std::clamp(t, options.min_fraction, 1.0 - options.min_fraction);
+    target[v] = (t - frac) * h;
+    weight[v] = std::abs(nw);
+    ++result.report.fitted;
+  }
+
+  // Membrane fit (Jacobi): vertices with ids hold still at 0.
+  std::vector<double> d(n, 0.0), next(n, 0.0);
+  const double lambda = options.smoothness;
+  for (int it = 0; it < options.iterations; ++it) {
+    for (Index v = 0; v < n; ++v) {
+      if (!free_vertex[v]) continue;
+      double sum = weight[v] * target[v], den = weight[v];
+      for (Index u : adjacency.ring(v)) {
+        sum += lambda * d[u];
+        den += lambda;
+      }
+      next[v] = den > 0.0 ? std::clamp(sum / den, low[v], high[v]) : 0.0;
+    }
+    d.swap(next);
+  }
+
+  // Apply, then halve the moves around faces that would turn over (a steep face whose ends went
+  // different ways), a few rounds at most; what is left unmoved is the tiler's placement.
+  const Eigen::Matrix3Xd before = mesh.positions;
+  auto place = [&](Index v) { mesh.positions.col(v) = before.col(v) + d[v] * w; };
+  for (Index v = 0; v < n; ++v)
+    if (d[v] != 0.0) place(v);
+  std::vector<std::uint8_t> damped(n, 0);
+  for (int round = 0; round < 8; ++round) {
+    bool any = false;
+    for (const Triangle& t : mesh.triangles) {
+      const Eigen::Vector3d n0 = face_normal(before, t), n1 = face_normal(mesh.positions, t);
+      if (n0.squaredNorm() < 1e-24 || n0.dot(n1) > 0.17 * n0.norm() * n1.norm()) continue;
+      for (Index v : t) {
+        if (d[v] == 0.0) continue;
+        d[v] = round == 7 ? 0.0 : 0.5 * d[v];
+        damped[v] = 1;
+        place(v);
+        any = true;
+      }
+    }
+    if (!any) break;
+  }
+  result.report.damped = static_cast<std::size_t>(std::count(damped.begin(), damped.end(), std::uint8_t{1}));
+  result.mesh = std::move(mesh);
+  return result;
+}
+
+}  // namespace contourmesh

@@ -1,0 +1,169 @@
+// Properties of fit_off_slice_heights against analytic volumes: end faces and domes between the
+// slices, what it must not touch, and bad options.
+#include <reconstruct/off_slice_heights.h>
+#include <reconstruct/reconstruction.h>
+#include <smooth/errors.h>
+
+#include <gtest/gtest.h>
+
+#include <Eigen/Core>
+
+#include <array>
+#include <cmath>
+#include <functional>
+
+namespace contourmesh {
+namespace {
+
+// Voxel value: 1000 times the fraction of the voxel (4 x 4 x 8 supersamples, the slice's whole
+// thickness) where sdf < 0. Physical point of index (i, j, k) = spacing * index.
+CtImage::Pointer partial_volume(const std::array<int, 3>& n, const Eigen::Vector3d& spacing,
+                                const std::function<double(const Eigen::Vector3d&)>& sdf) {
+  auto image = CtImage::New();
+  CtImage::RegionType region;
+  region.SetSize({{static_cast<itk::SizeValueType>(n[0]), static_cast<itk::SizeValueType>(n[1]),
+                   static_cast<itk::SizeValueType>(n[2])}});
+  image->SetRegions(region);
+  image->SetSpacing(spacing.data());
+  image->Allocate();
+  for (int k = 0; k < n[2]; ++k)
+    for (int j = 0; j < n[1]; ++j)
+      for (int i = 0; i < n[0]; ++i) {
+        int inside = 0;
+        for (int a = 0; a < 4; ++a)
+          for (int b = 0; b < 4; ++b)
+            for (int c = 0; c < 8; ++c) {
+              const Eigen::Vector3d p((i - 0.375 + 0.25 * a) * spacing.x(), (j - 0.375 + 0.25 * b) * spacing.y(),
+                                      (k - 0.4375 + 0.125 * c) * spacing.z());
+              inside += sdf(p) < 0.0;
+            }
+        image->SetPixel({{i, j, k}}, 1000.0f * static_cast<float>(inside) / 128.0f);
+      }
+  return image;
+}
+
+ReconstructionOptions options_with(OffSlicePlacement placement) {
+  ReconstructionOptions o;
+  o.segmentation.threshold = 500.0;
+  o.off_slice.placement = placement;
+  return o;
+}
+
+// A cylinder of radius 8 about (16, 16) from z = 1 (a slab boundary) to z = 9.5: slices every 2 mm
+// at z = 0, 2, ..., so the top lies a quarter spacing past the last slab the contours see.
+double cylinder(const Eigen::Vector3d& p) {
+  const double radial = std::hypot(p.x() - 16.0, p.y() - 16.0) - 8.0;
+  const double axial = std::max(1.0 - p.z(), p.z() - 9.5);
+  return std::max(radial, axial);
+}
+
+// Mean |z - 9.5| over the vertices without ids above the last contour (z > 8.5).
+double top_error(const Mesh& mesh) {
+  double sum = 0.0;
+  int count = 0;
+  for (Index v = 0; v < mesh.num_vertices(); ++v) {
+    if (mesh.slice_ids[v] >= 0 || mesh.positions(2, v) < 8.5) continue;
+    sum += std::abs(mesh.positions(2, v) - 9.5);
+    ++count;
+  }
+  EXPECT_GT(count, 20);
+  return sum / std::max(count, 1);
+}
+
+TEST(OffSliceHeights, AnEndFaceBetweenTheSlicesIsFoundFromTheImage) {
+  const CtImage::Pointer image = partial_volume({32, 32, 8}, {1.0, 1.0, 2.0}, cylinder);
+  const double tiled = top_error(reconstruct(*image, options_with(OffSlicePlacement::Tiled)).mesh);
+  const double fitted = top_error(reconstruct(*image, options_with(OffSlicePlacement::ImageCrossing)).mesh);
+  EXPECT_NEAR(tiled, 0.5, 0.05);  // half a spacing beyond the last contour at z = 8
+  EXPECT_LT(fitted, 0.2);         // linear crossing of the normalised column: 1/6 of a spacing at worst here
+}
+
+TEST(OffSliceHeights, ADomeComesCloserToTheSphere) {
+  auto sphere = [](const Eigen::Vector3d& p) { return (p - Eigen::Vector3d(16.0, 16.0, 14.7)).norm() - 9.0; };
+  const CtImage::Pointer image = partial_volume({32, 32, 16}, {1.0, 1.0, 2.0}, sphere);
+  auto rms_off_slice = [&](const Mesh& mesh) {
+    double sum = 0.0;
+    int count = 0;
+    for (Index v = 0; v < mesh.num_vertices(); ++v) {
+      if (mesh.slice_ids[v] >= 0) continue;
+      sum += std::pow(sphere(mesh.positions.col(v)), 2);
+      ++count;
+    }
+    EXPECT_GT(count, 10);
+    return std::sqrt(sum / std::max(count, 1));
+  };
+  const double tiled = rms_off_slice(reconstruct(*image, options_with(OffSlicePlacement::Tiled)).mesh);
+  const double fitted = rms_off_slice(reconstruct(*image, options_with(OffSlicePlacement::ImageCrossing)).mesh);
+  EXPECT_LT(fitted, 0.6 * tiled) << "tiled " << tiled << " fitted " << fitted;
+}
+
+TEST(OffSliceHeights, VerticesWithIdsAndTheConnectivityStay) {
+  const CtImage::Pointer image = partial_volume({32, 32, 8}, {1.0, 1.0, 2.0}, cylinder);
+  const Mesh tiled = reconstruct(*image, options_with(OffSlicePlacement::Tiled)).mesh;
+  const OffSliceResult fitted = fit_off_slice_heights(tiled, *image, 500.0);
+  ASSERT_EQ(fitted.mesh.num_vertices(), tiled.num_vertices());
+  EXPECT_EQ(fitted.mesh.triangles, tiled.triangles);
+  EXPECT_EQ(fitted.mesh.slice_ids, tiled.slice_ids);
+  EXPECT_GT(fitted.report.fitted, 0u);
+  std::size_t moved = 0;
+  for (Index v = 0; v < tiled.num_vertices(); ++v) {
+    const Eigen::Vector3d d = fitted.mesh.positions.col(v) - tiled.positions.col(v);
+    if (tiled.slice_ids[v] >= 0) {
+      EXPECT_EQ(d.norm(), 0.0) << "vertex " << v;
+    }
+    EXPECT_EQ(d.head<2>().norm(), 0.0) << "vertex " << v << " moved off the slice axis";
+    moved += d.norm() > 0.0;
+  }
+  EXPECT_GT(moved, 0u);
+}
+
+TEST(OffSliceHeights, TiledPlacementChangesNothing) {
+  const CtImage::Pointer image = partial_volume({32, 32, 8}, {1.0, 1.0, 2.0}, cylinder);
+  const Mesh tiled = reconstruct(*image, options_with(OffSlicePlacement::Tiled)).mesh;
+  OffSliceOptions o;
+  o.placement = OffSlicePlacement::Tiled;
+  const OffSliceResult same = fit_off_slice_heights(tiled, *image, 500.0, o);
+  EXPECT_EQ(same.mesh.positions, tiled.positions);
+  EXPECT_EQ(same.report.fitted, 0u);
+}
+
+TEST(OffSliceHeights, NoFaceTurnsOverOnANoisyBranchingShape) {
+  // Two spheres that merge between slices: intermediate contours, caps and steep faces together.
+  auto shape = [](const Eigen::Vector3d& p) {
+    const double a = (p - Eigen::Vector3d(11.0, 16.0, 13.0)).norm() - 6.5;
+    const double b = (p - Eigen::Vector3d(21.0, 16.0, 17.0)).norm() - 6.5;
+    return std::min(a, b) + 0.3 * std::sin(1.7 * p.x()) * std::sin(2.3 * p.y());
+  };
+  const CtImage::Pointer image = partial_volume({32, 32, 16}, {1.0, 1.0, 2.0}, shape);
+  const Mesh tiled = reconstruct(*image, options_with(OffSlicePlacement::Tiled)).mesh;
+  const OffSliceResult fitted = fit_off_slice_heights(tiled, *image, 500.0);
+  for (const Triangle& t : tiled.triangles) {
+    auto normal = [&](const Mesh& m) {
+      return Eigen::Vector3d((m.positions.col(t[1]) - m.positions.col(t[0])).cross(m.positions.col(t[2]) - m.positions.col(t[0])));
+    };
+    const Eigen::Vector3d before = normal(tiled), after = normal(fitted.mesh);
+    if (before.norm() < 1e-12) continue;
+    EXPECT_GT(before.dot(after), 0.0);
+  }
+}
+
+TEST(OffSliceHeights, OptionsOutOfRangeAndMeshesWithoutIdsAreRefused) {
+  const CtImage::Pointer image = partial_volume({8, 8, 4}, {1.0, 1.0, 2.0}, cylinder);
+  Mesh no_ids;
+  no_ids.positions = Eigen::Matrix3Xd::Zero(3, 3);
+  no_ids.triangles = {{0, 1, 2}};
+  EXPECT_THROW((void)fit_off_slice_heights(no_ids, *image, 500.0), InvalidInputError);
+  Mesh ok = no_ids;
+  ok.slice_ids = {0, 0, 1};
+  ok.contour_ids = {0, 0, 0};
+  for (auto bad : std::initializer_list<std::function<void(OffSliceOptions&)>>{
+           [](OffSliceOptions& o) { o.smoothness = 0.0; }, [](OffSliceOptions& o) { o.iterations = 0; },
+           [](OffSliceOptions& o) { o.min_fraction = 0.5; }, [](OffSliceOptions& o) { o.inward_pixels = -1.0; }}) {
+    OffSliceOptions o;
+    bad(o);
+    EXPECT_THROW((void)fit_off_slice_heights(ok, *image, 500.0, o), InvalidInputError);
+  }
+}
+
+}  // namespace
+}  // namespace contourmesh
