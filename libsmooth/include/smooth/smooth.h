@@ -1,0 +1,111 @@
+// One entry point for every smoothing method of the library (docs/smoothing.md, "One entry point and
+// the presets"): the baselines of smoothing.h, the paper's method (feature_smoothing.h) and cross-slice
+// smoothing (cross_slice.h), each configured by its own sub-struct of one options struct; and the named
+// presets, among them the paper's literal configuration.
+#pragma once
+
+#include "smooth/cross_slice.h"
+#include "smooth/feature_detection.h"
+#include "smooth/feature_smoothing.h"
+#include "smooth/limits.h"
+#include "smooth/mesh.h"
+#include "smooth/progress.h"
+#include "smooth/smoothing.h"
+
+#include <cstddef>
+#include <optional>
+#include <string_view>
+#include <vector>
+
+namespace contourmesh {
+
+/// Options of every method, one sub-struct per family; smooth() reads the one of the method it runs.
+/// Each family's defaults are its documented defaults (the baselines': the paper's section 6).
+struct SmoothOptions {
+  /// Laplacian, Taubin, mean curvature flow, MIN-DIST flow. Its `method` member is ignored: smooth()
+  /// sets it from its argument.
+  SmoothingOptions baseline;
+  /// The paper's method (SmoothingMethod::FeaturePreserving).
+  FeatureSmoothingOptions paper;
+  /// Cross-slice smoothing (SmoothingMethod::CrossSlice).
+  CrossSliceOptions cross_slice;
+  /// Smoothing iterations of the method that runs, in place of its family's own count; unset: the
+  /// family's count. Ignored by methods without an iteration count (None, CrossSlice). >= 0.
+  std::optional<int> iterations;
+  /// Progress of every stage ("detect", "subdivide", "smooth"); return false to cancel
+  /// (CancelledError). Replaces the families' own `progress` members, which smooth() ignores.
+  ProgressCallback progress;
+  /// Vertex cap and memory budget: the input is checked against the vertex cap, and the paper's
+  /// adaptive mesh against both (LimitError). Replaces `paper.limits`, which smooth() ignores.
+  ResourceLimits limits;
+};
+
+/// The result of any method.
+struct SmoothResult {
+  SmoothingMethod method = SmoothingMethod::None;
+  /// The smoothed mesh: the input's connectivity and ids, or for the paper's method with
+  /// OutputResolution::Adaptive its smoothed adaptive mesh.
+  Mesh mesh;
+  /// One label per input vertex from methods that label features (FeaturePreserving, CrossSlice);
+  /// empty otherwise.
+  std::vector<VertexLabel> labels;
+  /// The feature detection behind the labels (umbrella, gamma, curvatures), when one ran.
+  std::optional<FeatureDetection> detection;
+  /// Wall-clock seconds per stage (the paper's Table 1); stages a method does not have stay 0.
+  StageTimings seconds;
+  /// Smoothing iterations that ran (0 for None and for methods without an iteration count).
+  int iterations = 0;
+  /// The paper's method: input vertices subdivided at least once, and the adaptive mesh's vertices.
+  std::size_t subdivided_vertices = 0;
+  Index adaptive_vertices = 0;
+  /// Cross-slice smoothing: contour vertices corrected from their cross-slice profile.
+  std::size_t profiles = 0;
+};
+
+/// The iteration count a method runs by default, from its family's default options: 20 for the
+/// baselines (the paper's section 6), 40 for the paper's method, 0 for None and CrossSlice.
+[[nodiscard]] int default_iterations(SmoothingMethod method);
+
+/// The iteration count smooth(mesh, method, options) runs: options.iterations, else the family's own.
+[[nodiscard]] int iterations_of(SmoothingMethod method, const SmoothOptions& options);
+
+/// True for the methods whose result carries per-vertex feature labels (FeaturePreserving, CrossSlice).
+[[nodiscard]] bool produces_labels(SmoothingMethod method);
+
+/// The detection options a method labels with (the paper's or cross-slice's `detection`); nullptr for
+/// a method without labels. Lets a caller adjust detection without knowing which family runs.
+[[nodiscard]] DetectionOptions* detection_options_of(SmoothingMethod method, SmoothOptions& options);
+
+/// Smooths `mesh` with `method`. FeaturePreserving and CrossSlice need contour ids (see their
+/// headers); baselines do not. Throws InvalidInputError for options out of range or missing ids,
+/// LimitError beyond `options.limits`, CancelledError on request.
+[[nodiscard]] SmoothResult smooth(const Mesh& mesh, SmoothingMethod method, const SmoothOptions& options = {});
+
+/// Named configurations.
+enum class Preset {
+  /// The project's default: cross-slice smoothing with its default options.
+  Default,
+  /// The paper's literal configuration (Xu et al. 2006, sections 3-6), to reproduce its figures: the
+  /// feature-preserving method with Taubin diffusion lambda 0.6307 / mu -0.6732 for 40 iterations,
+  /// at most 3 subdivision levels; detection by |U| (UmbrellaMeasure::Length) above gamma = 2 x its
+  /// mean, curve windows of 7 contour vertices, delta 0.5 |k0|, in-slice feature lines labelled noise,
+  /// corners only by the vote of umbilic vertices (the corner-spread extension off), no pre-filter.
+  Xu2006,
+};
+
+/// "default", "xu2006".
+[[nodiscard]] std::string_view to_string(Preset preset);
+/// Inverse of to_string; throws InvalidInputError listing the valid names.
+[[nodiscard]] Preset parse_preset(std::string_view name);
+
+/// A method and its options.
+struct MethodConfig {
+  SmoothingMethod method = SmoothingMethod::CrossSlice;
+  SmoothOptions options;
+};
+
+/// The method and options of a preset. Every option the preset fixes is set explicitly, so a change of
+/// a library default does not change the preset.
+[[nodiscard]] MethodConfig preset(Preset preset);
+
+}  // namespace contourmesh
