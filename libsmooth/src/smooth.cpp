@@ -1,5 +1,6 @@
 #include "smooth/smooth.h"
 
+#include "smooth/adjacency.h"
 #include "smooth/errors.h"
 
 #include <chrono>
@@ -111,6 +112,18 @@ SmoothResult smooth(const Mesh& mesh, SmoothingMethod method, const SmoothOption
   r.method = method;
   r.seconds.total = seconds_since(start);
   return r;
+}
+
+FeatureDetection detect_features(const Mesh& mesh, SmoothingMethod method, const SmoothOptions& options) {
+  SmoothOptions copy = options;
+  const DetectionOptions* chosen = detection_options_of(method, copy);
+  if (chosen == nullptr) {
+    throw InvalidInputError(std::string(to_string(method)) + " does not label features (paper and cross-slice do)");
+  }
+  check_allocation("detection input", static_cast<double>(mesh.num_vertices()), 0.0, options.limits);
+  DetectionOptions d = *chosen;
+  d.progress = options.progress;
+  return detect_features(mesh, build_adjacency(mesh), d);
 }
 
 std::string_view to_string(Preset preset) {

@@ -1,4 +1,4 @@
-// Options and helpers shared by `smooth --method paper` and `detect`.
+// Options and helpers shared by `smooth`, `run` and `detect` for the methods that detect features.
 #pragma once
 
 #include <pipelines/mesh_io.h>
@@ -16,14 +16,15 @@ class App;
 
 namespace contourmesh::cli {
 
+/// Detection options as given on the command line; unset ones keep the method's (or preset's) value.
 struct FeatureArgs {
   std::optional<double> gamma;
   std::optional<double> delta;
-  std::string measure = "length";
-  std::string in_slice = "noise";
-  int prefilter = 0;
-  int window = 7;
-  double corner_spread = 0.1;
+  std::optional<std::string> measure;
+  std::optional<std::string> in_slice;
+  std::optional<int> prefilter;
+  std::optional<int> window;
+  std::optional<double> corner_spread;
   std::string slice_axis;  ///< "", "x", "y" or "z"
 };
 
@@ -32,8 +33,9 @@ void add_detection_options(CLI::App* cmd, FeatureArgs& args);
 /// The detection options and --slice-axis.
 void add_feature_options(CLI::App* command, FeatureArgs& args);
 
-/// Detection options from the arguments (throws InvalidInputError for a bad --measure).
-[[nodiscard]] DetectionOptions detection_options(const FeatureArgs& args);
+/// Sets the detection options that were given on the command line, leaving the others as they are
+/// (throws InvalidInputError for a bad --measure or --in-slice).
+void apply_detection_args(const FeatureArgs& args, DetectionOptions& options);
 
 /// Makes sure detection can run on `mesh`: keeps the ids it was read with ("file"; a gap in the slice
 /// ids is closed with a warning), corrects ids inconsistent with the mesh from its slice planes

@@ -3,6 +3,7 @@
 // against the phantom's analytic surface.
 #include "cli_common.h"
 #include "feature_options.h"
+#include "method_options.h"
 #include "progress_display.h"
 
 #include <pipelines/atomic_file.h>
@@ -12,10 +13,9 @@
 #include <reconstruct/volume.h>
 #include <smooth/adjacency.h>
 #include <smooth/errors.h>
-#include <smooth/feature_smoothing.h>
 #include <smooth/limits.h>
 #include <smooth/metrics.h>
-#include <smooth/smoothing.h>
+#include <smooth/smooth.h>
 #include <smooth/topology.h>
 
 #include <CLI/CLI.hpp>
@@ -40,8 +40,7 @@ struct RunArgs {
   double blur = 0.5;
   std::uint64_t seed = 1;
   std::optional<double> threshold;
-  std::string method = "paper";
-  std::optional<int> iterations;
+  MethodArgs selection;
   double feature_radius = 2.0;
   std::string end_caps = "half-spacing";
   std::string format = "auto";
@@ -54,13 +53,17 @@ struct RunArgs {
 
 int run_run(const RunArgs& a) {
   const auto start = std::chrono::steady_clock::now();
-  const SmoothingMethod baseline = a.method == "paper" ? SmoothingMethod::None : parse_smoothing_method(a.method);
+  MethodConfig config = method_config(a.selection, StepArgs{}, a.detection);
+  const SmoothingMethod method = config.method;
   // Fail on bad options and output paths before the work.
   MeshWriteOptions write_options;
   write_options.format = parse_mesh_format(a.format);
   if (write_options.format == MeshFormat::Auto) (void)format_from_extension(a.output);
   if (!a.labels_out.empty()) {
-    if (a.method != "paper") throw InvalidInputError("--labels-out needs --method paper (the labels come from its detection)");
+    if (!produces_labels(method)) {
+      throw InvalidInputError("--labels-out needs a method that labels features (paper or cross-slice), not " +
+                              std::string(to_string(method)));
+    }
     if (!format_keeps_contour_ids(format_from_extension(a.labels_out))) {
       throw InvalidInputError(a.labels_out + ": labels need a .vtp or .ply file");
     }
@@ -125,36 +128,26 @@ int run_run(const RunArgs& a) {
 
   // 3. Smooth.
   t = std::chrono::steady_clock::now();
-  Mesh result = mesh;
-  std::optional<FeatureSmoothingResult> paper;
-  if (a.method == "paper") {
-    FeatureSmoothingOptions o;
-    o.detection = detection_options(a.detection);
-    o.progress = progress.callback();
-    if (a.iterations) o.iterations = *a.iterations;
-    o.limits.max_vertices = a.max_vertices;
-    try {
-      paper = feature_preserving_smooth(mesh, o);
-    } catch (const LimitError& e) {
-      throw LimitError(source + ": " + e.what());
-    }
-    result = paper->mesh;
-  } else {
-    SmoothingOptions o;
-    o.method = baseline;
-    o.progress = progress.callback();
-    if (a.iterations) o.iterations = *a.iterations;
-    result.positions = smooth(mesh, o);
+  config.options.progress = progress.callback();
+  config.options.limits.max_vertices = a.max_vertices;
+  SmoothResult smoothed;
+  try {
+    smoothed = smooth(mesh, method, config.options);
+  } catch (const LimitError& e) {
+    throw LimitError(source + ": " + e.what());
+  } catch (const InvalidInputError& e) {
+    throw InvalidInputError(source + ": " + e.what());
   }
+  const Mesh& result = smoothed.mesh;
   const double seconds_smooth = seconds_since(t);
 
   // 4. Export.
   t = std::chrono::steady_clock::now();
   progress.stage("write");
   write_mesh(result, out, write_options);
-  if (paper && !a.labels_out.empty()) {
+  if (smoothed.detection && !a.labels_out.empty()) {
     MeshWriteOptions labels;
-    labels.point_scalars = detection_arrays(paper->detection);
+    labels.point_scalars = detection_arrays(*smoothed.detection);
     write_mesh(mesh, a.labels_out, labels);
   }
   progress.finish();
@@ -168,7 +161,9 @@ int run_run(const RunArgs& a) {
   j["source"] = source;
   j["output"] = a.output;
   if (!a.labels_out.empty()) j["labels_out"] = a.labels_out;
-  j["method"] = a.method;
+  j["method"] = std::string(to_string(method));
+  if (const std::string p = preset_name(a.selection); !p.empty()) j["preset"] = p;
+  j["iterations"] = smoothed.iterations;
   j["slices"] = rec.report.slices;
   j["contours"] = rec.report.contours;
   j["vertices"] = result.num_vertices();
@@ -185,13 +180,15 @@ int run_run(const RunArgs& a) {
   j["seconds_tile"] = rec.report.seconds_tile;
   j["seconds_smooth"] = seconds_smooth;
   j["seconds_write"] = seconds_write;
-  if (paper) {
-    j["edge_vertices"] = paper->detection.edges;
-    j["corner_vertices"] = paper->detection.corners;
-    j["noise_vertices"] = paper->detection.noise;
-    j["subdivided_vertices"] = paper->subdivided_vertices;
-    j["seconds_detect"] = paper->seconds.detect;
-    j["seconds_subdivide"] = paper->seconds.subdivide;
+  if (smoothed.detection) {
+    j["edge_vertices"] = smoothed.detection->edges;
+    j["corner_vertices"] = smoothed.detection->corners;
+    j["noise_vertices"] = smoothed.detection->noise;
+    j["seconds_detect"] = smoothed.seconds.detect;
+  }
+  if (method == SmoothingMethod::FeaturePreserving) {
+    j["subdivided_vertices"] = smoothed.subdivided_vertices;
+    j["seconds_subdivide"] = smoothed.seconds.subdivide;
   }
   DistanceStats before, after, feature_before, feature_after;
   if (phantom) {
@@ -224,11 +221,13 @@ int run_run(const RunArgs& a) {
             << "  mesh        " << result.num_vertices() << " vertices, " << result.num_faces() << " triangles, "
             << (topo.closed ? "closed" : "OPEN") << ", " << (topo.manifold ? "manifold" : "NOT manifold")
             << ", Euler characteristic " << topo.euler_characteristic << "\n";
-  if (paper) {
-    std::cout << "  features    " << paper->detection.edges << " edge, " << paper->detection.corners << " corner, "
-              << paper->detection.noise << " noise vertices; " << paper->subdivided_vertices << " subdivided\n";
+  if (smoothed.detection) {
+    std::cout << "  features    " << smoothed.detection->edges << " edge, " << smoothed.detection->corners
+              << " corner, " << smoothed.detection->noise << " noise vertices";
+    if (method == SmoothingMethod::FeaturePreserving) std::cout << "; " << smoothed.subdivided_vertices << " subdivided";
+    std::cout << "\n";
   }
-  std::cout << "  smoothing   " << a.method << ": volume " << std::setprecision(1) << v0 << " -> " << v1 << " mm^3 ("
+  std::cout << "  smoothing   " << describe_selection(a.selection, method) << ": volume " << std::setprecision(1) << v0 << " -> " << v1 << " mm^3 ("
             << std::setprecision(2) << 100.0 * (v1 - v0) / v0 << " %)\n";
   if (phantom) {
     std::cout << std::setprecision(3) << "  accuracy    RMS distance to the true surface " << before.rms << " -> "
@@ -254,7 +253,7 @@ void add_run_command(CLI::App& app) {
   cmd->add_option("--format", args->format, "Output format: auto | stl | stl-ascii | ply | vtp | obj")
       ->capture_default_str();
   cmd->add_option("--labels-out", args->labels_out,
-                  "paper: also write the reconstructed mesh with per-vertex labels and curvatures (.vtp or .ply)");
+                  "paper, cross-slice: also write the reconstructed mesh with per-vertex labels and curvatures (.vtp or .ply)");
   cmd->add_option("--shape", args->shape, "Phantom when no input: ridge-box | femur | pelvis | skull | branch | "
                                           "two-objects | cavity")
       ->capture_default_str();
@@ -266,8 +265,7 @@ void add_run_command(CLI::App& app) {
                   "Bone threshold, HU (default: 300 for an input volume; 520 for a phantom, halfway between its "
                   "soft tissue and bone)");
   cmd->add_option("--end-caps", args->end_caps, "Where objects end: half-spacing | end-slice")->capture_default_str();
-  cmd->add_option("--method", args->method, "paper | none | laplacian | taubin | mcf | mindist")->capture_default_str();
-  cmd->add_option("--iterations", args->iterations, "Smoothing iterations (default 40 for paper, 20 otherwise)");
+  add_method_options(cmd, args->selection);
   cmd->add_option("--feature-radius", args->feature_radius,
                   "Phantom: vertices this close to a sharp edge form the feature region, mm")
       ->capture_default_str();

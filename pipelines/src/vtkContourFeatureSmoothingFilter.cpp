@@ -7,8 +7,7 @@
 #include <smooth/contour_structure.h>
 #include <smooth/errors.h>
 #include <smooth/feature_detection.h>
-#include <smooth/feature_smoothing.h>
-#include <smooth/smoothing.h>
+#include <smooth/smooth.h>
 #include <smooth/validation.h>
 
 #include <vtkDataArray.h>
@@ -28,6 +27,7 @@ vtkStandardNewMacro(vtkContourFeatureSmoothingFilter);
 vtkContourFeatureSmoothingFilter::vtkContourFeatureSmoothingFilter() {
   this->SetContourIdArrayName("ContourId");
   this->SetContourIndexArrayName("ContourIndex");
+  this->SetPreset(PRESET_DEFAULT);
 }
 
 vtkContourFeatureSmoothingFilter::~vtkContourFeatureSmoothingFilter() {
@@ -40,15 +40,72 @@ namespace {
 
 using contourmesh::InvalidInputError;
 
-contourmesh::SmoothingMethod to_library(int method) {
+using Filter = vtkContourFeatureSmoothingFilter;
+using contourmesh::SmoothingMethod;
+
+SmoothingMethod to_library(int method) {
   switch (method) {
-    case vtkContourFeatureSmoothingFilter::METHOD_LAPLACIAN: return contourmesh::SmoothingMethod::Laplacian;
-    case vtkContourFeatureSmoothingFilter::METHOD_TAUBIN: return contourmesh::SmoothingMethod::Taubin;
-    case vtkContourFeatureSmoothingFilter::METHOD_MEAN_CURVATURE_FLOW:
-      return contourmesh::SmoothingMethod::MeanCurvatureFlow;
-    case vtkContourFeatureSmoothingFilter::METHOD_MIN_DIST_FLOW: return contourmesh::SmoothingMethod::MinDistFlow;
-    default: return contourmesh::SmoothingMethod::None;
+    case Filter::METHOD_LAPLACIAN: return SmoothingMethod::Laplacian;
+    case Filter::METHOD_TAUBIN: return SmoothingMethod::Taubin;
+    case Filter::METHOD_MEAN_CURVATURE_FLOW: return SmoothingMethod::MeanCurvatureFlow;
+    case Filter::METHOD_MIN_DIST_FLOW: return SmoothingMethod::MinDistFlow;
+    case Filter::METHOD_PAPER: return SmoothingMethod::FeaturePreserving;
+    case Filter::METHOD_CROSS_SLICE: return SmoothingMethod::CrossSlice;
+    default: return SmoothingMethod::None;
   }
+}
+
+int from_library(SmoothingMethod method) {
+  switch (method) {
+    case SmoothingMethod::None: return Filter::METHOD_NONE;
+    case SmoothingMethod::Laplacian: return Filter::METHOD_LAPLACIAN;
+    case SmoothingMethod::Taubin: return Filter::METHOD_TAUBIN;
+    case SmoothingMethod::MeanCurvatureFlow: return Filter::METHOD_MEAN_CURVATURE_FLOW;
+    case SmoothingMethod::MinDistFlow: return Filter::METHOD_MIN_DIST_FLOW;
+    case SmoothingMethod::FeaturePreserving: return Filter::METHOD_PAPER;
+    case SmoothingMethod::CrossSlice: return Filter::METHOD_CROSS_SLICE;
+  }
+  return Filter::METHOD_NONE;
+}
+
+// The filter's properties for a method and its options (a preset). Options the filter has no property
+// for (cross-slice's own) keep the library's defaults when the filter runs.
+void set_properties(Filter* f, const contourmesh::MethodConfig& config) {
+  using namespace contourmesh;
+  SmoothOptions o = config.options;
+  const SmoothingMethod m = config.method;
+  const bool paper = m == SmoothingMethod::FeaturePreserving;
+  f->SetMethod(from_library(m));
+  f->SetNumberOfIterations(default_iterations(m) > 0 ? iterations_of(m, o) : -1);
+  const std::optional<double> lambda = paper ? o.paper.lambda : o.baseline.lambda;
+  f->SetLambda(lambda.value_or(0.0));
+  f->SetMu(paper ? o.paper.mu : o.baseline.mu);
+  f->SetBeta(o.baseline.beta);
+  f->SetBoundarySmoothing((paper ? o.paper.boundary : o.baseline.boundary) == BoundaryPolicy::Free);
+  f->SetTimeStepMode(o.baseline.time_step == TimeStep::Absolute ? Filter::TIME_STEP_ABSOLUTE
+                                                                 : Filter::TIME_STEP_RELATIVE_TO_MEAN_EDGE);
+  const DetectionOptions* chosen = detection_options_of(m, o);
+  const DetectionOptions d = chosen != nullptr ? *chosen : DetectionOptions{};
+  f->SetDetectionMode(d.mode == DetectionMode::CurvatureOnly ? Filter::DETECTION_CURVATURE_ONLY
+                                                             : Filter::DETECTION_CONTOUR_CONTINUITY);
+  f->SetAnisotropy(d.anisotropy);
+  f->SetGamma(d.gamma.value_or(-1.0));
+  f->SetGammaFactor(d.gamma_factor);
+  f->SetUmbrellaMeasure(d.measure == UmbrellaMeasure::NormalComponent ? Filter::UMBRELLA_NORMAL_COMPONENT
+                                                                      : Filter::UMBRELLA_LENGTH);
+  f->SetDelta(d.delta.value_or(-1.0));
+  f->SetDeltaFactor(d.delta_factor);
+  f->SetWindow(d.window);
+  f->SetCornerSpread(d.corner_spread);
+  f->SetInSliceFeatures(d.in_slice == InSliceFeatures::AlongFeatureLine ? Filter::IN_SLICE_ALONG_LINE
+                                                                        : Filter::IN_SLICE_NOISE);
+  f->SetPrefilterIterations(d.prefilter_iterations);
+  f->SetUmbilicTolerance(d.curvature.umbilic_tolerance);
+  f->SetMinReciprocalCondition(d.curvature.min_reciprocal_condition);
+  f->SetMaxLevels(o.paper.max_levels);
+  f->SetDiffusionMethod(o.paper.diffusion == SmoothingMethod::Laplacian ? Filter::METHOD_LAPLACIAN
+                                                                        : Filter::METHOD_TAUBIN);
+  f->SetKeepAdaptiveMesh(o.paper.output == OutputResolution::Adaptive);
 }
 
 // Fatal problems (what the CLI rejects) throw; problems smoothing tolerates are counted.
@@ -67,6 +124,20 @@ std::size_t check_mesh(const contourmesh::Mesh& mesh) {
 
 }  // namespace
 
+void vtkContourFeatureSmoothingFilter::SetPreset(int preset) {
+  const int clamped = preset < PRESET_DEFAULT ? PRESET_DEFAULT : (preset > PRESET_XU2006 ? PRESET_XU2006 : preset);
+  set_properties(this, contourmesh::preset(clamped == PRESET_XU2006 ? contourmesh::Preset::Xu2006
+                                                                    : contourmesh::Preset::Default));
+  if (this->Preset != clamped) {
+    this->Preset = clamped;
+    this->Modified();
+  }
+}
+
+const char* vtkContourFeatureSmoothingFilter::GetPresetAsString() {
+  return this->Preset == PRESET_XU2006 ? "Xu2006" : "Default";
+}
+
 const char* vtkContourFeatureSmoothingFilter::GetMethodAsString() {
   switch (this->Method) {
     case METHOD_NONE: return "None";
@@ -74,7 +145,8 @@ const char* vtkContourFeatureSmoothingFilter::GetMethodAsString() {
     case METHOD_TAUBIN: return "Taubin";
     case METHOD_MEAN_CURVATURE_FLOW: return "MeanCurvatureFlow";
     case METHOD_MIN_DIST_FLOW: return "MinDistFlow";
-    default: return "Paper";
+    case METHOD_PAPER: return "Paper";
+    default: return "CrossSlice";
   }
 }
 
@@ -152,8 +224,12 @@ int vtkContourFeatureSmoothingFilter::Execute(vtkPolyData* input, vtkPolyData* o
     for (Index i = 0; i < n; ++i) locked[i] = array->GetComponent(i, 0) != 0.0;
   }
 
-  const bool paper = this->Method == METHOD_PAPER;
-  const bool detect = paper || this->GenerateLabels;
+  const SmoothingMethod method = to_library(this->Method);
+  const bool cross_slice = method == SmoothingMethod::CrossSlice;
+  const bool detect = produces_labels(method) || this->GenerateLabels;
+  if (cross_slice && !locked.empty()) {
+    throw InvalidInputError("cross-slice smoothing cannot lock vertices: unset LockedArrayName or choose another Method");
+  }
   const MeshAdjacency adjacency = build_adjacency(mesh);
 
   // Detection options, and contour ids for the detection (as the CLI's prepare_contour_ids).
@@ -173,7 +249,7 @@ int vtkContourFeatureSmoothingFilter::Execute(vtkPolyData* input, vtkPolyData* o
   detection.curvature.umbilic_tolerance = this->UmbilicTolerance;
   detection.curvature.min_reciprocal_condition = this->MinReciprocalCondition;
   if (detect) {
-    if (this->DetectionMode == DETECTION_CURVATURE_ONLY) {
+    if (this->DetectionMode == DETECTION_CURVATURE_ONLY && !cross_slice) {
       detection.mode = contourmesh::DetectionMode::CurvatureOnly;
     } else if (!mesh.has_contour_ids()) {
       if (this->SliceAxis != SLICE_AXIS_NONE) {
@@ -184,6 +260,10 @@ int vtkContourFeatureSmoothingFilter::Execute(vtkPolyData* input, vtkPolyData* o
                                   "xyz"[this->SliceAxis] +
                                   ", so contour ids cannot be recovered (not a contour-based mesh?)");
         }
+      } else if (cross_slice) {
+        throw InvalidInputError(std::string("input has no contour-id point array '") + this->ContourIdArrayName +
+                                "', which cross-slice smoothing needs: set SliceAxis to recover the ids by binning "
+                                "the vertices along the slice axis, or choose another Method");
       } else if (this->DetectionMode == DETECTION_AUTOMATIC) {
         vtkWarningMacro(<< "input has no point array '" << this->ContourIdArrayName
                         << "': using curvature-only feature detection (set SliceAxis to recover the ids of a "
@@ -196,51 +276,52 @@ int vtkContourFeatureSmoothingFilter::Execute(vtkPolyData* input, vtkPolyData* o
       }
     }
   }
+  if (this->DetectionMode == DETECTION_CURVATURE_ONLY && cross_slice) {
+    detection.mode = contourmesh::DetectionMode::CurvatureOnly;
+  }
+
+  // The library's options from the properties (as `contourmesh smooth` builds them from its flags).
+  SmoothOptions o;
+  if (this->NumberOfIterations >= 0 && default_iterations(method) > 0) o.iterations = this->NumberOfIterations;
+  const std::optional<double> lambda = this->Lambda > 0.0 ? std::optional<double>(this->Lambda) : std::nullopt;
+  const BoundaryPolicy boundary = this->BoundarySmoothing ? BoundaryPolicy::Free : BoundaryPolicy::Fixed;
+  o.baseline.lambda = lambda;
+  o.baseline.mu = this->Mu;
+  o.baseline.beta = this->Beta;
+  o.baseline.time_step = this->TimeStepMode == TIME_STEP_ABSOLUTE ? TimeStep::Absolute : TimeStep::RelativeToMeanEdge;
+  o.baseline.boundary = boundary;
+  o.baseline.locked = locked;
+  o.paper.detection = detection;
+  o.paper.max_levels = this->MaxLevels;
+  o.paper.diffusion = this->DiffusionMethod == METHOD_LAPLACIAN ? SmoothingMethod::Laplacian : SmoothingMethod::Taubin;
+  o.paper.lambda = lambda;
+  o.paper.mu = this->Mu;
+  o.paper.boundary = boundary;
+  o.paper.output = this->KeepAdaptiveMesh ? OutputResolution::Adaptive : OutputResolution::Original;
+  o.paper.locked = locked;
+  o.cross_slice.detection = detection;
 
   filter_detail::StageProgress stages(
       this, [](vtkAlgorithm* a) { return static_cast<vtkContourFeatureSmoothingFilter*>(a)->AbortRequested(); });
-  Mesh result;
   std::vector<VertexLabel> labels;
-  if (paper) {
+  if (method == SmoothingMethod::FeaturePreserving) {
     stages.add("detect", 0.0, 0.3);
     stages.add("subdivide", 0.3, 0.1);
     stages.add("smooth", 0.4, 0.6);
-    FeatureSmoothingOptions o;
-    o.detection = detection;
-    o.max_levels = this->MaxLevels;
-    o.diffusion = this->DiffusionMethod == METHOD_LAPLACIAN ? SmoothingMethod::Laplacian : SmoothingMethod::Taubin;
-    o.iterations = this->NumberOfIterations >= 0 ? this->NumberOfIterations : 40;
-    if (this->Lambda > 0.0) o.lambda = this->Lambda;
-    o.mu = this->Mu;
-    o.boundary = this->BoundarySmoothing ? BoundaryPolicy::Free : BoundaryPolicy::Fixed;
-    o.output = this->KeepAdaptiveMesh ? OutputResolution::Adaptive : OutputResolution::Original;
-    o.locked = locked;
-    o.progress = stages.callback();
-    FeatureSmoothingResult r = feature_preserving_smooth(mesh, o);
-    result = std::move(r.mesh);
-    labels = std::move(r.detection.labels);
+  } else if (detect) {
+    stages.add("detect", 0.0, 0.3);
+    stages.add("smooth", 0.3, 0.7);
   } else {
-    if (this->GenerateLabels) {
-      stages.add("detect", 0.0, 0.3);
-      stages.add("smooth", 0.3, 0.7);
-      detection.progress = stages.callback();
-      labels = detect_features(mesh, adjacency, detection).labels;
-    } else {
-      stages.add("smooth", 0.0, 1.0);
-    }
-    SmoothingOptions o;
-    o.method = to_library(this->Method);
-    o.iterations = this->NumberOfIterations >= 0 ? this->NumberOfIterations : 20;
-    if (this->Lambda > 0.0) o.lambda = this->Lambda;
-    o.mu = this->Mu;
-    o.beta = this->Beta;
-    o.time_step = this->TimeStepMode == TIME_STEP_ABSOLUTE ? TimeStep::Absolute : TimeStep::RelativeToMeanEdge;
-    o.boundary = this->BoundarySmoothing ? BoundaryPolicy::Free : BoundaryPolicy::Fixed;
-    o.locked = locked;
-    o.progress = stages.callback();
-    result = mesh;
-    result.positions = smooth(mesh, adjacency, o);
+    stages.add("smooth", 0.0, 1.0);
   }
+  o.progress = stages.callback();
+  if (this->GenerateLabels && !produces_labels(method)) {
+    detection.progress = o.progress;
+    labels = detect_features(mesh, adjacency, detection).labels;
+  }
+  SmoothResult smoothed = smooth(mesh, method, o);
+  if (produces_labels(method)) labels = std::move(smoothed.labels);
+  const Mesh& result = smoothed.mesh;
   if (this->AbortRequested()) throw CancelledError("output");
 
   std::vector<PointScalars> extra;
@@ -272,6 +353,7 @@ int vtkContourFeatureSmoothingFilter::Execute(vtkPolyData* input, vtkPolyData* o
 void vtkContourFeatureSmoothingFilter::PrintSelf(ostream& os, vtkIndent indent) {
   this->Superclass::PrintSelf(os, indent);
   auto str = [](const char* s) { return s != nullptr ? s : "(none)"; };
+  os << indent << "Preset: " << this->GetPresetAsString() << " (last applied)\n";
   os << indent << "Method: " << this->GetMethodAsString() << "\n";
   os << indent << "NumberOfIterations: " << this->NumberOfIterations << (this->NumberOfIterations < 0 ? " (automatic)" : "")
      << "\n";

@@ -607,9 +607,9 @@ TEST_F(BadInput, AFailedRunLeavesAnExistingOutputUntouched) {
   const fs::path labels = write_text("precious_labels.vtp", "precious labels");
   const fs::path nan = write_text("nan.obj", tetra_obj("v nan 0 0"));
   expect_rejected(run("smooth " + nan.string() + " -o " + out.string()), {"non-finite"});
-  // Failing after the input was read, during the work.
+  // Failing after the input was read, during the work (the paper's method: its adaptive mesh grows).
   const std::string in = (dir_ / "stack.ply").string();
-  expect_rejected(run("smooth " + in + " -o " + out.string() + " --labels-out " + labels.string() +
+  expect_rejected(run("smooth " + in + " -o " + out.string() + " --method paper --labels-out " + labels.string() +
                       " --max-vertices " + std::to_string(stack_.num_vertices())),
                   {"adaptive subdivision"});
   const fs::path air = write_volume_file("air.mha", {8, 8, 3}, {1, 1, 1}, [](int, int, int) { return -1000.0f; });
@@ -636,10 +636,12 @@ TEST_F(BadInput, MaxVerticesRefusesOversizedMeshesBeforeAllocating) {
   expect_rejected(run("smooth " + (dir_ / "stack.stl").string() + " -o " + out.string() + " --max-vertices 100"),
                   {"more than the limit of 100 vertices", "raise it with --max-vertices"});
   // Producing: the adaptive mesh of the paper's method, then tiling.
-  expect_rejected(run("smooth " + in + " -o " + out.string() + " --max-vertices " + n),
+  expect_rejected(run("smooth " + in + " -o " + out.string() + " --method paper --max-vertices " + n),
                   {in + ": adaptive subdivision level 1", "exceed the limit of " + n + " vertices"});
   EXPECT_EQ(run("smooth " + in + " -o " + out.string() + " --method taubin --max-vertices " + n).code, 0)
       << "the baselines produce no vertices";
+  EXPECT_EQ(run("smooth " + in + " -o " + out.string() + " --max-vertices " + n).code, 0)
+      << "neither does the default, cross-slice smoothing";
   fs::remove(out);
   const fs::path volume = write_volume_file("v.mha", {24, 24, 5}, {1, 1, 1}, [](int i, int j, int k) {
     return k > 0 && k < 4 && (i - 12) * (i - 12) + (j - 12) * (j - 12) < 64 ? 1000.0f : -1000.0f;

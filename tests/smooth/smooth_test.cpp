@@ -63,6 +63,16 @@ TEST(SmoothEntryPoint, CrossSliceGivesItsOwnResultAndLabels) {
   EXPECT_EQ(r.iterations, 0);
 }
 
+TEST(SmoothEntryPoint, DetectionAloneGivesTheLabelsOfTheMethod) {
+  const Mesh m = small_stack();
+  for (SmoothingMethod method : {SmoothingMethod::FeaturePreserving, SmoothingMethod::CrossSlice}) {
+    SmoothOptions o;
+    detection_options_of(method, o)->in_slice = InSliceFeatures::AlongFeatureLine;
+    EXPECT_EQ(detect_features(m, method, o).labels, smooth(m, method, o).labels) << to_string(method);
+  }
+  EXPECT_THROW((void)detect_features(m, SmoothingMethod::Taubin), InvalidInputError);
+}
+
 TEST(SmoothEntryPoint, DefaultIterationCountsLiveInTheLibrary) {
   EXPECT_EQ(default_iterations(SmoothingMethod::None), 0);
   for (SmoothingMethod m : {SmoothingMethod::Laplacian, SmoothingMethod::Taubin, SmoothingMethod::MeanCurvatureFlow,

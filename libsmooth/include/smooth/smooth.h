@@ -81,6 +81,12 @@ struct SmoothResult {
 /// LimitError beyond `options.limits`, CancelledError on request.
 [[nodiscard]] SmoothResult smooth(const Mesh& mesh, SmoothingMethod method, const SmoothOptions& options = {});
 
+/// The detection stage of `method` alone: the labels smooth(mesh, method, options) reports, without
+/// smoothing (runs detect_features with the method's detection options and the common progress).
+/// Throws InvalidInputError for a method without labels (produces_labels), and as detect_features.
+[[nodiscard]] FeatureDetection detect_features(const Mesh& mesh, SmoothingMethod method,
+                                               const SmoothOptions& options = {});
+
 /// Named configurations.
 enum class Preset {
   /// The project's default: cross-slice smoothing with its default options.
