@@ -24,6 +24,8 @@ void bm_adaptive_subdivision(benchmark::State& state);
 
 // feature_smoothing_bench.cpp
 void bm_full_method(benchmark::State& state);
+/// The default smoothing (cross-slice), wall-clock.
+void bm_default_method(benchmark::State& state);
 
 // tiling_bench.cpp
 void bm_tiling(benchmark::State& state);

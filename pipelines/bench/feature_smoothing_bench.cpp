@@ -5,6 +5,7 @@
 #include "bench_stages.h"
 #include "heap_counter.h"
 
+#include <smooth/cross_slice.h>
 #include <smooth/feature_smoothing.h>
 
 #include <optional>
@@ -35,6 +36,27 @@ void bm_full_method(benchmark::State& state) {
   state.counters["subdivide_ms"] = 1e3 * sum.subdivide / runs;
   state.counters["smooth_ms"] = 1e3 * sum.smooth / runs;
   state.counters["adaptive_vertices"] = static_cast<double>(adaptive_vertices);
+}
+
+}  // namespace contourmesh::bench
+
+namespace contourmesh::bench {
+
+// The default smoothing (cross_slice.h, default options) from a bare mesh: frame, noise estimates,
+// both profile stages, the extension and its labels. Wall-clock time: it runs on every core.
+void bm_default_method(benchmark::State& state) {
+  const Mesh& mesh = bench_input(state.range(0)).mesh;
+  double detect = 0.0, smooth = 0.0;
+  for (auto _ : state) {
+    const CrossSliceResult result = cross_slice_smooth(mesh);
+    benchmark::DoNotOptimize(result.mesh.positions.data());
+    detect += result.seconds_detect;
+    smooth += result.seconds_smooth;
+  }
+  set_vertex_rate(state, mesh.num_vertices());
+  const auto runs = static_cast<double>(state.iterations());
+  state.counters["detect_ms"] = 1e3 * detect / runs;
+  state.counters["smooth_ms"] = 1e3 * smooth / runs;
 }
 
 }  // namespace contourmesh::bench

@@ -34,18 +34,22 @@ double radial_error(const Mesh& mesh, int s, double radius) {
 TEST(CrossSlice, LeavesAnExactCylinderInPlace) {
   const Mesh mesh = make_contour_stack(cylinder(10.0, 20));
   const CrossSliceResult r = cross_slice_smooth(mesh);
-  EXPECT_LT((r.mesh.positions - mesh.positions).cwiseAbs().maxCoeff(), 1e-6);
+  // Only the fourth-order deviation of the polygon from its local parabolas is left to correct.
+  EXPECT_LT((r.mesh.positions - mesh.positions).cwiseAbs().maxCoeff(), 1e-4);
   EXPECT_GT(r.profiles, 0u);
 }
 
 TEST(CrossSlice, PullsAContourDisplacedAloneBackTowardsItsNeighbours) {
-  // Contour 10 is segmented 0.5 mm too large; its neighbours are right.
+  // Contour 10 is segmented 0.5 mm too large; its neighbours are right. The noise level is given (the
+  // estimate from this mesh, whose other contours are exact, would be zero).
   Mesh mesh = make_contour_stack(cylinder(10.0, 20));
   for (Index i = 0; i < mesh.num_vertices(); ++i) {
     if (mesh.slice_ids[i] == 10) mesh.positions.col(i).head<2>() *= 10.5 / 10.0;
   }
-  const CrossSliceResult r = cross_slice_smooth(mesh);
-  EXPECT_LT(radial_error(r.mesh, 10, 10.0), 0.25);
+  CrossSliceOptions options;
+  options.noise_across = 0.3;
+  const CrossSliceResult r = cross_slice_smooth(mesh, options);
+  EXPECT_LT(radial_error(r.mesh, 10, 10.0), 0.15);
 }
 
 TEST(CrossSlice, KeepsContourVerticesInTheirSlicePlanes) {
@@ -53,7 +57,9 @@ TEST(CrossSlice, KeepsContourVerticesInTheirSlicePlanes) {
   add_noise(mesh, {.sigma = 0.2, .seed = 3, .direction = NoiseDirection::InPlane});
   const CrossSliceResult r = cross_slice_smooth(mesh);
   for (Index i = 0; i < mesh.num_vertices(); ++i) {
-    if (mesh.slice_ids[i] >= 0) EXPECT_DOUBLE_EQ(r.mesh.positions(2, i), mesh.positions(2, i));
+    if (mesh.slice_ids[i] >= 0) {
+      EXPECT_DOUBLE_EQ(r.mesh.positions(2, i), mesh.positions(2, i));
+    }
   }
 }
 

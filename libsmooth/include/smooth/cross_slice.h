@@ -1,46 +1,66 @@
 // Cross-slice smoothing: the project's default smoothing of contour meshes (docs/smoothing.md,
 // "Cross-slice smoothing"). It follows the paper's observation (Xu et al. 2006, section 3) that
 // segmentation errors perturb single contours while true shape continues from contour to contour:
-// every contour vertex is corrected from the profile that the surface traces across the neighbouring
-// slices, not from its umbrella.
+// every contour vertex is corrected from the profile the surface traces across the neighbouring
+// slices, and then from the profile along its own contour, never from its umbrella.
 //
-// 1. Profiles: the plane through a contour vertex perpendicular to its contour's tangent cuts the
-//    corresponding contours of up to `reach` slices above and below; the in-plane offsets of those
-//    cuts along the vertex's in-plane normal, against their height along the slice axis, form the
-//    profile a(z).
-// 2. Fit: a weighted (tricube over the reach) least-squares polynomial of a(z); the vertex moves by the
-//    fit's value at its own slice, along its in-plane normal, so that contour vertices stay in their
-//    slice planes.
-// 3. Vertices off the slices (caps, branchings) follow: their displacement is the harmonic extension of
-//    the contour vertices' displacements.
+// 1. Across the slices: the plane through a contour vertex perpendicular to its contour cuts the
+//    corresponding contours of up to `reach` slices above and below; their offsets along the vertex's
+//    in-slice normal, against their height, form the profile. A local polynomial fit of the profile,
+//    with windows grown by the intersection of confidence intervals (LPA-ICI) from the measured noise
+//    level, gives the vertex's corrected offset: windows that would reach across a kink (a ridge within
+//    a slice plane, the end of a feature) stop before it, those on the smooth side grow.
+// 2. Along the contour: the same on the profile of the contour's own vertices (in-slice jitter), where
+//    windows stop at corners (ridges crossing the slices).
+// 3. Contour vertices move along their in-slice normals only, so they stay in their slice planes;
+//    vertices off the slices (caps, branchings) follow the harmonic extension of those displacements.
+// 4. Labels: the creases of the result (detect_creases), edge or corner, in a band along them.
+// With noise-free contours the estimated noise is zero and nothing moves.
 #pragma once
 
+#include "smooth/crease_detection.h"
 #include "smooth/feature_detection.h"
 #include "smooth/mesh.h"
 #include "smooth/progress.h"
 
+#include <optional>
 #include <vector>
 
 namespace contourmesh {
 
+/// Which profiles are smoothed.
+enum class CrossSliceStages {
+  AcrossThenAlong,  ///< across the slices, then along the contours (default)
+  AcrossOnly,       ///< across the slices only (the paper's per-contour noise model)
+};
+
 struct CrossSliceOptions {
-  /// Slices on each side of a vertex that its profile may use, >= 1.
-  int reach = 6;
-  /// Degree of the profile polynomial: 1 (a line: strongest denoising, biased where profiles curve)
-  /// or 2 (default).
-  int degree = 2;
+  /// Slices on each side that a cross-slice profile may use, in [1, 30].
+  int reach = 8;
+  /// Contour vertices on each side that an along-contour profile may use, in [1, 30].
+  int along_reach = 8;
+  /// Confidence-interval width of the window selection, in noise standard deviations, > 0. Larger:
+  /// wider windows, more smoothing, more bias where profiles bend.
+  double gamma = 2.0;
+  /// Noise standard deviation of the contour offsets across the slices and along the contours, mm.
+  /// Unset: estimated from the mesh (robust fourth differences of the profiles; docs/smoothing.md).
+  std::optional<double> noise_across, noise_along;
+  CrossSliceStages stages = CrossSliceStages::AcrossThenAlong;
   /// Jacobi iterations of the harmonic extension to vertices off the slices, >= 0.
   int extension_iterations = 30;
-  /// Feature labels reported with the result (DetectionOptions of the paper's Algorithm 2).
-  DetectionOptions detection;
-  /// Stages "detect" and "smooth"; return false to cancel (CancelledError).
+  /// The feature labels of the result: creases of the smoothed mesh (crease_detection.h).
+  CreaseOptions features;
+  /// Stages "smooth" and "detect"; return false to cancel (CancelledError).
   ProgressCallback progress;
 };
 
 struct CrossSliceResult {
   Mesh mesh;                   ///< smoothed, same connectivity and ids
-  FeatureDetection detection;  ///< labels of the input vertices
-  std::size_t profiles = 0;    ///< contour vertices corrected from a profile
+  std::vector<VertexLabel> labels;  ///< per vertex: Smooth, Edge, Corner, or Noise (a crease too short)
+  CreaseDetection features;         ///< how the labels were found
+  double noise_across = 0.0;   ///< the noise levels used, mm
+  double noise_along = 0.0;
+  std::size_t profiles = 0;    ///< contour vertices corrected from a cross-slice profile
   double seconds_detect = 0.0, seconds_smooth = 0.0, seconds_total = 0.0;
 };
 

@@ -1,0 +1,182 @@
+#include "smooth/crease_detection.h"
+
+#include "detail/parallel.h"
+#include "smooth/errors.h"
+#include "smooth/normals.h"
+
+#include <Eigen/Eigenvalues>
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <queue>
+#include <string>
+
+namespace contourmesh {
+
+namespace {
+
+void check(const Mesh& mesh, const MeshAdjacency& adjacency, const CreaseOptions& o) {
+  const auto fail = [](const std::string& what) { throw InvalidInputError("crease detection: " + what); };
+  if (adjacency.num_vertices() != mesh.num_vertices()) fail("the adjacency belongs to another mesh");
+  if (!(o.radius > 0.0 && std::isfinite(o.radius))) fail("radius must be a finite number > 0");
+  if (!(o.edge_threshold > 0.0 && o.edge_threshold <= 0.5)) fail("edge threshold must be in (0, 0.5]");
+  if (!(o.corner_threshold > 0.0 && o.corner_threshold <= 1.0 / 3.0)) fail("corner threshold must be in (0, 1/3]");
+  if (!(o.min_extent >= 0.0 && std::isfinite(o.min_extent))) fail("min extent must be a finite number >= 0");
+  if (!(o.band >= 0.0 && std::isfinite(o.band))) fail("band must be a finite number >= 0");
+}
+
+// Multi-source shortest paths along the edges, up to `limit`; sources at distance 0.
+std::vector<double> distances_from(const Mesh& mesh, const MeshAdjacency& adjacency, const std::vector<Index>& sources,
+                                   double limit) {
+  std::vector<double> d(static_cast<std::size_t>(mesh.num_vertices()), std::numeric_limits<double>::infinity());
+  using Item = std::pair<double, Index>;
+  std::priority_queue<Item, std::vector<Item>, std::greater<>> queue;
+  for (Index s : sources) {
+    d[static_cast<std::size_t>(s)] = 0.0;
+    queue.emplace(0.0, s);
+  }
+  while (!queue.empty()) {
+    const auto [di, i] = queue.top();
+    queue.pop();
+    if (di > d[static_cast<std::size_t>(i)]) continue;
+    for (Index j : adjacency.ring(i)) {
+      const double dj = di + (mesh.positions.col(j) - mesh.positions.col(i)).norm();
+      if (dj <= limit && dj < d[static_cast<std::size_t>(j)]) {
+        d[static_cast<std::size_t>(j)] = dj;
+        queue.emplace(dj, j);
+      }
+    }
+  }
+  return d;
+}
+
+}  // namespace
+
+CreaseDetection detect_creases(const Mesh& mesh, const MeshAdjacency& adjacency, const CreaseOptions& options) {
+  check(mesh, adjacency, options);
+  const Index n = mesh.num_vertices();
+  const Eigen::Matrix3Xd normals = face_normals(mesh.positions, mesh.triangles);
+  const Eigen::VectorXd areas = face_areas(mesh.positions, mesh.triangles);
+  CreaseDetection result;
+  result.labels.assign(static_cast<std::size_t>(n), VertexLabel::Smooth);
+  result.edge_strength = Eigen::VectorXd::Zero(n);
+  result.corner_strength = Eigen::VectorXd::Zero(n);
+  // Per vertex, the direction of least normal variation: along a crease.
+  Eigen::Matrix3Xd along = Eigen::Matrix3Xd::Zero(3, n);
+
+  // 1. Normal tensors over the faces around the vertices within the radius.
+  const double r2 = options.radius * options.radius;
+  // Few, large chunks: each clears its own visit stamps, one per vertex and face.
+  const std::size_t chunk = std::max<std::size_t>(4096, static_cast<std::size_t>(n) / 16 + 1);
+  detail::parallel_chunks(static_cast<std::size_t>(n), chunk, [&](std::size_t, std::size_t begin, std::size_t end) {
+    std::vector<Index> stack;
+    std::vector<std::uint32_t> vertex_stamp, face_stamp;
+    std::uint32_t stamp = 0;
+    vertex_stamp.assign(static_cast<std::size_t>(n), 0);
+    face_stamp.assign(mesh.triangles.size(), 0);
+    for (std::size_t k = begin; k < end; ++k) {
+      const Index i = static_cast<Index>(k);
+      ++stamp;
+      const Eigen::Vector3d centre = mesh.positions.col(i);
+      Eigen::Matrix3d tensor = Eigen::Matrix3d::Zero();
+      stack.assign(1, i);
+      vertex_stamp[k] = stamp;
+      while (!stack.empty()) {
+        const Index v = stack.back();
+        stack.pop_back();
+        for (Index f : adjacency.incident_faces(v)) {
+          if (face_stamp[static_cast<std::size_t>(f)] == stamp) continue;
+          face_stamp[static_cast<std::size_t>(f)] = stamp;
+          const Eigen::Vector3d nf = normals.col(f);
+          tensor.noalias() += areas[f] * nf * nf.transpose();
+        }
+        for (Index j : adjacency.ring(v)) {
+          if (vertex_stamp[static_cast<std::size_t>(j)] == stamp) continue;
+          vertex_stamp[static_cast<std::size_t>(j)] = stamp;
+          if ((mesh.positions.col(j) - centre).squaredNorm() <= r2) stack.push_back(j);
+        }
+      }
+      const double trace = tensor.trace();
+      if (!(trace > 0.0)) continue;
+      Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d> eigen;
+      eigen.computeDirect(tensor);
+      const Eigen::Vector3d l = eigen.eigenvalues();  // increasing
+      along.col(i) = eigen.eigenvectors().col(0);
+      result.edge_strength[i] = std::max(0.0, l[1]) / trace;
+      result.corner_strength[i] = std::max(0.0, l[0]) / trace;
+    }
+  });
+
+  // 2. Core vertices: strong enough, and the strongest across the crease (non-maximum suppression: no
+  //    neighbour lying across the crease, rather than along it, is stronger). Corners are kept whole.
+  //    Then grouped along the edges; groups shorter than min_extent are noise.
+  std::vector<std::uint8_t> core(static_cast<std::size_t>(n), 0);
+  for (Index i = 0; i < n; ++i) {
+    const bool corner = result.corner_strength[i] >= options.corner_threshold;
+    if (!corner && result.edge_strength[i] < options.edge_threshold) continue;
+    bool maximum = true;
+    if (!corner) {
+      const Eigen::Vector3d t = along.col(i);
+      for (Index j : adjacency.ring(i)) {
+        const Eigen::Vector3d d = mesh.positions.col(j) - mesh.positions.col(i);
+        const double along_part = std::abs(d.dot(t));
+        const double across_part = (d - d.dot(t) * t).norm();
+        if (across_part > along_part && result.edge_strength[j] > result.edge_strength[i]) {
+          maximum = false;
+          break;
+        }
+      }
+    }
+    core[static_cast<std::size_t>(i)] = maximum;
+  }
+  std::vector<Index> group(static_cast<std::size_t>(n), -1);
+  std::vector<Index> kept, kept_corners, members, stack;
+  for (Index seed = 0; seed < n; ++seed) {
+    if (!core[static_cast<std::size_t>(seed)] || group[static_cast<std::size_t>(seed)] >= 0) continue;
+    members.clear();
+    stack.assign(1, seed);
+    group[static_cast<std::size_t>(seed)] = seed;
+    Eigen::AlignedBox3d box;
+    while (!stack.empty()) {
+      const Index v = stack.back();
+      stack.pop_back();
+      members.push_back(v);
+      box.extend(mesh.positions.col(v));
+      for (Index j : adjacency.ring(v)) {
+        if (core[static_cast<std::size_t>(j)] && group[static_cast<std::size_t>(j)] < 0) {
+          group[static_cast<std::size_t>(j)] = seed;
+          stack.push_back(j);
+        }
+      }
+    }
+    const bool line = box.diagonal().norm() >= options.min_extent;
+    for (Index v : members) {
+      if (!line) {
+        result.labels[static_cast<std::size_t>(v)] = VertexLabel::Noise;
+        continue;
+      }
+      kept.push_back(v);
+      if (result.corner_strength[v] >= options.corner_threshold) kept_corners.push_back(v);
+    }
+  }
+  result.core_vertices = kept.size();
+
+  // 3. The band around the kept core vertices.
+  const std::vector<double> to_core = distances_from(mesh, adjacency, kept, options.band);
+  const std::vector<double> to_corner = distances_from(mesh, adjacency, kept_corners, options.band);
+  for (Index i = 0; i < n; ++i) {
+    auto& label = result.labels[static_cast<std::size_t>(i)];
+    if (to_corner[static_cast<std::size_t>(i)] <= options.band) {
+      label = VertexLabel::Corner;
+    } else if (to_core[static_cast<std::size_t>(i)] <= options.band) {
+      label = VertexLabel::Edge;
+    }
+    result.edges += label == VertexLabel::Edge;
+    result.corners += label == VertexLabel::Corner;
+    result.noise += label == VertexLabel::Noise;
+  }
+  return result;
+}
+
+}  // namespace contourmesh

@@ -1,0 +1,224 @@
+#include "detail/contour_profiles.h"
+
+#include "smooth/errors.h"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+
+namespace contourmesh::detail {
+
+ContourFrame make_contour_frame(const Mesh& mesh) {
+  if (!mesh.has_contour_ids()) {
+    throw InvalidInputError("cross-slice smoothing needs contour ids (recover them from the slice planes first)");
+  }
+  ContourFrame f;
+  f.mesh = &mesh;
+  f.adjacency = build_adjacency(mesh);
+  f.contour = contour_neighbours(mesh, f.adjacency);
+  f.rings = split_rings_by_slice(mesh, f.adjacency);
+  f.axis = estimate_slice_axis(mesh);
+  const Index n = mesh.num_vertices();
+  f.on_contour.assign(static_cast<std::size_t>(n), 0);
+  std::vector<double> heights;
+  double edge_sum = 0.0;
+  std::size_t edges = 0;
+  for (Index i = 0; i < n; ++i) {
+    const auto& nb = f.contour.of[static_cast<std::size_t>(i)];
+    if (mesh.slice_ids[static_cast<std::size_t>(i)] < 0 || nb[0] < 0 || nb[1] < 0) continue;
+    f.on_contour[static_cast<std::size_t>(i)] = 1;
+    edge_sum += (mesh.positions.col(nb[0]) - mesh.positions.col(i)).norm();
+    ++edges;
+    if (heights.size() < 8192) {
+      for (Index j : f.rings.above(i)) heights.push_back(std::abs((mesh.positions.col(j) - mesh.positions.col(i)).dot(f.axis)));
+    }
+  }
+  if (heights.empty() || edges == 0) {
+    throw InvalidInputError("cross-slice smoothing: no contour continues into an adjacent slice");
+  }
+  std::nth_element(heights.begin(), heights.begin() + static_cast<std::ptrdiff_t>(heights.size() / 2), heights.end());
+  f.slice_spacing = heights[heights.size() / 2];
+  f.point_spacing = edge_sum / static_cast<double>(edges);
+  if (!(f.slice_spacing > 0.0) || !(f.point_spacing > 0.0)) {
+    throw InvalidInputError("cross-slice smoothing: the slices or the contour points are not apart");
+  }
+  return f;
+}
+
+bool in_slice_normal(const ContourFrame& frame, const Eigen::Vector3d& surface_normal, Eigen::Vector3d& m) {
+  m = surface_normal - surface_normal.dot(frame.axis) * frame.axis;
+  const double len = m.norm();
+  // Below ~3 degrees from the slice plane the in-slice direction is noise.
+  if (!(len > 0.05)) return false;
+  m /= len;
+  return true;
+}
+
+namespace {
+
+// Contour vertices of the next slice (upward or downward) joined to `from`.
+template <typename Out>
+void next_slice(const ContourFrame& f, Index from, bool upward, Out&& out) {
+  for (Index j : upward ? f.rings.above(from) : f.rings.below(from)) {
+    if (f.is_contour_vertex(j)) out(j);
+  }
+}
+
+}  // namespace
+
+namespace {
+
+// Where the plane (through `origin`, normal `plane_normal`) crosses the contour of the start vertices:
+// from the start vertex nearest to the plane, along the contour towards the plane, at most `max_steps`
+// edges. Returns false when it does not cross there.
+bool cut_contour(const ContourFrame& f, const Eigen::Matrix3Xd& x, const Index* start, int starts,
+                 const Eigen::Vector3d& origin, const Eigen::Vector3d& plane_normal, Eigen::Vector3d& cut,
+                 Index& edge_a, Index& edge_b) {
+  constexpr int kMaxSteps = 24;
+  Index j = -1;
+  double sj = std::numeric_limits<double>::infinity();
+  for (int k = 0; k < starts; ++k) {
+    const double s = (x.col(start[k]) - origin).dot(plane_normal);
+    if (std::abs(s) < std::abs(sj)) {
+      sj = s;
+      j = start[k];
+    }
+  }
+  if (j < 0) return false;
+  const auto signed_distance = [&](Index v) { return (x.col(v) - origin).dot(plane_normal); };
+  // Of j's two contour neighbours, walk towards the one on the other side of the plane, or nearer to it.
+  const auto& nb = f.contour.of[static_cast<std::size_t>(j)];
+  const double s0 = signed_distance(nb[0]), s1 = signed_distance(nb[1]);
+  const auto crosses = [&](double a, double b) { return (a <= 0.0) != (b <= 0.0); };
+  Index prev = j, cur = -1;
+  double sp = sj, sc = 0.0;
+  if (crosses(sj, s0) && crosses(sj, s1)) {
+    // Both edges cross (j sits on a fold): take the nearer crossing.
+    cur = std::abs(sj / (sj - s0)) <= std::abs(sj / (sj - s1)) ? nb[0] : nb[1];
+    sc = cur == nb[0] ? s0 : s1;
+  } else if (crosses(sj, s0)) {
+    cur = nb[0];
+    sc = s0;
+  } else if (crosses(sj, s1)) {
+    cur = nb[1];
+    sc = s1;
+  } else {
+    // No crossing next to j: walk towards the plane.
+    cur = std::abs(s0) < std::abs(s1) ? nb[0] : nb[1];
+    sc = cur == nb[0] ? s0 : s1;
+    for (int step = 0; step < kMaxSteps && !crosses(sp, sc); ++step) {
+      const auto& nc = f.contour.of[static_cast<std::size_t>(cur)];
+      const Index next = nc[0] == prev ? nc[1] : nc[0];
+      if (next < 0 || next == j) return false;
+      prev = cur;
+      cur = next;
+      sp = sc;
+      sc = signed_distance(cur);
+    }
+    if (!crosses(sp, sc)) return false;
+  }
+  const double t = sp / (sp - sc);
+  cut = x.col(prev) + t * (x.col(cur) - x.col(prev));
+  edge_a = prev;
+  edge_b = cur;
+  return true;
+}
+
+}  // namespace
+
+void cross_slice_profile(const ContourFrame& f, const Eigen::Matrix3Xd& x, Index i, const Eigen::Vector3d& m, int reach,
+                         Profile& out) {
+  constexpr int kMaxStarts = 16;
+  out.clear();
+  out.push(0.0, 0.0);
+  const Eigen::Vector3d v = x.col(i);
+  const Eigen::Vector3d plane_normal = f.axis.cross(m);
+  const double max_offset = 6.0 * f.slice_spacing;
+  std::array<Index, kMaxStarts> start{};
+  for (const bool upward : {true, false}) {
+    int starts = 0;
+    const auto add = [&](Index j) {
+      if (starts < kMaxStarts) start[static_cast<std::size_t>(starts++)] = j;
+    };
+    next_slice(f, i, upward, add);
+    for (int k = 1; k <= reach && starts > 0; ++k) {
+      Eigen::Vector3d cut = Eigen::Vector3d::Zero();
+      Index edge_a = -1, edge_b = -1;
+      if (!cut_contour(f, x, start.data(), starts, v, plane_normal, cut, edge_a, edge_b)) break;
+      const Eigen::Vector3d r = cut - v;
+      if ((r - r.dot(f.axis) * f.axis).squaredNorm() > max_offset * max_offset) break;
+      if (!out.push(r.dot(f.axis) / f.slice_spacing, r.dot(m))) break;
+      starts = 0;
+      next_slice(f, edge_a, upward, add);
+      next_slice(f, edge_b, upward, add);
+    }
+  }
+  out.sort();
+}
+
+void along_contour_profile(const ContourFrame& f, const Eigen::Matrix3Xd& x, Index i, const Eigen::Vector3d& m,
+                           int reach, Profile& out) {
+  out.clear();
+  out.push(0.0, 0.0);
+  const Eigen::Vector3d v = x.col(i);
+  const Eigen::Vector3d tangent = f.axis.cross(m);
+  // Walk both ways, but never meet: on a short contour each side takes half of the other vertices.
+  std::array<std::array<Index, 2>, 2> cursor{};
+  for (int side = 0; side < 2; ++side) cursor[static_cast<std::size_t>(side)] = {i, f.contour.of[static_cast<std::size_t>(i)][static_cast<std::size_t>(side)]};
+  std::array<double, 2> arc{0.0, 0.0};
+  std::array<double, 2> sign{1.0, 1.0};
+  for (int side = 0; side < 2; ++side) {
+    const Index first = cursor[static_cast<std::size_t>(side)][1];
+    sign[static_cast<std::size_t>(side)] = (x.col(first) - v).dot(tangent) >= 0.0 ? 1.0 : -1.0;
+  }
+  if (sign[0] == sign[1]) sign[1] = -sign[0];  // a cusp: keep the two sides apart
+  for (int k = 1; k <= reach; ++k) {
+    for (int side = 0; side < 2; ++side) {
+      auto& [prev, cur] = cursor[static_cast<std::size_t>(side)];
+      if (cur < 0 || cur == i) continue;
+      // The other side already holds this vertex: the contour is used up.
+      const auto& other = cursor[static_cast<std::size_t>(1 - side)];
+      if (cur == other[1] || cur == other[0]) {
+        cur = -1;
+        continue;
+      }
+      arc[static_cast<std::size_t>(side)] += (x.col(cur) - x.col(prev)).norm();
+      if (!out.push(sign[static_cast<std::size_t>(side)] * arc[static_cast<std::size_t>(side)] / f.point_spacing,
+                    (x.col(cur) - v).dot(m))) {
+        cur = -1;
+        continue;
+      }
+      const auto& nb = f.contour.of[static_cast<std::size_t>(cur)];
+      const Index next = nb[0] == prev ? nb[1] : nb[0];
+      prev = cur;
+      cur = next;
+    }
+  }
+  out.sort();
+}
+
+double profile_noise(const ContourFrame& f, const Eigen::Matrix3Xd& x, const Eigen::Matrix3Xd& normals, bool across,
+                     Index stride) {
+  std::vector<double> d4;
+  Profile p;
+  Eigen::Vector3d m;
+  for (Index i = 0; i < x.cols(); i += std::max<Index>(stride, 1)) {
+    if (!f.is_contour_vertex(i) || !in_slice_normal(f, normals.col(i), m)) continue;
+    if (across) {
+      cross_slice_profile(f, x, i, m, 2, p);
+    } else {
+      along_contour_profile(f, x, i, m, 2, p);
+    }
+    if (p.size != 5) continue;
+    // Samples should sit near -2..2; a gap (a missing slice) would make the difference meaningless.
+    bool regular = true;
+    for (int k = 0; k < 5; ++k) regular = regular && std::abs(p.x[static_cast<std::size_t>(k)] - (k - 2)) < 0.5;
+    if (!regular) continue;
+    d4.push_back(std::abs(p.y[0] - 4.0 * p.y[1] + 6.0 * p.y[2] - 4.0 * p.y[3] + p.y[4]));
+  }
+  if (d4.empty()) return 0.0;
+  std::nth_element(d4.begin(), d4.begin() + static_cast<std::ptrdiff_t>(d4.size() / 2), d4.end());
+  return 1.4826 * d4[d4.size() / 2] / std::sqrt(70.0);
+}
+
+}  // namespace contourmesh::detail

@@ -1,0 +1,57 @@
+// Profiles of a contour mesh's surface through a contour vertex (for the cross-slice smoother): across
+// the slices, where the plane through the vertex perpendicular to its contour cuts the corresponding
+// contours above and below; and along the vertex's own contour.
+#pragma once
+
+#include "detail/lpa_ici.h"
+#include "smooth/adjacency.h"
+#include "smooth/contour_structure.h"
+#include "smooth/mesh.h"
+#include "smooth/slice_neighbors.h"
+
+#include <Eigen/Core>
+
+#include <vector>
+
+namespace contourmesh::detail {
+
+/// The contour structure a profile walks on.
+struct ContourFrame {
+  const Mesh* mesh = nullptr;
+  MeshAdjacency adjacency;
+  ContourNeighbours contour;
+  SliceRings rings;
+  Eigen::Vector3d axis = Eigen::Vector3d::UnitZ();  ///< slice axis, towards increasing slice ids
+  double slice_spacing = 1.0;                       ///< median height of the edges between slices
+  double point_spacing = 1.0;                       ///< mean length of the contour edges
+  std::vector<std::uint8_t> on_contour;             ///< 1: a slice id and two contour neighbours
+
+  [[nodiscard]] bool is_contour_vertex(Index i) const { return on_contour[static_cast<std::size_t>(i)] != 0; }
+};
+
+/// Builds the frame; throws InvalidInputError for a mesh without ids or whose slices do not span planes.
+[[nodiscard]] ContourFrame make_contour_frame(const Mesh& mesh);
+
+/// The in-slice unit normal of contour vertex i (its surface normal with the axial part removed), or
+/// false when the surface there is within a few degrees of the slice plane.
+[[nodiscard]] bool in_slice_normal(const ContourFrame& frame, const Eigen::Vector3d& surface_normal,
+                                   Eigen::Vector3d& m);
+
+/// The profile across the slices of contour vertex i on `positions`: samples (height along the axis
+/// in slice spacings, offset along m), up to `reach` slices each way, through the plane at v_i with
+/// normal axis x m. Stops at a slice where the plane misses the corresponding contour (ends, branchings).
+void cross_slice_profile(const ContourFrame& frame, const Eigen::Matrix3Xd& positions, Index i,
+                         const Eigen::Vector3d& m, int reach, Profile& out);
+
+/// The profile along contour vertex i's own contour: samples (signed arc length in point spacings,
+/// offset along m) of up to `reach` vertices each way (fewer on short contours).
+void along_contour_profile(const ContourFrame& frame, const Eigen::Matrix3Xd& positions, Index i,
+                           const Eigen::Vector3d& m, int reach, Profile& out);
+
+/// Noise standard deviation of profile offsets, from the fourth differences of five-sample profiles
+/// (blind to quadratic shape): 1.4826 median |d4| / sqrt(70). `across` picks cross-slice or
+/// along-contour profiles; every `stride`-th contour vertex is used. 0 when no profile qualifies.
+[[nodiscard]] double profile_noise(const ContourFrame& frame, const Eigen::Matrix3Xd& positions,
+                                   const Eigen::Matrix3Xd& normals, bool across, Index stride = 2);
+
+}  // namespace contourmesh::detail
