@@ -50,17 +50,16 @@ SmoothResult run_feature_preserving(const Mesh& mesh, const SmoothOptions& optio
 SmoothResult run_cross_slice(const Mesh& mesh, const SmoothOptions& options) {
   CrossSliceOptions o = options.cross_slice;
   o.progress = options.progress;
-  o.detection.progress = {};
   CrossSliceResult c = cross_slice_smooth(mesh, o);
   SmoothResult r;
   r.mesh = std::move(c.mesh);
-  if (!c.detection.labels.empty()) {
-    r.labels = c.detection.labels;
-    r.detection = std::move(c.detection);
-  }
+  r.labels = std::move(c.labels);
+  r.creases = std::move(c.features);
   r.seconds.detect = c.seconds_detect;
   r.seconds.smooth = c.seconds_smooth;
   r.profiles = c.profiles;
+  r.noise_across = c.noise_across;
+  r.noise_along = c.noise_along;
   return r;
 }
 
@@ -86,11 +85,7 @@ bool produces_labels(SmoothingMethod method) {
 }
 
 DetectionOptions* detection_options_of(SmoothingMethod method, SmoothOptions& options) {
-  switch (method) {
-    case SmoothingMethod::FeaturePreserving: return &options.paper.detection;
-    case SmoothingMethod::CrossSlice: return &options.cross_slice.detection;
-    default: return nullptr;
-  }
+  return method == SmoothingMethod::FeaturePreserving ? &options.paper.detection : nullptr;
 }
 
 SmoothResult smooth(const Mesh& mesh, SmoothingMethod method, const SmoothOptions& options) {
@@ -114,16 +109,25 @@ SmoothResult smooth(const Mesh& mesh, SmoothingMethod method, const SmoothOption
   return r;
 }
 
-FeatureDetection detect_features(const Mesh& mesh, SmoothingMethod method, const SmoothOptions& options) {
-  SmoothOptions copy = options;
-  const DetectionOptions* chosen = detection_options_of(method, copy);
-  if (chosen == nullptr) {
+FeatureLabels label_features(const Mesh& mesh, SmoothingMethod method, const SmoothOptions& options) {
+  if (!produces_labels(method)) {
     throw InvalidInputError(std::string(to_string(method)) + " does not label features (paper and cross-slice do)");
   }
-  check_allocation("detection input", static_cast<double>(mesh.num_vertices()), 0.0, options.limits);
-  DetectionOptions d = *chosen;
-  d.progress = options.progress;
-  return detect_features(mesh, build_adjacency(mesh), d);
+  FeatureLabels f;
+  const auto start = Clock::now();
+  if (method == SmoothingMethod::FeaturePreserving) {
+    check_allocation("detection input", static_cast<double>(mesh.num_vertices()), 0.0, options.limits);
+    DetectionOptions d = options.paper.detection;
+    d.progress = options.progress;
+    f.detection = detect_features(mesh, build_adjacency(mesh), d);
+    f.labels = f.detection->labels;
+  } else {
+    SmoothResult r = smooth(mesh, method, options);
+    f.labels = std::move(r.labels);
+    f.creases = std::move(r.creases);
+  }
+  f.seconds = seconds_since(start);
+  return f;
 }
 
 std::string_view to_string(Preset preset) {

@@ -1,6 +1,5 @@
-// contourmesh detect IN -o labels.vtp: the feature labels of a method (the default preset's, the paper's, ...)
-// without smoothing: libsmooth's detect_features(mesh, method, options), Algorithm 2 with that method's
-// detection options.
+// contourmesh detect IN -o labels.vtp: the feature labels of a method (the default preset's, the paper's)
+// on the input mesh, without writing a smoothed mesh: libsmooth's label_features(mesh, method, options).
 #include "cli_common.h"
 #include "progress_display.h"
 #include "feature_options.h"
@@ -40,8 +39,7 @@ int run_detect(const DetectArgs& a) {
   apply_common_options(a.common);
   const auto start = std::chrono::steady_clock::now();
   MethodConfig config = method_config(a.selection, StepArgs{}, a.features);
-  DetectionOptions* detection = detection_options_of(config.method, config.options);
-  if (detection == nullptr) {
+  if (!produces_labels(config.method)) {
     throw InvalidInputError("detect: " + std::string(to_string(config.method)) +
                             " does not label features (paper and cross-slice do)");
   }
@@ -55,14 +53,12 @@ int run_detect(const DetectArgs& a) {
   Mesh mesh = read_mesh(a.input, read_options);
   check_mesh(mesh, a.input, "detect");
   const MeshAdjacency adjacency = build_adjacency(mesh);
-  const std::string id_source = prepare_contour_ids(mesh, adjacency, a.features, a.input, "detect", *detection);
-  const auto t = std::chrono::steady_clock::now();
-  const FeatureDetection d = detect_features(mesh, config.method, config.options);
-  const double detect_seconds = seconds_since(t);
-  const DetectionOptions& options = *detection;
+  const std::string id_source = prepare_ids_for_method(config, mesh, adjacency, a.features, a.input, "detect");
+  const FeatureLabels f = label_features(mesh, config.method, config.options);
+  const LabelCounts counts = count_labels(f.labels);
   MeshWriteOptions write_options;
   write_options.arrays = read_options.arrays;
-  write_options.point_scalars = detection_arrays(d);
+  write_options.point_scalars = label_arrays(f);
   write_mesh(mesh, a.output, write_options);
   if (a.json) {
     nlohmann::json j;
@@ -72,15 +68,20 @@ int run_detect(const DetectArgs& a) {
     j["method"] = std::string(to_string(config.method));
     if (const std::string p = preset_name(a.selection); !p.empty()) j["preset"] = p;
     j["id_source"] = id_source;
-    j["mode"] = options.mode == DetectionMode::ContourContinuity ? "contour-continuity" : "curvature-only";
     j["vertices"] = mesh.num_vertices();
-    j["gamma"] = d.gamma;
-    j["mean_umbrella"] = d.mean_umbrella;
-    j["candidates"] = d.candidates;
-    j["edge_vertices"] = d.edges;
-    j["corner_vertices"] = d.corners;
-    j["noise_vertices"] = d.noise;
-    j["seconds_detect"] = detect_seconds;
+    j["edge_vertices"] = counts.edges;
+    j["corner_vertices"] = counts.corners;
+    j["noise_vertices"] = counts.noise;
+    if (f.detection) {
+      const DetectionOptions& options = config.options.paper.detection;
+      j["mode"] = options.mode == DetectionMode::ContourContinuity ? "contour-continuity" : "curvature-only";
+      j["gamma"] = f.detection->gamma;
+      j["mean_umbrella"] = f.detection->mean_umbrella;
+      j["candidates"] = f.detection->candidates;
+    } else {
+      j["mode"] = "creases";
+    }
+    j["seconds_detect"] = f.seconds;
     j["seconds"] = seconds_since(start);
     print_json(j);
     return kOk;
@@ -88,9 +89,10 @@ int run_detect(const DetectArgs& a) {
   if (a.common.quiet) return kOk;
   std::cout << std::setprecision(4) << "detected features on " << a.input << " (" << mesh.num_vertices()
             << " vertices, ids: " << id_source << "; labels of " << describe_selection(a.selection, config.method)
-            << ")\n"
-            << "  " << d.candidates << " candidates above gamma " << d.gamma << " mm: " << d.edges << " edge, "
-            << d.corners << " corner, " << d.noise << " noise\n"
+            << ")\n  ";
+  if (f.detection) std::cout << f.detection->candidates << " candidates above gamma " << f.detection->gamma << " mm: ";
+  else std::cout << "creases of the smoothed mesh: ";
+  std::cout << counts.edges << " edge, " << counts.corners << " corner, " << counts.noise << " noise\n"
             << "  wrote " << a.output << " (point array FeatureLabel: 0 smooth, 1 edge, 2 corner, 3 noise) in "
             << seconds_since(start) << " s\n";
   return kOk;

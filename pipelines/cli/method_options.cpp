@@ -76,7 +76,61 @@ MethodConfig method_config(const MethodArgs& args, const StepArgs& steps, const 
     if (!paper) throw InvalidInputError("--keep-adaptive needs --method paper");
     o.paper.output = OutputResolution::Adaptive;
   }
-  if (DetectionOptions* d = detection_options_of(c.method, o)) apply_detection_args(features, *d);
+  if (DetectionOptions* d = detection_options_of(c.method, o)) {
+    apply_detection_args(features, *d);
+  } else {
+    const std::pair<bool, const char*> given[] = {
+        {features.gamma.has_value(), "--gamma"},     {features.delta.has_value(), "--delta"},
+        {features.measure.has_value(), "--measure"}, {features.in_slice.has_value(), "--in-slice"},
+        {features.prefilter.has_value(), "--prefilter"}, {features.window.has_value(), "--window"},
+        {features.corner_spread.has_value(), "--corner-spread"}};
+    for (const auto& [is_given, option] : given) {
+      refuse(is_given, option, false);
+    }
+  }
+  return c;
+}
+
+std::string prepare_ids_for_method(MethodConfig& config, Mesh& mesh, const MeshAdjacency& adjacency,
+                                   const FeatureArgs& features, const std::string& path, const std::string& command) {
+  if (config.method == SmoothingMethod::FeaturePreserving) {
+    return prepare_contour_ids(mesh, adjacency, features, path, command, config.options.paper.detection);
+  }
+  if (config.method != SmoothingMethod::CrossSlice) return {};
+  const auto missing = [&](const std::string& why) {
+    return InvalidInputError(path + ": cross-slice smoothing needs contour ids" + why +
+                             ": write the mesh as .vtp or .ply with them, give --slice-axis to recover them, or "
+                             "choose another --method");
+  };
+  if (!mesh.has_contour_ids() && features.slice_axis.empty()) throw missing("");
+  DetectionOptions probe;  // tells whether the ids survived (curvature-only means they did not)
+  const std::string source = prepare_contour_ids(mesh, adjacency, features, path, command, probe);
+  if (!mesh.has_contour_ids() || probe.mode == DetectionMode::CurvatureOnly) throw missing(", and they could not be recovered");
+  return source;
+}
+
+std::vector<PointScalars> label_arrays(const FeatureLabels& f) {
+  if (f.detection) return detection_arrays(*f.detection);
+  PointScalars labels{"FeatureLabel", {}, ScalarType::Int32};
+  for (VertexLabel l : f.labels) labels.values.push_back(static_cast<double>(l));
+  std::vector<PointScalars> arrays{labels};
+  if (f.creases) {
+    const auto from = [](const char* name, const Eigen::VectorXd& v) {
+      return PointScalars{name, std::vector<double>(v.data(), v.data() + v.size()), ScalarType::Float64};
+    };
+    arrays.push_back(from("EdgeStrength", f.creases->edge_strength));
+    arrays.push_back(from("CornerStrength", f.creases->corner_strength));
+  }
+  return arrays;
+}
+
+LabelCounts count_labels(const std::vector<VertexLabel>& labels) {
+  LabelCounts c;
+  for (VertexLabel l : labels) {
+    c.edges += l == VertexLabel::Edge;
+    c.corners += l == VertexLabel::Corner;
+    c.noise += l == VertexLabel::Noise;
+  }
   return c;
 }
 

@@ -9,6 +9,7 @@
 
 #include <optional>
 #include <string>
+#include <vector>
 
 namespace CLI {
 class App;
@@ -41,6 +42,25 @@ void add_step_options(CLI::App* command, StepArgs& args);
 /// Throws InvalidInputError for an unknown name, --iterations on a method without an iteration count,
 /// --keep-adaptive without the paper's method, or a detection option out of its vocabulary.
 [[nodiscard]] MethodConfig method_config(const MethodArgs& args, const StepArgs& steps, const FeatureArgs& features);
+
+/// Makes `mesh`'s contour ids ready for the selected method (prepare_contour_ids for the paper's
+/// detection, which may fall back to curvature-only detection; cross-slice smoothing needs the ids, so
+/// a mesh without them that --slice-axis cannot fix is an InvalidInputError naming `path`). Returns the
+/// id source ("file", "file-repaired", "slice-planes", "none"), or "" for a method that needs no ids.
+[[nodiscard]] std::string prepare_ids_for_method(MethodConfig& config, Mesh& mesh, const MeshAdjacency& adjacency,
+                                                 const FeatureArgs& features, const std::string& path,
+                                                 const std::string& command);
+
+/// The point arrays of a method's labels, for --labels-out and `detect`: FeatureLabel (0 smooth, 1 edge,
+/// 2 corner, 3 noise), then the paper's detection arrays (detection_arrays) or cross-slice's crease
+/// strengths (EdgeStrength, CornerStrength).
+[[nodiscard]] std::vector<PointScalars> label_arrays(const FeatureLabels& labels);
+
+/// The counts of edge, corner and noise labels.
+struct LabelCounts {
+  std::size_t edges = 0, corners = 0, noise = 0;
+};
+[[nodiscard]] LabelCounts count_labels(const std::vector<VertexLabel>& labels);
 
 /// "paper", "cross-slice (preset default)", "paper (preset xu2006)": the selection in words.
 [[nodiscard]] std::string describe_selection(const MethodArgs& args, SmoothingMethod method);

@@ -145,9 +145,9 @@ int run_run(const RunArgs& a) {
   t = std::chrono::steady_clock::now();
   progress.stage("write");
   write_mesh(result, out, write_options);
-  if (smoothed.detection && !a.labels_out.empty()) {
+  if (!smoothed.labels.empty() && !a.labels_out.empty()) {
     MeshWriteOptions labels;
-    labels.point_scalars = detection_arrays(*smoothed.detection);
+    labels.point_scalars = label_arrays({smoothed.labels, smoothed.detection, smoothed.creases, 0.0});
     write_mesh(mesh, a.labels_out, labels);
   }
   progress.finish();
@@ -180,10 +180,11 @@ int run_run(const RunArgs& a) {
   j["seconds_tile"] = rec.report.seconds_tile;
   j["seconds_smooth"] = seconds_smooth;
   j["seconds_write"] = seconds_write;
-  if (smoothed.detection) {
-    j["edge_vertices"] = smoothed.detection->edges;
-    j["corner_vertices"] = smoothed.detection->corners;
-    j["noise_vertices"] = smoothed.detection->noise;
+  const LabelCounts counts = count_labels(smoothed.labels);
+  if (!smoothed.labels.empty()) {
+    j["edge_vertices"] = counts.edges;
+    j["corner_vertices"] = counts.corners;
+    j["noise_vertices"] = counts.noise;
     j["seconds_detect"] = smoothed.seconds.detect;
   }
   if (method == SmoothingMethod::FeaturePreserving) {
@@ -221,9 +222,9 @@ int run_run(const RunArgs& a) {
             << "  mesh        " << result.num_vertices() << " vertices, " << result.num_faces() << " triangles, "
             << (topo.closed ? "closed" : "OPEN") << ", " << (topo.manifold ? "manifold" : "NOT manifold")
             << ", Euler characteristic " << topo.euler_characteristic << "\n";
-  if (smoothed.detection) {
-    std::cout << "  features    " << smoothed.detection->edges << " edge, " << smoothed.detection->corners
-              << " corner, " << smoothed.detection->noise << " noise vertices";
+  if (!smoothed.labels.empty()) {
+    std::cout << "  features    " << counts.edges << " edge, " << counts.corners << " corner, " << counts.noise
+              << " noise vertices";
     if (method == SmoothingMethod::FeaturePreserving) std::cout << "; " << smoothed.subdivided_vertices << " subdivided";
     std::cout << "\n";
   }

@@ -44,17 +44,22 @@ struct SmoothArgs {
 std::string describe_stages(const SmoothResult& r, const std::string& id_source, nlohmann::json& j) {
   std::ostringstream s;
   s << std::setprecision(4);
-  if (r.detection) {
-    const FeatureDetection& d = *r.detection;
+  if (!r.labels.empty()) {
+    const LabelCounts c = count_labels(r.labels);
     j["id_source"] = id_source;
-    j["gamma"] = d.gamma;
-    j["candidates"] = d.candidates;
-    j["edge_vertices"] = d.edges;
-    j["corner_vertices"] = d.corners;
-    j["noise_vertices"] = d.noise;
+    j["edge_vertices"] = c.edges;
+    j["corner_vertices"] = c.corners;
+    j["noise_vertices"] = c.noise;
     j["seconds_detect"] = r.seconds.detect;
-    s << "  features  " << d.edges << " edge, " << d.corners << " corner, " << d.noise << " noise of "
-      << d.candidates << " candidates (gamma " << d.gamma << " mm, ids: " << id_source << ")\n";
+    s << "  features  " << c.edges << " edge, " << c.corners << " corner, " << c.noise << " noise";
+    if (r.detection) {
+      j["gamma"] = r.detection->gamma;
+      j["candidates"] = r.detection->candidates;
+      s << " of " << r.detection->candidates << " candidates (gamma " << r.detection->gamma << " mm";
+    } else {
+      s << " (creases of the result";
+    }
+    s << ", ids: " << id_source << ")\n";
   }
   if (r.method == SmoothingMethod::FeaturePreserving) {
     j["subdivided_vertices"] = r.subdivided_vertices;
@@ -65,9 +70,12 @@ std::string describe_stages(const SmoothResult& r, const std::string& id_source,
   }
   if (r.method == SmoothingMethod::CrossSlice) {
     j["profiles"] = r.profiles;
-    s << "  profiles  " << r.profiles << " contour vertices corrected across slices\n";
+    j["noise_across_mm"] = r.noise_across;
+    j["noise_along_mm"] = r.noise_along;
+    s << "  profiles  " << r.profiles << " contour vertices corrected across slices (noise " << r.noise_across
+      << " mm across, " << r.noise_along << " mm along the contours)\n";
   }
-  if (r.detection) {
+  if (!r.labels.empty()) {
     s << "  seconds   detect " << r.seconds.detect;
     if (r.method == SmoothingMethod::FeaturePreserving) s << ", subdivide " << r.seconds.subdivide;
     s << ", smooth " << r.seconds.smooth << "\n";
@@ -110,17 +118,7 @@ int run_smooth(const SmoothArgs& a) {
   const double volume_before = enclosed_volume(mesh);
   const bool closed = adjacency.is_closed();
 
-  std::string id_source;
-  if (DetectionOptions* detection = detection_options_of(method, config.options)) {
-    if (method == SmoothingMethod::CrossSlice && !mesh.has_contour_ids() && a.features.slice_axis.empty()) {
-      throw InvalidInputError(a.input + ": cross-slice smoothing needs contour ids: write the mesh as .vtp or .ply " +
-                              "with them, give --slice-axis to recover them, or choose another --method");
-    }
-    id_source = prepare_contour_ids(mesh, adjacency, a.features, a.input, "smooth", *detection);
-    if (method == SmoothingMethod::CrossSlice && !mesh.has_contour_ids()) {
-      throw InvalidInputError(a.input + ": cross-slice smoothing needs contour ids, and they could not be recovered");
-    }
-  }
+  const std::string id_source = prepare_ids_for_method(config, mesh, adjacency, a.features, a.input, "smooth");
   config.options.progress = progress.callback();
   config.options.limits.max_vertices = a.max_vertices;
   SmoothResult r;
@@ -134,7 +132,7 @@ int run_smooth(const SmoothArgs& a) {
   if (!a.labels_out.empty()) {
     MeshWriteOptions labels;
     labels.arrays = read_options.arrays;
-    labels.point_scalars = detection_arrays(*r.detection);
+    labels.point_scalars = label_arrays({r.labels, r.detection, r.creases, 0.0});
     write_mesh(mesh, a.labels_out, labels);
     j["labels_out"] = a.labels_out;
   }

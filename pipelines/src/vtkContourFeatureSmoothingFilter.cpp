@@ -226,7 +226,8 @@ int vtkContourFeatureSmoothingFilter::Execute(vtkPolyData* input, vtkPolyData* o
 
   const SmoothingMethod method = to_library(this->Method);
   const bool cross_slice = method == SmoothingMethod::CrossSlice;
-  const bool detect = produces_labels(method) || this->GenerateLabels;
+  // The paper's detection runs for its method, and for labels of a method that has none of its own.
+  const bool detect = method == SmoothingMethod::FeaturePreserving || (this->GenerateLabels && !produces_labels(method));
   if (cross_slice && !locked.empty()) {
     throw InvalidInputError("cross-slice smoothing cannot lock vertices: unset LockedArrayName or choose another Method");
   }
@@ -248,7 +249,7 @@ int vtkContourFeatureSmoothingFilter::Execute(vtkPolyData* input, vtkPolyData* o
   detection.prefilter_iterations = this->PrefilterIterations;
   detection.curvature.umbilic_tolerance = this->UmbilicTolerance;
   detection.curvature.min_reciprocal_condition = this->MinReciprocalCondition;
-  if (detect) {
+  if (detect || cross_slice) {
     if (this->DetectionMode == DETECTION_CURVATURE_ONLY && !cross_slice) {
       detection.mode = contourmesh::DetectionMode::CurvatureOnly;
     } else if (!mesh.has_contour_ids()) {
@@ -276,9 +277,6 @@ int vtkContourFeatureSmoothingFilter::Execute(vtkPolyData* input, vtkPolyData* o
       }
     }
   }
-  if (this->DetectionMode == DETECTION_CURVATURE_ONLY && cross_slice) {
-    detection.mode = contourmesh::DetectionMode::CurvatureOnly;
-  }
 
   // The library's options from the properties (as `contourmesh smooth` builds them from its flags).
   SmoothOptions o;
@@ -299,7 +297,6 @@ int vtkContourFeatureSmoothingFilter::Execute(vtkPolyData* input, vtkPolyData* o
   o.paper.boundary = boundary;
   o.paper.output = this->KeepAdaptiveMesh ? OutputResolution::Adaptive : OutputResolution::Original;
   o.paper.locked = locked;
-  o.cross_slice.detection = detection;
 
   filter_detail::StageProgress stages(
       this, [](vtkAlgorithm* a) { return static_cast<vtkContourFeatureSmoothingFilter*>(a)->AbortRequested(); });
@@ -308,6 +305,9 @@ int vtkContourFeatureSmoothingFilter::Execute(vtkPolyData* input, vtkPolyData* o
     stages.add("detect", 0.0, 0.3);
     stages.add("subdivide", 0.3, 0.1);
     stages.add("smooth", 0.4, 0.6);
+  } else if (cross_slice) {
+    stages.add("smooth", 0.0, 0.8);
+    stages.add("detect", 0.8, 0.2);
   } else if (detect) {
     stages.add("detect", 0.0, 0.3);
     stages.add("smooth", 0.3, 0.7);

@@ -422,9 +422,10 @@ TEST_F(BadInput, OpenMeshesAreSmoothedWithTheirBoundaryFixed) {
   }
 }
 
+// (The paper's detection: it has a fallback without ids; cross-slice smoothing, the default, needs them.)
 TEST_F(BadInput, MissingContourIdsFallBackWithAWarning) {
   write_mesh(stack_, dir_ / "plain.stl");
-  CliRun r = run("detect " + (dir_ / "plain.stl").string() + " -o " + (dir_ / "l.vtp").string() + " --json");
+  CliRun r = run("detect " + (dir_ / "plain.stl").string() + " -o " + (dir_ / "l.vtp").string() + " --method paper --json");
   ASSERT_EQ(r.code, 0) << r.err;
   EXPECT_EQ(json_of(r)["mode"], "curvature-only");
   EXPECT_NE(r.err.find("has no contour ids"), std::string::npos) << r.err;
@@ -433,12 +434,17 @@ TEST_F(BadInput, MissingContourIdsFallBackWithAWarning) {
   EXPECT_EQ(json_of(r)["id_source"], "slice-planes");
   r = run("detect " + (dir_ / "plain.stl").string() + " -o " + (dir_ / "l.vtp").string() + " --slice-axis x");
   expect_rejected(r, {"plain.stl", "do not lie on planes normal to x"});
+  // The default, cross-slice smoothing, refuses a mesh without ids, naming the way out.
+  r = run("smooth " + (dir_ / "plain.stl").string() + " -o " + (dir_ / "o.stl").string());
+  expect_rejected(r, {"plain.stl", "cross-slice smoothing needs contour ids", "--slice-axis"});
+  r = run("smooth " + (dir_ / "plain.stl").string() + " -o " + (dir_ / "o.stl").string() + " --slice-axis z");
+  EXPECT_EQ(r.code, 0) << r.err;
 }
 
 TEST_F(BadInput, InconsistentContourIdsAreCorrected) {
   auto detect = [&](const Mesh& m, const std::string& name) {
     write_mesh(m, dir_ / name);
-    return run("detect " + (dir_ / name).string() + " -o " + (dir_ / "labels.ply").string() + " --json");
+    return run("detect " + (dir_ / name).string() + " -o " + (dir_ / "labels.ply").string() + " --method paper --json");
   };
   const CliRun clean = detect(stack_, "clean.ply");
   ASSERT_EQ(clean.code, 0) << clean.err;

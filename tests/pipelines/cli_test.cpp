@@ -112,7 +112,7 @@ TEST_F(Cli, PaperMethodWritesLabelsAndTheAdaptiveMesh) {
   EXPECT_EQ(read_mesh(labels).num_vertices(), j["vertices"].get<int>());
   // detect gives the same labels as the paper method's detection.
   const fs::path detected = dir_ / "detected.ply";
-  r = run_cli("detect " + input_.string() + " -o " + detected.string() + " --json", dir_);
+  r = run_cli("detect " + input_.string() + " -o " + detected.string() + " --method paper --json", dir_);
   ASSERT_EQ(r.code, 0) << r.err;
   const auto d = nlohmann::json::parse(r.out);
   EXPECT_EQ(d["edge_vertices"], j["edge_vertices"]);
@@ -122,7 +122,7 @@ TEST_F(Cli, PaperMethodWritesLabelsAndTheAdaptiveMesh) {
   EXPECT_EQ(run_cli("detect " + input_.string() + " -o " + (dir_ / "l.stl").string(), dir_).code, 2);
   const fs::path stl = dir_ / "plain.stl";
   ASSERT_EQ(run_cli("smooth " + input_.string() + " -o " + stl.string() + " --method none", dir_).code, 0);
-  r = run_cli("detect " + stl.string() + " -o " + (dir_ / "l.vtp").string() + " --json", dir_);
+  r = run_cli("detect " + stl.string() + " -o " + (dir_ / "l.vtp").string() + " --method paper --json", dir_);
   ASSERT_EQ(r.code, 0) << r.err;
   EXPECT_EQ(nlohmann::json::parse(r.out)["mode"], "curvature-only");
   EXPECT_NE(r.err.find("no contour ids"), std::string::npos) << r.err;
@@ -130,6 +130,19 @@ TEST_F(Cli, PaperMethodWritesLabelsAndTheAdaptiveMesh) {
   r = run_cli("detect " + stl.string() + " -o " + (dir_ / "l.vtp").string() + " --slice-axis z --json", dir_);
   ASSERT_EQ(r.code, 0) << r.err;
   EXPECT_EQ(nlohmann::json::parse(r.out)["id_source"], "slice-planes");
+  EXPECT_EQ(nlohmann::json::parse(r.out)["mode"], "creases") << "the default's labels: creases of its result";
+  // detect's labels are those smooth writes with --labels-out, for the default too.
+  const fs::path smoothed_labels = dir_ / "smoothed_labels.ply";
+  r = run_cli("smooth " + input_.string() + " -o " + (dir_ / "s.ply").string() + " --labels-out " +
+                  smoothed_labels.string() + " --json",
+              dir_);
+  ASSERT_EQ(r.code, 0) << r.err;
+  const auto sj = nlohmann::json::parse(r.out);
+  r = run_cli("detect " + input_.string() + " -o " + detected.string() + " --json", dir_);
+  ASSERT_EQ(r.code, 0) << r.err;
+  const auto dj = nlohmann::json::parse(r.out);
+  EXPECT_EQ(dj["edge_vertices"], sj["edge_vertices"]);
+  EXPECT_EQ(dj["corner_vertices"], sj["corner_vertices"]);
 }
 
 // Without --method the default preset runs (cross-slice smoothing); --preset xu2006 is the paper's method
@@ -158,7 +171,7 @@ TEST_F(Cli, SmoothPresetsAndTheDefault) {
   EXPECT_EQ(run_cli("smooth " + input_.string() + " -o " + out.string() + " --preset xu2006 --method taubin", dir_).code,
             1);
   for (const std::string& bad : {std::string("--preset slicer"), std::string("--method bilateral"),
-                                 std::string("--lambda 0.5"), std::string("--max-levels 2"),
+                                 std::string("--lambda 0.5"), std::string("--max-levels 2"), std::string("--gamma 0.3"),
                                  std::string("--iterations 5"), std::string("--method taubin --max-levels 2")}) {
     r = run_cli("smooth " + input_.string() + " -o " + (dir_ / "never.ply").string() + " " + bad, dir_);
     EXPECT_EQ(r.code, 2) << bad << ": " << r.err;

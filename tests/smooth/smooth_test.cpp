@@ -57,20 +57,28 @@ TEST(SmoothEntryPoint, CrossSliceGivesItsOwnResultAndLabels) {
   const CrossSliceResult direct = cross_slice_smooth(m);
   const SmoothResult r = smooth(m, SmoothingMethod::CrossSlice);
   EXPECT_EQ(r.mesh.positions, direct.mesh.positions);
-  EXPECT_EQ(r.labels, direct.detection.labels);
+  EXPECT_EQ(r.labels, direct.labels);
   EXPECT_EQ(r.labels.size(), static_cast<std::size_t>(m.num_vertices()));
+  ASSERT_TRUE(r.creases.has_value());
+  EXPECT_EQ(r.creases->labels, direct.features.labels);
+  EXPECT_FALSE(r.detection.has_value());
   EXPECT_EQ(r.profiles, direct.profiles);
+  EXPECT_EQ(r.noise_across, direct.noise_across);
   EXPECT_EQ(r.iterations, 0);
 }
 
-TEST(SmoothEntryPoint, DetectionAloneGivesTheLabelsOfTheMethod) {
+TEST(SmoothEntryPoint, LabelsAloneAreTheLabelsOfTheMethod) {
   const Mesh m = small_stack();
+  SmoothOptions o;
+  o.paper.detection.in_slice = InSliceFeatures::AlongFeatureLine;
+  o.cross_slice.features.band = 0.5;
   for (SmoothingMethod method : {SmoothingMethod::FeaturePreserving, SmoothingMethod::CrossSlice}) {
-    SmoothOptions o;
-    detection_options_of(method, o)->in_slice = InSliceFeatures::AlongFeatureLine;
-    EXPECT_EQ(detect_features(m, method, o).labels, smooth(m, method, o).labels) << to_string(method);
+    const FeatureLabels f = label_features(m, method, o);
+    EXPECT_EQ(f.labels, smooth(m, method, o).labels) << to_string(method);
+    EXPECT_EQ(f.detection.has_value(), method == SmoothingMethod::FeaturePreserving);
+    EXPECT_EQ(f.creases.has_value(), method == SmoothingMethod::CrossSlice);
   }
-  EXPECT_THROW((void)detect_features(m, SmoothingMethod::Taubin), InvalidInputError);
+  EXPECT_THROW((void)label_features(m, SmoothingMethod::Taubin), InvalidInputError);
 }
 
 TEST(SmoothEntryPoint, DefaultIterationCountsLiveInTheLibrary) {
@@ -109,7 +117,7 @@ TEST(SmoothEntryPoint, ASharedIterationCountOverridesEachFamily) {
 TEST(SmoothEntryPoint, DetectionOptionsOfTheMethodThatRuns) {
   SmoothOptions o;
   EXPECT_EQ(detection_options_of(SmoothingMethod::FeaturePreserving, o), &o.paper.detection);
-  EXPECT_EQ(detection_options_of(SmoothingMethod::CrossSlice, o), &o.cross_slice.detection);
+  EXPECT_EQ(detection_options_of(SmoothingMethod::CrossSlice, o), nullptr) << "it labels creases";
   EXPECT_EQ(detection_options_of(SmoothingMethod::Taubin, o), nullptr);
 }
 
@@ -137,7 +145,9 @@ TEST(SmoothEntryPoint, ProgressLimitsAndCancellation) {
   SmoothOptions o;
   o.paper.progress = [](std::string_view, double) { return false; };
   o.paper.detection.progress = [](std::string_view, double) { return false; };
+  o.cross_slice.progress = [](std::string_view, double) { return false; };
   EXPECT_NO_THROW((void)smooth(m, SmoothingMethod::FeaturePreserving, o));
+  EXPECT_NO_THROW((void)smooth(m, SmoothingMethod::CrossSlice, o));
 }
 
 TEST(SmoothEntryPoint, MethodsThatNeedIdsSaySo) {

@@ -4,6 +4,7 @@
 // presets, among them the paper's literal configuration.
 #pragma once
 
+#include "smooth/crease_detection.h"
 #include "smooth/cross_slice.h"
 #include "smooth/feature_detection.h"
 #include "smooth/feature_smoothing.h"
@@ -49,8 +50,10 @@ struct SmoothResult {
   /// One label per input vertex from methods that label features (FeaturePreserving, CrossSlice);
   /// empty otherwise.
   std::vector<VertexLabel> labels;
-  /// The feature detection behind the labels (umbrella, gamma, curvatures), when one ran.
+  /// The paper's method: the feature detection behind its labels (umbrella, gamma, curvatures).
   std::optional<FeatureDetection> detection;
+  /// Cross-slice smoothing: the creases of its result behind its labels.
+  std::optional<CreaseDetection> creases;
   /// Wall-clock seconds per stage (the paper's Table 1); stages a method does not have stay 0.
   StageTimings seconds;
   /// Smoothing iterations that ran (0 for None and for methods without an iteration count).
@@ -58,8 +61,10 @@ struct SmoothResult {
   /// The paper's method: input vertices subdivided at least once, and the adaptive mesh's vertices.
   std::size_t subdivided_vertices = 0;
   Index adaptive_vertices = 0;
-  /// Cross-slice smoothing: contour vertices corrected from their cross-slice profile.
+  /// Cross-slice smoothing: contour vertices corrected from their cross-slice profile, and the noise
+  /// levels (mm) it used across the slices and along the contours.
   std::size_t profiles = 0;
+  double noise_across = 0.0, noise_along = 0.0;
 };
 
 /// The iteration count a method runs by default, from its family's default options: 20 for the
@@ -72,8 +77,8 @@ struct SmoothResult {
 /// True for the methods whose result carries per-vertex feature labels (FeaturePreserving, CrossSlice).
 [[nodiscard]] bool produces_labels(SmoothingMethod method);
 
-/// The detection options a method labels with (the paper's or cross-slice's `detection`); nullptr for
-/// a method without labels. Lets a caller adjust detection without knowing which family runs.
+/// The options of the paper's Algorithm 2 that a method labels with (the paper's `detection`); nullptr
+/// for other methods (cross-slice smoothing labels the creases of its result, `cross_slice.features`).
 [[nodiscard]] DetectionOptions* detection_options_of(SmoothingMethod method, SmoothOptions& options);
 
 /// Smooths `mesh` with `method`. FeaturePreserving and CrossSlice need contour ids (see their
@@ -81,11 +86,19 @@ struct SmoothResult {
 /// LimitError beyond `options.limits`, CancelledError on request.
 [[nodiscard]] SmoothResult smooth(const Mesh& mesh, SmoothingMethod method, const SmoothOptions& options = {});
 
-/// The detection stage of `method` alone: the labels smooth(mesh, method, options) reports, without
-/// smoothing (runs detect_features with the method's detection options and the common progress).
-/// Throws InvalidInputError for a method without labels (produces_labels), and as detect_features.
-[[nodiscard]] FeatureDetection detect_features(const Mesh& mesh, SmoothingMethod method,
-                                               const SmoothOptions& options = {});
+/// The labels of a method and what they were found from.
+struct FeatureLabels {
+  std::vector<VertexLabel> labels;          ///< one per input vertex
+  std::optional<FeatureDetection> detection;  ///< the paper's method
+  std::optional<CreaseDetection> creases;     ///< cross-slice smoothing
+  double seconds = 0.0;                       ///< wall-clock time of what ran
+};
+
+/// The labels smooth(mesh, method, options) reports, without its smoothed mesh: for the paper's method
+/// its detection stage alone (it labels the input); for cross-slice smoothing the whole method (it
+/// labels the creases of its result). Throws InvalidInputError for a method without labels
+/// (produces_labels), and as smooth().
+[[nodiscard]] FeatureLabels label_features(const Mesh& mesh, SmoothingMethod method, const SmoothOptions& options = {});
 
 /// Named configurations.
 enum class Preset {

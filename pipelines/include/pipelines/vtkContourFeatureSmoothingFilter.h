@@ -29,15 +29,16 @@
 /// an empty output, RequestData returns 0.
 ///
 /// Contour ids are needed by cross-slice smoothing (always) and by the paper's detection (Method Paper,
-/// or GenerateLabels with any method).
+/// or GenerateLabels with a baseline). The detection options (Gamma, Window, ...) are the paper's;
+/// cross-slice smoothing labels the creases of its result with its own defaults.
 /// When ContourIdArrayName is missing: with SliceAxis set the ids are recovered by binning the vertices
 /// along that axis (libsmooth's assign_ids_by_slice_planes, an error when they do not lie on planes);
 /// otherwise DetectionMode decides: ContourContinuity (default) is an error, Automatic falls back to
 /// the curvature-only detection with a warning (what the CLI does), CurvatureOnly never needs ids.
 ///
 /// Progress: UpdateProgress with detection in [0, 0.3], subdivision in [0.3, 0.4] and smoothing in
-/// [0.4, 1] for the paper's method, detection in [0, 0.3] and smoothing in [0.3, 1] for cross-slice
-/// smoothing (smoothing alone spans [0, 1] for a baseline), at most once per iteration. Cancellation: setting AbortExecute (for example from a vtkCommand::ProgressEvent observer)
+/// [0.4, 1] for the paper's method, smoothing in [0, 0.8] and its crease labels in [0.8, 1] for
+/// cross-slice smoothing (smoothing alone spans [0, 1] for a baseline), at most once per iteration. Cancellation: setting AbortExecute (for example from a vtkCommand::ProgressEvent observer)
 /// makes the library stop at its next progress report (vtkAlgorithm::CheckAbort on VTK >= 9.3). An
 /// aborted run is not an error: the output is left empty and RequestData returns 1, as VTK filters do
 /// when they abort. The pipeline then considers the (empty) output up to date: call Modified() before
@@ -261,7 +262,7 @@ class vtkContourFeatureSmoothingFilter : public vtkPolyDataAlgorithm {
 
   ///@{
   /// Add the per-vertex "FeatureLabel" array (default Off): the labels of the paper's method or of
-  /// cross-slice smoothing; with a baseline method the detection is run on the input just for them.
+  /// cross-slice smoothing; with a baseline method the paper's detection runs on the input just for them.
   vtkSetMacro(GenerateLabels, vtkTypeBool);
   vtkGetMacro(GenerateLabels, vtkTypeBool);
   vtkBooleanMacro(GenerateLabels, vtkTypeBool);
