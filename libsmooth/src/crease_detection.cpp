@@ -65,46 +65,38 @@ CreaseDetection detect_creases(const Mesh& mesh, const MeshAdjacency& adjacency,
   // Per vertex, the direction of least normal variation: along a crease.
   Eigen::Matrix3Xd along = Eigen::Matrix3Xd::Zero(3, n);
 
-  // 1. Normal tensors over the faces around the vertices within the radius.
+  // 1. Normal tensors: each vertex's own, a third of sum A_f n_f n_f^T over its faces, then summed over
+  //    the vertex and its ring neighbours within the radius (about one or two edge lengths).
+  std::vector<Eigen::Matrix<double, 6, 1>> own(static_cast<std::size_t>(n), Eigen::Matrix<double, 6, 1>::Zero());
+  for (std::size_t f = 0; f < mesh.triangles.size(); ++f) {
+    const Eigen::Vector3d nf = normals.col(static_cast<Index>(f));
+    const double w = areas[static_cast<Index>(f)] / 3.0;
+    Eigen::Matrix<double, 6, 1> t;
+    t << nf.x() * nf.x(), nf.y() * nf.y(), nf.z() * nf.z(), nf.x() * nf.y(), nf.x() * nf.z(), nf.y() * nf.z();
+    for (Index v : mesh.triangles[f]) own[static_cast<std::size_t>(v)] += w * t;
+  }
   const double r2 = options.radius * options.radius;
-  // Few, large chunks: each clears its own visit stamps, one per vertex and face.
-  const std::size_t chunk = std::max<std::size_t>(4096, static_cast<std::size_t>(n) / 16 + 1);
-  detail::parallel_chunks(static_cast<std::size_t>(n), chunk, [&](std::size_t, std::size_t begin, std::size_t end) {
-    std::vector<Index> stack;
-    std::vector<std::uint32_t> vertex_stamp, face_stamp;
-    std::uint32_t stamp = 0;
-    vertex_stamp.assign(static_cast<std::size_t>(n), 0);
-    face_stamp.assign(mesh.triangles.size(), 0);
+  detail::parallel_chunks(static_cast<std::size_t>(n), 4096, [&](std::size_t, std::size_t begin, std::size_t end) {
     for (std::size_t k = begin; k < end; ++k) {
       const Index i = static_cast<Index>(k);
-      ++stamp;
       const Eigen::Vector3d centre = mesh.positions.col(i);
-      Eigen::Matrix3d tensor = Eigen::Matrix3d::Zero();
-      stack.assign(1, i);
-      vertex_stamp[k] = stamp;
-      while (!stack.empty()) {
-        const Index v = stack.back();
-        stack.pop_back();
-        for (Index f : adjacency.incident_faces(v)) {
-          if (face_stamp[static_cast<std::size_t>(f)] == stamp) continue;
-          face_stamp[static_cast<std::size_t>(f)] = stamp;
-          const Eigen::Vector3d nf = normals.col(f);
-          tensor.noalias() += areas[f] * nf * nf.transpose();
-        }
-        for (Index j : adjacency.ring(v)) {
-          if (vertex_stamp[static_cast<std::size_t>(j)] == stamp) continue;
-          vertex_stamp[static_cast<std::size_t>(j)] = stamp;
-          if ((mesh.positions.col(j) - centre).squaredNorm() <= r2) stack.push_back(j);
-        }
+      Eigen::Matrix<double, 6, 1> t = own[k];
+      for (Index j : adjacency.ring(i)) {
+        if ((mesh.positions.col(j) - centre).squaredNorm() <= r2) t += own[static_cast<std::size_t>(j)];
       }
+      Eigen::Matrix3d tensor;
+      tensor << t[0], t[3], t[4], t[3], t[1], t[5], t[4], t[5], t[2];
       const double trace = tensor.trace();
       if (!(trace > 0.0)) continue;
       Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d> eigen;
-      eigen.computeDirect(tensor);
+      eigen.computeDirect(tensor, Eigen::EigenvaluesOnly);
       const Eigen::Vector3d l = eigen.eigenvalues();  // increasing
-      along.col(i) = eigen.eigenvectors().col(0);
       result.edge_strength[i] = std::max(0.0, l[1]) / trace;
       result.corner_strength[i] = std::max(0.0, l[0]) / trace;
+      if (result.edge_strength[i] >= options.edge_threshold) {
+        eigen.computeDirect(tensor);  // the crease direction, for the suppression below
+        along.col(i) = eigen.eigenvectors().col(0);
+      }
     }
   });
 

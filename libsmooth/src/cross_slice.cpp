@@ -33,8 +33,8 @@ void check_options(const CrossSliceOptions& o) {
 // `positions`. Returns the number of vertices whose profile gave an estimate.
 template <typename MakeProfile>
 std::size_t smooth_profiles(const detail::ContourFrame& frame, const Eigen::Matrix3Xd& positions,
-                            const detail::LpaIciOptions& lpa, Eigen::Matrix3Xd& displacement, MakeProfile make_profile) {
-  const Eigen::Matrix3Xd normals = vertex_normals(positions, frame.mesh->triangles);
+                            const Eigen::Matrix3Xd& normals, const detail::LpaIciOptions& lpa,
+                            Eigen::Matrix3Xd& displacement, MakeProfile make_profile) {
   const Index n = static_cast<Index>(positions.cols());
   constexpr std::size_t kChunk = 2048;
   std::vector<std::size_t> counts((static_cast<std::size_t>(n) + kChunk - 1) / kChunk, 0);
@@ -96,7 +96,7 @@ CrossSliceResult cross_slice_smooth(const Mesh& mesh, const CrossSliceOptions& o
   result.noise_across = options.noise_across.value_or(detail::profile_noise(frame, mesh.positions, normals, true));
   lpa.sigma = result.noise_across;
   lpa.max_half_width = options.reach;
-  result.profiles = smooth_profiles(frame, mesh.positions, lpa, displacement,
+  result.profiles = smooth_profiles(frame, mesh.positions, normals, lpa, displacement,
                                     [&](const Eigen::Matrix3Xd& x, Index i, const Eigen::Vector3d& m, detail::Profile& p) {
                                       detail::cross_slice_profile(frame, x, i, m, options.reach, p);
                                     });
@@ -109,7 +109,7 @@ CrossSliceResult cross_slice_smooth(const Mesh& mesh, const CrossSliceOptions& o
     result.noise_along = options.noise_along.value_or(detail::profile_noise(frame, across, across_normals, false));
     lpa.sigma = result.noise_along;
     lpa.max_half_width = options.along_reach;
-    (void)smooth_profiles(frame, across, lpa, displacement,
+    (void)smooth_profiles(frame, across, across_normals, lpa, displacement,
                           [&](const Eigen::Matrix3Xd& x, Index i, const Eigen::Vector3d& m, detail::Profile& p) {
                             detail::along_contour_profile(frame, x, i, m, options.along_reach, p);
                           });

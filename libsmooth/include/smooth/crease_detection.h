@@ -2,8 +2,9 @@
 // kept when they extend along a line, and widened to a band. The cross-slice smoother labels its
 // result with it (docs/smoothing.md, "Feature labels").
 //
-// 1. Core vertices: the normal tensor T = sum_f A_f n_f n_f^T of the faces around the vertices within
-//    `radius` of a vertex has eigenvalues l1 >= l2 >= l3. Its normals spread in two directions
+// 1. Core vertices: the normal tensor T = sum_f A_f n_f n_f^T / 3 over the faces of the vertex and of
+//    its ring neighbours within `radius` (faces counted once per such vertex they touch) has eigenvalues
+//    l1 >= l2 >= l3. Its normals spread in two directions
 //    (a crease) when l2 / trace >= `edge_threshold`: two planes meeting at a dihedral angle theta give
 //    l2 / trace = sin^2(theta / 2) / ... up to the split of areas, about 0.07 at 30 degrees and 0.25 at
 //    60; a smooth patch of curvature kappa gives about (radius kappa)^2 / 4. In three directions (a

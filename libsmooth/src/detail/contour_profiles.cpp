@@ -129,13 +129,16 @@ bool cut_contour(const ContourFrame& f, const Eigen::Matrix3Xd& x, const Index* 
 void cross_slice_profile(const ContourFrame& f, const Eigen::Matrix3Xd& x, Index i, const Eigen::Vector3d& m, int reach,
                          Profile& out) {
   constexpr int kMaxStarts = 16;
-  out.clear();
-  out.push(0.0, 0.0);
   const Eigen::Vector3d v = x.col(i);
   const Eigen::Vector3d plane_normal = f.axis.cross(m);
   const double max_offset = 6.0 * f.slice_spacing;
   std::array<Index, kMaxStarts> start{};
-  for (const bool upward : {true, false}) {
+  // Samples of each side, nearest first; written out in increasing height at the end (no sort).
+  std::array<std::array<double, 2 * kMaxProfile>, 2> side{};
+  std::array<int, 2> count{0, 0};
+  reach = std::min(reach, kMaxProfile / 2 - 1);
+  for (int dir = 0; dir < 2; ++dir) {
+    const bool upward = dir == 1;
     int starts = 0;
     const auto add = [&](Index j) {
       if (starts < kMaxStarts) start[static_cast<std::size_t>(starts++)] = j;
@@ -147,13 +150,26 @@ void cross_slice_profile(const ContourFrame& f, const Eigen::Matrix3Xd& x, Index
       if (!cut_contour(f, x, start.data(), starts, v, plane_normal, cut, edge_a, edge_b)) break;
       const Eigen::Vector3d r = cut - v;
       if ((r - r.dot(f.axis) * f.axis).squaredNorm() > max_offset * max_offset) break;
-      if (!out.push(r.dot(f.axis) / f.slice_spacing, r.dot(m))) break;
+      auto& s = side[static_cast<std::size_t>(dir)];
+      const int c = count[static_cast<std::size_t>(dir)]++;
+      s[static_cast<std::size_t>(2 * c)] = r.dot(f.axis) / f.slice_spacing;
+      s[static_cast<std::size_t>(2 * c + 1)] = r.dot(m);
       starts = 0;
       next_slice(f, edge_a, upward, add);
       next_slice(f, edge_b, upward, add);
     }
   }
-  out.sort();
+  out.clear();
+  for (int c = count[0] - 1; c >= 0; --c) out.push(side[0][static_cast<std::size_t>(2 * c)], side[0][static_cast<std::size_t>(2 * c + 1)]);
+  out.push(0.0, 0.0);
+  for (int c = 0; c < count[1]; ++c) out.push(side[1][static_cast<std::size_t>(2 * c)], side[1][static_cast<std::size_t>(2 * c + 1)]);
+  // Heights increase along each side but a folded contour could break the order: check, sort if so.
+  for (int k = 1; k < out.size; ++k) {
+    if (out.x[static_cast<std::size_t>(k)] < out.x[static_cast<std::size_t>(k - 1)]) {
+      out.sort();
+      break;
+    }
+  }
 }
 
 void along_contour_profile(const ContourFrame& f, const Eigen::Matrix3Xd& x, Index i, const Eigen::Vector3d& m,

@@ -39,6 +39,13 @@ struct Moments {
     t[2] += x2 * y;
     ++distinct;
   }
+  Moments operator+(const Moments& o) const {
+    Moments m = *this;
+    for (int k = 0; k < 5; ++k) m.s[k] += o.s[k];
+    for (int k = 0; k < 3; ++k) m.t[k] += o.t[k];
+    m.distinct += o.distinct;
+    return m;
+  }
 };
 
 // Least-squares parabola through the window, evaluated at 0: value and (M^-1)_00, the variance factor.
@@ -62,55 +69,31 @@ bool fit_mean(const Moments& m, double& value, double& variance) {
   return true;
 }
 
-// One window kind grown by ICI. `next_below` / `next_above` walk outwards from the centre.
+// The window kinds: below (x <= 0), above (x >= 0), symmetric parabola, symmetric mean.
+enum Kind { kBelow = 0, kAbove = 1, kSymmetric = 2, kMean = 3, kKinds = 4 };
+
+// The ICI state of one window kind.
 struct Grown {
-  double value = 0.0, variance = -1.0;  // variance < 0: nothing fitted
+  double value = 0.0, variance = -1.0;  // variance < 0: nothing fitted yet
   double lower = -std::numeric_limits<double>::infinity(), upper = std::numeric_limits<double>::infinity();
   int half_width = 0;
-};
+  bool stopped = false;
 
-template <typename Fit>
-Grown grow(const Profile& p, int centre, bool down, bool up, const LpaIciOptions& o, Fit fit) {
-  Grown g;
-  Moments m;
-  m.add(p.x[static_cast<std::size_t>(centre)], p.y[static_cast<std::size_t>(centre)]);
-  int lo = centre - 1, hi = centre + 1;
-  double lower = -std::numeric_limits<double>::infinity(), upper = std::numeric_limits<double>::infinity();
-  for (int h = 1; h <= o.max_half_width; ++h) {
-    const double reach = static_cast<double>(h) + 0.5;
-    bool added = false;
-    if (down) {
-      while (lo >= 0 && p.x[static_cast<std::size_t>(lo)] >= -reach) {
-        m.add(p.x[static_cast<std::size_t>(lo)], p.y[static_cast<std::size_t>(lo)]);
-        --lo;
-        added = true;
-      }
+  // Offers the estimate of the window of half-width h; stops the kind when the intervals part.
+  void offer(double value_h, double variance_h, int h, const LpaIciOptions& o) {
+    const double s = o.sigma * std::sqrt(variance_h);
+    const double lo = std::max(lower, value_h - o.gamma * s), hi = std::min(upper, value_h + o.gamma * s);
+    if (lo > hi) {
+      stopped = true;
+      return;
     }
-    if (up) {
-      while (hi < p.size && p.x[static_cast<std::size_t>(hi)] <= reach) {
-        m.add(p.x[static_cast<std::size_t>(hi)], p.y[static_cast<std::size_t>(hi)]);
-        ++hi;
-        added = true;
-      }
-    }
-    if (!added) {
-      if (!(down && lo >= 0) && !(up && hi < p.size)) break;  // the profile ends: the window cannot grow
-      continue;
-    }
-    double value = 0.0, variance = 0.0;
-    if (!fit(m, value, variance)) continue;
-    const double s = o.sigma * std::sqrt(variance);
-    lower = std::max(lower, value - o.gamma * s);
-    upper = std::min(upper, value + o.gamma * s);
-    if (lower > upper) break;
-    g.value = value;
-    g.variance = variance;
-    g.lower = lower;
-    g.upper = upper;
-    g.half_width = h;
+    lower = lo;
+    upper = hi;
+    value = value_h;
+    variance = variance_h;
+    half_width = h;
   }
-  return g;
-}
+};
 
 }  // namespace
 
@@ -125,24 +108,54 @@ LpaIciResult lpa_ici(const Profile& p, const LpaIciOptions& o) {
   }
   if (centre < 0) return r;
   r.value = p.y[static_cast<std::size_t>(centre)];
-  const Grown below = grow(p, centre, true, false, o, fit_parabola);
-  const Grown above = grow(p, centre, false, true, o, fit_parabola);
-  Grown symmetric = grow(p, centre, true, true, o, fit_parabola);
-  if (o.symmetric_mean && symmetric.variance > 0.0) {
-    const Grown mean = grow(p, centre, true, true, o, fit_mean);
-    if (mean.variance > 0.0 && mean.variance < symmetric.variance &&
-        std::abs(mean.value - symmetric.value) <= o.gamma * o.sigma * std::sqrt(symmetric.variance)) {
-      symmetric = mean;
+  // All kinds grow together, one unit of x per step, from the same running moments of each side.
+  Moments down, up;  // the samples below and above the centre taken so far
+  Moments centre_only;
+  centre_only.add(0.0, r.value);
+  std::array<Grown, kKinds> g;
+  int lo = centre - 1, hi = centre + 1;
+  for (int h = 1; h <= o.max_half_width; ++h) {
+    const double reach = static_cast<double>(h) + 0.5;
+    bool added_down = false, added_up = false;
+    while (lo >= 0 && p.x[static_cast<std::size_t>(lo)] >= -reach) {
+      down.add(p.x[static_cast<std::size_t>(lo)], p.y[static_cast<std::size_t>(lo)]);
+      --lo;
+      added_down = true;
     }
+    while (hi < p.size && p.x[static_cast<std::size_t>(hi)] <= reach) {
+      up.add(p.x[static_cast<std::size_t>(hi)], p.y[static_cast<std::size_t>(hi)]);
+      ++hi;
+      added_up = true;
+    }
+    const Moments below = centre_only + down, above = centre_only + up, both = below + up;
+    double value = 0.0, variance = 0.0;
+    if (added_down && !g[kBelow].stopped && fit_parabola(below, value, variance)) g[kBelow].offer(value, variance, h, o);
+    if (added_up && !g[kAbove].stopped && fit_parabola(above, value, variance)) g[kAbove].offer(value, variance, h, o);
+    if (added_down || added_up) {
+      if (!g[kSymmetric].stopped && fit_parabola(both, value, variance)) g[kSymmetric].offer(value, variance, h, o);
+      if (o.symmetric_mean && !g[kMean].stopped && fit_mean(both, value, variance)) g[kMean].offer(value, variance, h, o);
+    }
+    const bool more = lo >= 0 || hi < p.size;
+    if (!more) break;
+    bool all_stopped = true;
+    for (const Grown& k : g) all_stopped = all_stopped && k.stopped;
+    if (all_stopped) break;
+  }
+  // The mean replaces the symmetric parabola where it agrees with it and is more precise.
+  Grown symmetric = g[kSymmetric];
+  const Grown& mean = g[kMean];
+  if (mean.variance > 0.0 && symmetric.variance > 0.0 && mean.variance < symmetric.variance &&
+      std::abs(mean.value - symmetric.value) <= o.gamma * o.sigma * std::sqrt(symmetric.variance)) {
+    symmetric = mean;
   }
   double num = 0.0, den = 0.0;
-  for (const Grown* g : std::array<const Grown*, 3>{&below, &above, &symmetric}) {
-    if (g->variance <= 0.0) continue;
-    num += g->value / g->variance;
-    den += 1.0 / g->variance;
+  for (const Grown* k : std::array<const Grown*, 3>{&g[kBelow], &g[kAbove], &symmetric}) {
+    if (k->variance <= 0.0) continue;
+    num += k->value / k->variance;
+    den += 1.0 / k->variance;
   }
-  r.below = below.half_width;
-  r.above = above.half_width;
+  r.below = g[kBelow].half_width;
+  r.above = g[kAbove].half_width;
   r.symmetric = symmetric.half_width;
   if (den > 0.0) {
     r.value = num / den;
