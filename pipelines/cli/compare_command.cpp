@@ -1,12 +1,16 @@
 // contourmesh compare [--phantom NAME|all | IN [--truth SURFACE]] --out DIR: every smoothing method, VTK's
-// filters and 3D Slicer's voxel route on the same volume, measured against the truth, with tables,
-// plots, renders and report.html (pipelines/comparison_report.h does the work).
+// filters and 3D Slicer's voxel route on the same volume, measured against the truth over the surface,
+// in one or several noise regimes and seeds, with tables, plots, renders, verdicts and report.html
+// (the contourmesh_compare target does the work; the renders run in a child process here).
 #include "cli_common.h"
+#include "isolated_process.h"
 #include "progress_display.h"
 
+#include <compare/comparison.h>
+#include <compare/report.h>
+#include <compare/series.h>
+#include <compare/verdicts.h>
 #include <pipelines/atomic_file.h>
-#include <pipelines/comparison.h>
-#include <pipelines/comparison_report.h>
 #include <pipelines/mesh_io.h>
 #include <reconstruct/phantom.h>
 #include <reconstruct/volume.h>
@@ -15,6 +19,9 @@
 
 #include <CLI/CLI.hpp>
 
+#include <algorithm>
+#include <cmath>
+#include <fstream>
 #include <filesystem>
 #include <iomanip>
 #include <iostream>
@@ -44,11 +51,17 @@ struct CompareArgs {
   double noise = 20.0;
   double blur = 0.5;
   std::uint64_t seed = 1;
+  std::string seeds;
+  std::string regimes;
   std::optional<double> threshold;
-  double feature_radius = 2.0;
-  double detection_radius = 0.8;
+  double feature_radius = 1.5;
+  double detection_radius = 1.5;
+  int iterations = default_iterations(SmoothingMethod::Taubin);
+  std::string methods;
+  std::vector<std::string> variants;
   int repeat = 1;
   std::string render_size = "640x480";
+  std::string render_methods;
   int color_levels = 256;
   bool no_render = false;
   bool no_curves = false;
@@ -67,16 +80,22 @@ std::string command_line(const CompareArgs& a) {
   if (!a.phantom.empty()) s << " --phantom " << a.phantom;
   s << " --out " << a.out;
   if (a.input.empty()) {
+    if (!a.regimes.empty()) s << " --regimes " << a.regimes;
+    if (!a.seeds.empty()) s << " --seeds " << a.seeds;
     if (a.spacing != "0.7,0.7,2") s << " --spacing " << a.spacing;
     if (a.noise != 20.0) s << " --noise " << a.noise;
     if (a.blur != 0.5) s << " --blur " << a.blur;
     if (a.seed != 1) s << " --seed " << a.seed;
   }
   if (a.threshold) s << " --threshold " << *a.threshold;
-  if (a.feature_radius != 2.0) s << " --feature-radius " << a.feature_radius;
-  if (a.detection_radius != 0.8) s << " --detection-radius " << a.detection_radius;
+  if (a.feature_radius != 1.5) s << " --feature-radius " << a.feature_radius;
+  if (a.detection_radius != 1.5) s << " --detection-radius " << a.detection_radius;
+  if (a.iterations != default_iterations(SmoothingMethod::Taubin)) s << " --iterations " << a.iterations;
+  if (!a.methods.empty()) s << " --methods " << a.methods;
+  for (const std::string& v : a.variants) s << " --variant " << v;
   if (a.repeat != 1) s << " --repeat " << a.repeat;
   if (a.render_size != "640x480") s << " --render-size " << a.render_size;
+  if (!a.render_methods.empty()) s << " --render-methods " << a.render_methods;
   if (a.color_levels != 256) s << " --color-levels " << a.color_levels;
   if (a.no_render) s << " --no-render";
   if (a.no_curves) s << " --no-curves";
@@ -104,6 +123,16 @@ std::pair<int, int> parse_render_size(const std::string& text) {
   return {w, h};
 }
 
+// A comma-separated list.
+std::vector<std::string> split_list(const std::string& text) {
+  std::vector<std::string> items;
+  std::stringstream s(text);
+  for (std::string item; std::getline(s, item, ',');) {
+    if (!item.empty()) items.push_back(item);
+  }
+  return items;
+}
+
 // Creates `dir` (and parents) and checks that files can be written in it: exit 2 before any work.
 void prepare_directory(const fs::path& dir) {
   std::error_code ec;
@@ -115,29 +144,71 @@ void prepare_directory(const fs::path& dir) {
   check_output_path(dir / "report.html");
 }
 
-void print_summary(const std::string& name, const Comparison& c, const ComparisonFiles& files, const fs::path& dir) {
-  std::cout << std::fixed << name << ": " << c.source << "\n  contour mesh " << c.contour_mesh.num_vertices()
-            << " vertices; truth: " << (c.truth == TruthKind::None ? "none (no distance metrics)" : c.truth_description)
-            << "\n";
+std::string fixed(double v, int digits) {
+  if (!std::isfinite(v)) return "-";
+  std::ostringstream s;
+  s << std::fixed << std::setprecision(digits) << v;
+  return s.str();
+}
+
+void print_summary(const Series& s, const ComparisonFiles& files, const fs::path& dir) {
+  const Comparison& c = s.first();
+  std::cout << s.name << " (" << s.regime.name << "): " << c.source;
+  if (s.seeds.size() > 1) std::cout << ", means over " << s.seeds.size() << " seeds";
+  std::cout << "\n  contour mesh " << c.contour_mesh.num_vertices() << " vertices; truth: "
+            << (c.truth == TruthKind::None ? "none (no distance metrics)" : c.truth_description) << "\n";
   std::cout << "  " << std::left << std::setw(26) << "method" << std::right << std::setw(10) << "RMS mm"
-            << std::setw(12) << "feature mm" << std::setw(10) << "dV %" << std::setw(10) << "seconds"
-            << "\n";
-  for (const MethodResult& m : c.methods) {
-    std::cout << "  " << std::left << std::setw(26) << m.name << std::right << std::setprecision(3) << std::setw(10);
-    if (m.all)
-      std::cout << m.all->distance.rms;
-    else
-      std::cout << "-";
-    std::cout << std::setw(12);
-    if (m.feature)
-      std::cout << m.feature->distance.rms;
-    else
-      std::cout << "-";
-    std::cout << std::setprecision(2) << std::setw(10) << m.volume_change_percent << std::setprecision(3)
-              << std::setw(10) << m.stage_seconds("total") << "\n";
+            << std::setw(12) << "feature mm" << std::setw(10) << "normal" << std::setw(10) << "dV %" << std::setw(10)
+            << "seconds\n";
+  for (const MethodSummary& m : s.mean) {
+    std::cout << "  " << std::left << std::setw(26) << m.spec.id << std::right << std::setw(10) << fixed(m.rms, 3)
+              << std::setw(12) << fixed(m.feature_rms, 3) << std::setw(10) << fixed(m.normal_error, 2)
+              << std::setw(10) << fixed(m.volume_change_percent, 2) << std::setw(10)
+              << fixed(m.stage_seconds("total"), 3) << "\n";
   }
   if (!files.rendered) std::cout << "  no renders: " << files.render_note << "\n";
   std::cout << "  wrote " << (dir / "report.html").string() << " and " << files.files.size() - 1 << " other files\n";
+}
+
+// What to compare: the phantoms, regimes and seeds, or one input volume.
+struct Plan {
+  std::vector<PhantomShape> shapes;
+  std::vector<Regime> regimes;
+  std::vector<std::uint64_t> seeds;
+};
+
+Plan make_plan(const CompareArgs& a) {
+  Plan p;
+  if (!a.input.empty()) {
+    p.regimes = {Regime{"input", 0.0, 0.0}};
+    return p;
+  }
+  const std::string name = a.phantom.empty() ? "femur" : a.phantom;
+  p.shapes = name == "all" ? all_phantom_shapes() : std::vector<PhantomShape>{parse_phantom_shape(name)};
+  if (!a.regimes.empty()) {
+    p.regimes = parse_regimes(a.regimes);
+  } else if (name == "all") {
+    p.regimes = default_regimes();
+  } else {
+    if (!(a.noise >= 0.0)) throw InvalidInputError("--noise must be a sigma >= 0 in HU");
+    std::ostringstream regime;
+    regime << "ct" << a.noise;
+    p.regimes = {parse_regime(regime.str())};
+  }
+  p.seeds = a.seeds.empty() ? std::vector<std::uint64_t>{a.seed} : parse_seeds(a.seeds);
+  return p;
+}
+
+nlohmann::json verdicts_json(const Verdicts& v) {
+  nlohmann::json rows = nlohmann::json::array();
+  for (const VerdictRow& r : v.rows) {
+    nlohmann::json row = {{"phantom", r.phantom}, {"regime", r.regime}};
+    const std::pair<const char*, const BarVerdict*> bars[] = {
+        {"do_no_harm", &r.harm}, {"beat_voxel_route", &r.voxel}, {"denoise", &r.denoise}, {"detection", &r.detection}};
+    for (const auto& [name, bar] : bars) row[name] = std::string(to_string(bar->state));
+    rows.push_back(row);
+  }
+  return rows;
 }
 
 int run_compare(const CompareArgs& a) {
@@ -146,78 +217,98 @@ int run_compare(const CompareArgs& a) {
   if (a.repeat < 1) throw InvalidInputError("--repeat must be >= 1");
   if (!(a.feature_radius > 0.0)) throw InvalidInputError("--feature-radius must be > 0 mm");
   if (!(a.detection_radius > 0.0)) throw InvalidInputError("--detection-radius must be > 0 mm");
+  if (a.iterations < 1) throw InvalidInputError("--iterations must be >= 1");
   (void)parse_render_size(a.render_size);
   if (a.color_levels < 2 || a.color_levels > 256) throw InvalidInputError("--color-levels must be in [2, 256]");
-
-  // What to compare: phantoms (one or all) or one volume.
-  std::vector<PhantomShape> shapes;
-  if (a.input.empty()) {
-    const std::string name = a.phantom.empty() ? "femur" : a.phantom;
-    if (name == "all")
-      shapes = all_phantom_shapes();
-    else
-      shapes.push_back(parse_phantom_shape(name));
-  }
-  const bool several = shapes.size() > 1;
-  PhantomVolumeOptions volume_options;
-  volume_options.spacing = parse_spacing(a.spacing);
-  volume_options.noise = a.noise;
-  volume_options.blur = a.blur;
-  volume_options.seed = a.seed;
-  if (!(a.noise >= 0.0)) throw InvalidInputError("--noise must be a sigma >= 0 in HU");
   if (!(a.blur >= 0.0)) throw InvalidInputError("--blur must be a sigma >= 0 in mm");
 
-  // Outputs are checked before the work.
-  const fs::path out(a.out);
-  prepare_directory(out);
-  for (PhantomShape s : shapes) {
-    if (several) prepare_directory(out / std::string(to_string(s)));
-  }
-  if (!a.markdown.empty()) check_output_path(a.markdown);
-
+  const Plan plan = make_plan(a);
   ComparisonOptions options;
-  options.feature_radius = a.feature_radius;
+  options.metrics.feature_radius = a.feature_radius;
   options.detection_radius = a.detection_radius;
   options.timing_repeats = a.repeat;
-  options.volume_curves = !a.no_curves;
   options.reconstruction.tiling.limits.max_vertices = a.max_vertices;
-  options.paper.limits.max_vertices = a.max_vertices;
+  options.limits.max_vertices = a.max_vertices;
+  options.methods.iterations = a.iterations;
+  options.methods.only = split_list(a.methods);
+  for (const std::string& v : a.variants) options.methods.variants.push_back(parse_variant(v));
+  const std::vector<MethodSpec> table = method_table(options.methods);  // bad names: exit 2 before the work
   ComparisonReportOptions report;
   report.renders = !a.no_render;
   std::tie(report.render_width, report.render_height) = parse_render_size(a.render_size);
   report.color_levels = a.color_levels;
+  report.render_methods = split_list(a.render_methods);
+  for (const std::string& id : report.render_methods) {
+    if (std::none_of(table.begin(), table.end(), [&](const MethodSpec& s) { return s.id == id; })) {
+      throw InvalidInputError("--render-methods: '" + id + "' is not a method of this comparison");
+    }
+  }
+  report.isolate = [](const std::function<void()>& render) { return run_isolated("rendering", render); };
   report.command_line = command_line(a);
   report.note = a.note;
+
+  // Outputs are checked before the work: one directory per regime (when several) and object (when several).
+  const fs::path out(a.out);
+  const bool several_regimes = plan.regimes.size() > 1, several_shapes = plan.shapes.size() > 1;
+  const auto directory = [&](const Regime& regime, const std::string& name) {
+    fs::path d = out;
+    if (several_regimes) d /= regime.name;
+    if (several_shapes) d /= name;
+    return d;
+  };
+  prepare_directory(out);
+  for (const Regime& r : plan.regimes) {
+    for (PhantomShape s : plan.shapes) prepare_directory(directory(r, std::string(to_string(s))));
+  }
+  if (!a.markdown.empty()) check_output_path(a.markdown);
 
   ProgressDisplay progress("compare", a.common.quiet);
   options.progress = progress.callback();
 
-  // Each comparison is kept for the summary.
-  std::vector<std::unique_ptr<Comparison>> comparisons;
-  std::vector<ComparisonEntry> entries;
-  const auto compare_one = [&](const std::string& name, const CtImage& image, const std::string& source,
-                               const ComparisonTruth& truth, const fs::path& dir) {
-    auto c = std::make_unique<Comparison>(run_comparison(image, source, truth, options));
+  std::vector<std::unique_ptr<Series>> series;
+  std::vector<SeriesEntry> entries;
+  const auto finish_series = [&](Series s, const fs::path& dir) {
     progress.stage("write");
-    ComparisonFiles files = write_comparison(*c, dir, report);
+    ComparisonFiles files = write_series(s, dir, report);
     progress.finish();
-    entries.push_back({name, dir, c.get(), std::move(files)});
-    comparisons.push_back(std::move(c));
+    // The meshes are in the files now; the summary and the Markdown page need the numbers only.
+    for (Comparison& run : s.runs) {
+      for (MethodResult& m : run.methods) {
+        m.mesh = {};
+        m.vertex_labels.clear();
+      }
+    }
+    series.push_back(std::make_unique<Series>(std::move(s)));
+    entries.push_back({series.back().get(), dir, std::move(files)});
   };
 
   if (a.input.empty()) {
-    for (PhantomShape shape : shapes) {
+    PhantomVolumeOptions volume;
+    volume.spacing = parse_spacing(a.spacing);
+    volume.blur = a.blur;
+    for (PhantomShape shape : plan.shapes) {
       const std::string name(to_string(shape));
       progress.stage("phantom");
       const Phantom phantom = make_phantom(shape);
-      const CtImage::Pointer image = render_phantom(phantom, volume_options);
-      std::ostringstream source;
-      source << "phantom '" << name << "' (" << volume_options.spacing.x() << " x " << volume_options.spacing.y()
-             << " x " << volume_options.spacing.z() << " mm voxels, " << volume_options.noise << " HU noise, "
-             << volume_options.blur << " mm blur, seed " << volume_options.seed << ")";
-      options.reconstruction.segmentation.threshold =
-          a.threshold.value_or(0.5 * (volume_options.bone_hu + volume_options.tissue_hu));
-      compare_one(name, *image, source.str(), phantom_truth(phantom), several ? out / name : out);
+      const ComparisonTruth truth = phantom_truth(phantom);  // once per phantom, for every regime and seed
+      options.reconstruction.segmentation.threshold = a.threshold.value_or(0.5 * (volume.bone_hu + volume.tissue_hu));
+      for (const Regime& regime : plan.regimes) {
+        apply_regime(regime, volume);
+        std::vector<Comparison> runs;
+        for (std::size_t k = 0; k < plan.seeds.size(); ++k) {
+          volume.seed = plan.seeds[k];
+          progress.stage("phantom");
+          const CtImage::Pointer image = render_phantom(phantom, volume);
+          std::ostringstream source;
+          source << "phantom '" << name << "' (" << volume.spacing.x() << " x " << volume.spacing.y() << " x "
+                 << volume.spacing.z() << " mm voxels, " << regime.ct_noise_hu << " HU noise, ";
+          if (regime.contour()) source << regime.contour_noise_mm << " mm contour noise, ";
+          source << volume.blur << " mm blur, seed " << volume.seed << ")";
+          options.volume_curves = !a.no_curves && k == 0;  // the plot shows the first seed's
+          runs.push_back(run_comparison(*image, source.str(), truth, options));
+        }
+        finish_series(make_series(name, regime, plan.seeds, std::move(runs)), directory(regime, name));
+      }
     }
   } else {
     std::optional<Mesh> reference;
@@ -229,34 +320,42 @@ int run_compare(const CompareArgs& a) {
     progress.stage("read");
     const CtImage::Pointer image = read_volume(a.input);
     options.reconstruction.segmentation.threshold = a.threshold.value_or(300.0);
+    options.volume_curves = !a.no_curves;
     const ComparisonTruth truth =
         reference ? reference_surface_truth(*reference, "reference surface " + a.truth) : ComparisonTruth{};
-    compare_one(fs::path(a.input).filename().string(), *image, a.input, truth, out);
+    std::vector<Comparison> runs;
+    runs.push_back(run_comparison(*image, a.input, truth, options));
+    finish_series(make_series(fs::path(a.input).filename().string(), plan.regimes.front(), {}, std::move(runs)), out);
   }
 
   std::vector<fs::path> summary_files;
-  if (several) summary_files = write_comparison_summary(entries, out, report);
-  if (!a.markdown.empty()) write_comparison_markdown(entries, a.markdown, report);
+  if (entries.size() > 1) summary_files = write_summary(entries, out, report);
+  if (!a.markdown.empty()) write_markdown(entries, a.markdown, report);
+  std::vector<const Series*> all;
+  for (const auto& s : series) all.push_back(s.get());
+  const Verdicts verdicts = judge(all);
 
   if (a.json) {
     nlohmann::json j;
     j["command"] = "compare";
     j["output"] = a.out;
     nlohmann::json list = nlohmann::json::array();
-    for (const ComparisonEntry& e : entries) {
+    for (const SeriesEntry& e : entries) {
       nlohmann::json item;
-      item["name"] = e.name;
+      item["name"] = e.series->name;
+      item["regime"] = e.series->regime.name;
       item["directory"] = e.directory.string();
       item["rendered"] = e.files.rendered;
       item["render_note"] = e.files.render_note;
       nlohmann::json files = nlohmann::json::array();
       for (const fs::path& f : e.files.files) files.push_back(f.string());
       item["files"] = files;
-      item["metrics"] = nlohmann::json::parse(metrics_json(*e.comparison));
+      item["metrics"] = nlohmann::json::parse(std::ifstream(e.directory / "metrics.json"));
       list.push_back(item);
     }
     j["comparisons"] = list;
-    if (several) {
+    j["verdicts"] = verdicts_json(verdicts);
+    if (!summary_files.empty()) {
       nlohmann::json files = nlohmann::json::array();
       for (const fs::path& f : summary_files) files.push_back(f.string());
       j["summary_files"] = files;
@@ -267,10 +366,15 @@ int run_compare(const CompareArgs& a) {
     return kOk;
   }
   if (a.common.quiet) return kOk;
-  for (const ComparisonEntry& e : entries) print_summary(e.name, *e.comparison, e.files, e.directory);
-  if (several) std::cout << "summary: " << (out / "report.html").string() << "\n";
+  for (const SeriesEntry& e : entries) print_summary(*e.series, e.files, e.directory);
+  for (const BarTotal& t : verdicts.totals) {
+    std::cout << "verdict " << t.bar << " (" << t.regime << "): " << t.passed << " of " << t.rows << " pass"
+              << (t.required > 0 ? ", " + std::to_string(t.original_passed) + " of the 7 original phantoms" : "")
+              << (t.met() ? ": met" : ": missed") << "\n";
+  }
+  if (!summary_files.empty()) std::cout << "summary: " << (out / "report.html").string() << "\n";
   if (!a.markdown.empty()) std::cout << "markdown: " << a.markdown << "\n";
-  std::cout << std::setprecision(1) << "total " << seconds_since(start) << " s\n";
+  std::cout << std::setprecision(1) << std::fixed << "total " << seconds_since(start) << " s\n";
   return kOk;
 }
 
@@ -280,14 +384,14 @@ void add_compare_command(CLI::App& app) {
   auto args = std::make_shared<CompareArgs>();
   CLI::App* cmd = app.add_subcommand(
       "compare",
-      "Every smoothing method, VTK's filters and 3D Slicer's voxel route on one volume, measured against the truth: "
-      "metrics.csv/json, volume curves, renders, report.html");
+      "Every smoothing method, VTK's filters and 3D Slicer's voxel route on one volume, measured against the truth "
+      "over the surface, in noise regimes and over seeds: metrics.csv/json, volume curves, renders, verdicts, "
+      "report.html");
   CLI::Option* input =
       cmd->add_option("input", args->input, "CT volume or DICOM directory (default: the phantom --phantom)");
   CLI::Option* phantom = cmd->add_option("--phantom", args->phantom,
-                                         "Phantom to compare on, or 'all' (one subdirectory each, plus a summary): "
-                                         "ridge-box | femur | pelvis | skull | branch | two-objects | cavity | all "
-                                         "(default femur)");
+                                         "Phantom to compare on, or 'all' (one subdirectory each, plus a summary; "
+                                         "see `contourmesh phantom --help` for the names; default femur)");
   CLI::Option* truth = cmd->add_option("--truth", args->truth,
                                        "With an input volume: reference surface mesh to measure distances against");
   phantom->excludes(input);
@@ -296,23 +400,43 @@ void add_compare_command(CLI::App& app) {
   cmd->add_option("-o,--out", args->out, "Output directory (created if missing)")->required();
   cmd->add_option("--markdown", args->markdown, "Also write a Markdown page of the results (links relative to it)");
   cmd->add_option("--note", args->note, "A paragraph to add under the title of the reports");
+  CLI::Option* regimes = cmd->add_option(
+      "--regimes", args->regimes,
+      "Noise regimes, comma-separated: ct<HU> (CT noise), contour<MM> (per-slice contour noise at 20 HU), "
+      "contour<MM>-ct<HU>, or all = ct20,ct60,contour0.4 (default for --phantom all; otherwise ct<--noise>)");
+  CLI::Option* seeds =
+      cmd->add_option("--seeds", args->seeds, "Noise seeds, e.g. 1-3 or 1,4,7: numbers are means over them");
   cmd->add_option("--spacing", args->spacing, "Phantom voxel size, mm: sx,sy,sz")->capture_default_str();
-  cmd->add_option("--noise", args->noise, "Phantom Gaussian noise, HU")->capture_default_str();
+  cmd->add_option("--noise", args->noise, "Phantom Gaussian noise, HU (one regime)")
+      ->capture_default_str()
+      ->excludes(regimes);
   cmd->add_option("--blur", args->blur, "Phantom Gaussian blur, mm")->capture_default_str();
-  cmd->add_option("--seed", args->seed, "Phantom noise seed")->capture_default_str();
+  cmd->add_option("--seed", args->seed, "Phantom noise seed (one run)")->capture_default_str()->excludes(seeds);
   cmd->add_option("--threshold", args->threshold,
                   "Bone threshold of both routes, HU (default: 520 for a phantom, 300 for an input volume)");
   cmd->add_option("--feature-radius", args->feature_radius,
-                  "Phantom: vertices this close to a sharp edge or corner form the feature region, mm")
+                  "Phantom: the surface this close to a sharp edge or corner is the feature region, mm")
       ->capture_default_str();
   cmd->add_option("--detection-radius", args->detection_radius,
-                  "Phantom: vertices this close to a sharp edge or corner are the true features that detection is "
-                  "scored against, mm")
+                  "Phantom: contour-mesh vertices this close to a sharp edge or corner are the true features that "
+                  "labels are scored against, mm")
       ->capture_default_str();
+  cmd->add_option("--iterations", args->iterations,
+                  "Iterations of every iterative method (the default, the baselines, VTK's filters on the contour "
+                  "mesh); the xu2006 preset keeps its 40, the voxel route 3D Slicer's 20")
+      ->capture_default_str();
+  cmd->add_option("--methods", args->methods,
+                  "Run only these methods, comma-separated ids (none, laplacian, taubin, mcf, mindist, paper, "
+                  "cross-slice, vtk-windowed-sinc, vtk-smooth-feature-edges, voxel-flying-edges, voxel-windowed-sinc)");
+  cmd->add_option("--variant", args->variants,
+                  "Also run a variant, NAME:key=value,... (repeatable): method=M or preset=P, then that method's "
+                  "options, e.g. no-along:stages=across-only or reach4:reach=4 (docs/cli.md lists the keys)");
   cmd->add_option("--repeat", args->repeat, "Time each method this many times and report the fastest")
       ->capture_default_str();
   cmd->add_option("--render-size", args->render_size, "Size of the renders in pixels, WIDTHxHEIGHT")
       ->capture_default_str();
+  cmd->add_option("--render-methods", args->render_methods,
+                  "Render only these methods (comma-separated ids; default: every method)");
   cmd->add_option("--color-levels", args->color_levels,
                   "Levels per colour channel in the renders (2-256): 32 halves the PNG files")
       ->capture_default_str();
