@@ -36,6 +36,25 @@ ContourFrame make_contour_frame(const Mesh& mesh) {
   if (heights.empty() || edges == 0) {
     throw InvalidInputError("cross-slice smoothing: no contour continues into an adjacent slice");
   }
+  f.above.assign(static_cast<std::size_t>(n), -1);
+  f.below.assign(static_cast<std::size_t>(n), -1);
+  for (Index i = 0; i < n; ++i) {
+    if (!f.is_contour_vertex(i)) continue;
+    for (const bool upward : {true, false}) {
+      double best = std::numeric_limits<double>::infinity();
+      Index pick = -1;
+      for (Index j : upward ? f.rings.above(i) : f.rings.below(i)) {
+        if (!f.is_contour_vertex(j)) continue;
+        const Eigen::Vector3d d = mesh.positions.col(j) - mesh.positions.col(i);
+        const double in_plane = (d - d.dot(f.axis) * f.axis).squaredNorm();
+        if (in_plane < best) {
+          best = in_plane;
+          pick = j;
+        }
+      }
+      (upward ? f.above : f.below)[static_cast<std::size_t>(i)] = pick;
+    }
+  }
   std::nth_element(heights.begin(), heights.begin() + static_cast<std::ptrdiff_t>(heights.size() / 2), heights.end());
   f.slice_spacing = heights[heights.size() / 2];
   f.point_spacing = edge_sum / static_cast<double>(edges);
@@ -143,6 +162,7 @@ void cross_slice_profile(const ContourFrame& f, const Eigen::Matrix3Xd& x, Index
     const auto add = [&](Index j) {
       if (starts < kMaxStarts) start[static_cast<std::size_t>(starts++)] = j;
     };
+    const std::vector<Index>& next = upward ? f.above : f.below;
     next_slice(f, i, upward, add);
     for (int k = 1; k <= reach && starts > 0; ++k) {
       Eigen::Vector3d cut = Eigen::Vector3d::Zero();
@@ -154,9 +174,12 @@ void cross_slice_profile(const ContourFrame& f, const Eigen::Matrix3Xd& x, Index
       const int c = count[static_cast<std::size_t>(dir)]++;
       s[static_cast<std::size_t>(2 * c)] = r.dot(f.axis) / f.slice_spacing;
       s[static_cast<std::size_t>(2 * c + 1)] = r.dot(m);
+      // The next cut starts from the nearest neighbours of the cut edge's ends in the next slice.
       starts = 0;
-      next_slice(f, edge_a, upward, add);
-      next_slice(f, edge_b, upward, add);
+      for (Index e : {edge_a, edge_b}) {
+        const Index j = next[static_cast<std::size_t>(e)];
+        if (j >= 0 && (starts == 0 || start[0] != j)) add(j);
+      }
     }
   }
   out.clear();

@@ -25,6 +25,9 @@ struct ContourFrame {
   double slice_spacing = 1.0;                       ///< median height of the edges between slices
   double point_spacing = 1.0;                       ///< mean length of the contour edges
   std::vector<std::uint8_t> on_contour;             ///< 1: a slice id and two contour neighbours
+  /// Per contour vertex, the contour vertex of the slice above (below) joined to it that is nearest
+  /// in the slice plane, or -1: where a profile starts looking for its next cut.
+  std::vector<Index> above, below;
 
   [[nodiscard]] bool is_contour_vertex(Index i) const { return on_contour[static_cast<std::size_t>(i)] != 0; }
 };
