@@ -5,9 +5,23 @@
 
 #include <memory>
 #include <string>
+#include <unordered_map>
 #include <utility>
 
 namespace contourmesh {
+
+namespace {
+
+// Hash of a point's exact coordinates.
+struct PointHash {
+  std::size_t operator()(const Eigen::Vector3d& p) const {
+    std::size_t h = 0;
+    for (int a = 0; a < 3; ++a) h = h * 1000003u ^ std::hash<double>{}(p[a]);
+    return h;
+  }
+};
+
+}  // namespace
 
 std::string_view to_string(TruthKind kind) {
   switch (kind) {
@@ -31,9 +45,20 @@ ComparisonTruth phantom_truth(const Phantom& phantom, double spacing, double mar
   if (!phantom.feature_points.empty()) {
     Eigen::Matrix3Xd points(3, static_cast<Index>(phantom.feature_points.size()));
     for (std::size_t k = 0; k < phantom.feature_points.size(); ++k) points.col(static_cast<Index>(k)) = phantom.feature_points[k];
-    // Built once; the lambda shares it with every copy of the truth.
+    // Built once; the lambda shares it with every copy of the truth. Every measured mesh asks for the
+    // feature distance of every truth sample again: those are looked up (exact coordinates), not searched.
     const auto locator = std::make_shared<const PointLocator>(points);
-    surface->feature_distance = [locator](const Eigen::Vector3d& p) { return locator->distance(p); };
+    auto known = std::make_shared<std::unordered_map<Eigen::Vector3d, double, PointHash>>();
+    known->reserve(static_cast<std::size_t>(surface->samples.size()));
+    for (Index k = 0; k < surface->samples.size(); ++k) {
+      const Eigen::Vector3d p = surface->samples.points.col(k);
+      known->emplace(p, locator->distance(p));
+    }
+    surface->feature_distance = [locator, known = std::shared_ptr<const decltype(known)::element_type>(known)](
+                                    const Eigen::Vector3d& p) {
+      const auto it = known->find(p);
+      return it != known->end() ? it->second : locator->distance(p);
+    };
   }
   ComparisonTruth t;
   t.kind = TruthKind::Phantom;
