@@ -211,49 +211,176 @@ nlohmann::json verdicts_json(const Verdicts& v) {
   return rows;
 }
 
-int run_compare(const CompareArgs& a) {
-  const auto start = std::chrono::steady_clock::now();
-  apply_common_options(a.common);
+// The options of the comparison and of its reports, checked before any work (exit 2).
+struct Setup {
+  Plan plan;
+  ComparisonOptions options;
+  ComparisonReportOptions report;
+};
+
+Setup make_setup(const CompareArgs& a) {
   if (a.repeat < 1) throw InvalidInputError("--repeat must be >= 1");
   if (!(a.feature_radius > 0.0)) throw InvalidInputError("--feature-radius must be > 0 mm");
   if (!(a.detection_radius > 0.0)) throw InvalidInputError("--detection-radius must be > 0 mm");
   if (a.iterations < 1) throw InvalidInputError("--iterations must be >= 1");
-  (void)parse_render_size(a.render_size);
   if (a.color_levels < 2 || a.color_levels > 256) throw InvalidInputError("--color-levels must be in [2, 256]");
   if (!(a.blur >= 0.0)) throw InvalidInputError("--blur must be a sigma >= 0 in mm");
-
-  const Plan plan = make_plan(a);
-  ComparisonOptions options;
-  options.metrics.feature_radius = a.feature_radius;
-  options.detection_radius = a.detection_radius;
-  options.timing_repeats = a.repeat;
-  options.reconstruction.tiling.limits.max_vertices = a.max_vertices;
-  options.limits.max_vertices = a.max_vertices;
-  options.methods.iterations = a.iterations;
-  options.methods.only = split_list(a.methods);
-  for (const std::string& v : a.variants) options.methods.variants.push_back(parse_variant(v));
-  const std::vector<MethodSpec> table = method_table(options.methods);  // bad names: exit 2 before the work
-  ComparisonReportOptions report;
-  report.renders = !a.no_render;
-  std::tie(report.render_width, report.render_height) = parse_render_size(a.render_size);
-  report.color_levels = a.color_levels;
-  report.render_methods = split_list(a.render_methods);
-  for (const std::string& id : report.render_methods) {
-    if (std::none_of(table.begin(), table.end(), [&](const MethodSpec& s) { return s.id == id; })) {
+  Setup s;
+  s.plan = make_plan(a);
+  ComparisonOptions& o = s.options;
+  o.metrics.feature_radius = a.feature_radius;
+  o.detection_radius = a.detection_radius;
+  o.timing_repeats = a.repeat;
+  o.reconstruction.tiling.limits.max_vertices = a.max_vertices;
+  o.limits.max_vertices = a.max_vertices;
+  o.methods.iterations = a.iterations;
+  o.methods.only = split_list(a.methods);
+  for (const std::string& v : a.variants) o.methods.variants.push_back(parse_variant(v));
+  const std::vector<MethodSpec> table = method_table(o.methods);  // unknown names and bad settings throw here
+  ComparisonReportOptions& r = s.report;
+  r.renders = !a.no_render;
+  std::tie(r.render_width, r.render_height) = parse_render_size(a.render_size);
+  r.color_levels = a.color_levels;
+  r.render_methods = split_list(a.render_methods);
+  for (const std::string& id : r.render_methods) {
+    if (std::none_of(table.begin(), table.end(), [&](const MethodSpec& m) { return m.id == id; })) {
       throw InvalidInputError("--render-methods: '" + id + "' is not a method of this comparison");
     }
   }
-  report.isolate = [](const std::function<void()>& render) { return run_isolated("rendering", render); };
-  report.command_line = command_line(a);
-  report.note = a.note;
+  r.isolate = [](const std::function<void()>& render) { return run_isolated("rendering", render); };
+  r.command_line = command_line(a);
+  r.note = a.note;
+  return s;
+}
+
+// The series written so far, kept for the summary (numbers only: the meshes are dropped once written).
+class Results {
+ public:
+  Results(const ComparisonReportOptions& report, ProgressDisplay& progress) : report_(report), progress_(progress) {}
+
+  void add(Series s, const fs::path& dir) {
+    progress_.stage("write");
+    ComparisonFiles files = write_series(s, dir, report_);
+    progress_.finish();
+    for (Comparison& run : s.runs) {
+      for (MethodResult& m : run.methods) {
+        m.mesh = {};
+        m.vertex_labels.clear();
+      }
+    }
+    series_.push_back(std::make_unique<Series>(std::move(s)));
+    entries_.push_back({series_.back().get(), dir, std::move(files)});
+  }
+  [[nodiscard]] const std::vector<SeriesEntry>& entries() const { return entries_; }
+  [[nodiscard]] std::vector<const Series*> series() const {
+    std::vector<const Series*> all;
+    for (const auto& s : series_) all.push_back(s.get());
+    return all;
+  }
+
+ private:
+  const ComparisonReportOptions& report_;
+  ProgressDisplay& progress_;
+  std::vector<std::unique_ptr<Series>> series_;
+  std::vector<SeriesEntry> entries_;
+};
+
+// Every phantom of the plan in every regime, once per seed; the truth of a phantom is built once.
+void run_phantoms(const CompareArgs& a, const Setup& setup, ComparisonOptions options, ProgressDisplay& progress,
+                  const std::function<fs::path(const Regime&, const std::string&)>& directory, Results& results) {
+  const Plan& plan = setup.plan;
+  PhantomVolumeOptions volume;
+  volume.spacing = parse_spacing(a.spacing);
+  volume.blur = a.blur;
+  for (PhantomShape shape : plan.shapes) {
+    const std::string name(to_string(shape));
+    progress.stage("phantom");
+    const Phantom phantom = make_phantom(shape);
+    const ComparisonTruth truth = phantom_truth(phantom);
+    options.reconstruction.segmentation.threshold = a.threshold.value_or(0.5 * (volume.bone_hu + volume.tissue_hu));
+    for (const Regime& regime : plan.regimes) {
+      apply_regime(regime, volume);
+      std::vector<Comparison> runs;
+      for (std::size_t k = 0; k < plan.seeds.size(); ++k) {
+        volume.seed = plan.seeds[k];
+        progress.stage("phantom");
+        const CtImage::Pointer image = render_phantom(phantom, volume);
+        std::ostringstream source;
+        source << "phantom '" << name << "' (" << volume.spacing.x() << " x " << volume.spacing.y() << " x "
+               << volume.spacing.z() << " mm voxels, " << regime.ct_noise_hu << " HU noise, ";
+        if (regime.contour()) source << regime.contour_noise_mm << " mm contour noise, ";
+        source << volume.blur << " mm blur, seed " << volume.seed << ")";
+        options.volume_curves = !a.no_curves && k == 0;  // the plot shows the first seed's
+        runs.push_back(run_comparison(*image, source.str(), truth, options));
+      }
+      results.add(make_series(name, regime, plan.seeds, std::move(runs)), directory(regime, name));
+    }
+  }
+}
+
+// One input volume, against a reference surface or no truth.
+void run_volume(const CompareArgs& a, const Setup& setup, ComparisonOptions options, ProgressDisplay& progress,
+                const fs::path& out, Results& results) {
+  std::optional<Mesh> reference;
+  if (!a.truth.empty()) {
+    MeshReadOptions ro;
+    ro.max_vertices = a.max_vertices;
+    reference = read_mesh(a.truth, ro);
+  }
+  progress.stage("read");
+  const CtImage::Pointer image = read_volume(a.input);
+  options.reconstruction.segmentation.threshold = a.threshold.value_or(300.0);
+  options.volume_curves = !a.no_curves;
+  const ComparisonTruth truth =
+      reference ? reference_surface_truth(*reference, "reference surface " + a.truth) : ComparisonTruth{};
+  std::vector<Comparison> runs;
+  runs.push_back(run_comparison(*image, a.input, truth, options));
+  results.add(make_series(fs::path(a.input).filename().string(), setup.plan.regimes.front(), {}, std::move(runs)), out);
+}
+
+void print_json_result(const CompareArgs& a, const Results& results, const Verdicts& verdicts,
+                       const std::vector<fs::path>& summary_files, double seconds) {
+  nlohmann::json j;
+  j["command"] = "compare";
+  j["output"] = a.out;
+  nlohmann::json list = nlohmann::json::array();
+  for (const SeriesEntry& e : results.entries()) {
+    nlohmann::json item;
+    item["name"] = e.series->name;
+    item["regime"] = e.series->regime.name;
+    item["directory"] = e.directory.string();
+    item["rendered"] = e.files.rendered;
+    item["render_note"] = e.files.render_note;
+    nlohmann::json files = nlohmann::json::array();
+    for (const fs::path& f : e.files.files) files.push_back(f.string());
+    item["files"] = files;
+    item["metrics"] = nlohmann::json::parse(std::ifstream(e.directory / "metrics.json"));
+    list.push_back(item);
+  }
+  j["comparisons"] = list;
+  j["verdicts"] = verdicts_json(verdicts);
+  if (!summary_files.empty()) {
+    nlohmann::json files = nlohmann::json::array();
+    for (const fs::path& f : summary_files) files.push_back(f.string());
+    j["summary_files"] = files;
+  }
+  if (!a.markdown.empty()) j["markdown"] = a.markdown;
+  j["seconds"] = seconds;
+  print_json(j);
+}
+
+int run_compare(const CompareArgs& a) {
+  const auto start = std::chrono::steady_clock::now();
+  apply_common_options(a.common);
+  Setup setup = make_setup(a);
+  const Plan& plan = setup.plan;
 
   // Outputs are checked before the work: one directory per regime (when several) and object (when several).
   const fs::path out(a.out);
-  const bool several_regimes = plan.regimes.size() > 1, several_shapes = plan.shapes.size() > 1;
   const auto directory = [&](const Regime& regime, const std::string& name) {
     fs::path d = out;
-    if (several_regimes) d /= regime.name;
-    if (several_shapes) d /= name;
+    if (plan.regimes.size() > 1) d /= regime.name;
+    if (plan.shapes.size() > 1) d /= name;
     return d;
   };
   prepare_directory(out);
@@ -263,110 +390,24 @@ int run_compare(const CompareArgs& a) {
   if (!a.markdown.empty()) check_output_path(a.markdown);
 
   ProgressDisplay progress("compare", a.common.quiet);
-  options.progress = progress.callback();
-
-  std::vector<std::unique_ptr<Series>> series;
-  std::vector<SeriesEntry> entries;
-  const auto finish_series = [&](Series s, const fs::path& dir) {
-    progress.stage("write");
-    ComparisonFiles files = write_series(s, dir, report);
-    progress.finish();
-    // The meshes are in the files now; the summary and the Markdown page need the numbers only.
-    for (Comparison& run : s.runs) {
-      for (MethodResult& m : run.methods) {
-        m.mesh = {};
-        m.vertex_labels.clear();
-      }
-    }
-    series.push_back(std::make_unique<Series>(std::move(s)));
-    entries.push_back({series.back().get(), dir, std::move(files)});
-  };
-
+  setup.options.progress = progress.callback();
+  Results results(setup.report, progress);
   if (a.input.empty()) {
-    PhantomVolumeOptions volume;
-    volume.spacing = parse_spacing(a.spacing);
-    volume.blur = a.blur;
-    for (PhantomShape shape : plan.shapes) {
-      const std::string name(to_string(shape));
-      progress.stage("phantom");
-      const Phantom phantom = make_phantom(shape);
-      const ComparisonTruth truth = phantom_truth(phantom);  // once per phantom, for every regime and seed
-      options.reconstruction.segmentation.threshold = a.threshold.value_or(0.5 * (volume.bone_hu + volume.tissue_hu));
-      for (const Regime& regime : plan.regimes) {
-        apply_regime(regime, volume);
-        std::vector<Comparison> runs;
-        for (std::size_t k = 0; k < plan.seeds.size(); ++k) {
-          volume.seed = plan.seeds[k];
-          progress.stage("phantom");
-          const CtImage::Pointer image = render_phantom(phantom, volume);
-          std::ostringstream source;
-          source << "phantom '" << name << "' (" << volume.spacing.x() << " x " << volume.spacing.y() << " x "
-                 << volume.spacing.z() << " mm voxels, " << regime.ct_noise_hu << " HU noise, ";
-          if (regime.contour()) source << regime.contour_noise_mm << " mm contour noise, ";
-          source << volume.blur << " mm blur, seed " << volume.seed << ")";
-          options.volume_curves = !a.no_curves && k == 0;  // the plot shows the first seed's
-          runs.push_back(run_comparison(*image, source.str(), truth, options));
-        }
-        finish_series(make_series(name, regime, plan.seeds, std::move(runs)), directory(regime, name));
-      }
-    }
+    run_phantoms(a, setup, setup.options, progress, directory, results);
   } else {
-    std::optional<Mesh> reference;
-    if (!a.truth.empty()) {
-      MeshReadOptions ro;
-      ro.max_vertices = a.max_vertices;
-      reference = read_mesh(a.truth, ro);
-    }
-    progress.stage("read");
-    const CtImage::Pointer image = read_volume(a.input);
-    options.reconstruction.segmentation.threshold = a.threshold.value_or(300.0);
-    options.volume_curves = !a.no_curves;
-    const ComparisonTruth truth =
-        reference ? reference_surface_truth(*reference, "reference surface " + a.truth) : ComparisonTruth{};
-    std::vector<Comparison> runs;
-    runs.push_back(run_comparison(*image, a.input, truth, options));
-    finish_series(make_series(fs::path(a.input).filename().string(), plan.regimes.front(), {}, std::move(runs)), out);
+    run_volume(a, setup, setup.options, progress, out, results);
   }
 
   std::vector<fs::path> summary_files;
-  if (entries.size() > 1) summary_files = write_summary(entries, out, report);
-  if (!a.markdown.empty()) write_markdown(entries, a.markdown, report);
-  std::vector<const Series*> all;
-  for (const auto& s : series) all.push_back(s.get());
-  const Verdicts verdicts = judge(all);
-
+  if (results.entries().size() > 1) summary_files = write_summary(results.entries(), out, setup.report);
+  if (!a.markdown.empty()) write_markdown(results.entries(), a.markdown, setup.report);
+  const Verdicts verdicts = judge(results.series());
   if (a.json) {
-    nlohmann::json j;
-    j["command"] = "compare";
-    j["output"] = a.out;
-    nlohmann::json list = nlohmann::json::array();
-    for (const SeriesEntry& e : entries) {
-      nlohmann::json item;
-      item["name"] = e.series->name;
-      item["regime"] = e.series->regime.name;
-      item["directory"] = e.directory.string();
-      item["rendered"] = e.files.rendered;
-      item["render_note"] = e.files.render_note;
-      nlohmann::json files = nlohmann::json::array();
-      for (const fs::path& f : e.files.files) files.push_back(f.string());
-      item["files"] = files;
-      item["metrics"] = nlohmann::json::parse(std::ifstream(e.directory / "metrics.json"));
-      list.push_back(item);
-    }
-    j["comparisons"] = list;
-    j["verdicts"] = verdicts_json(verdicts);
-    if (!summary_files.empty()) {
-      nlohmann::json files = nlohmann::json::array();
-      for (const fs::path& f : summary_files) files.push_back(f.string());
-      j["summary_files"] = files;
-    }
-    if (!a.markdown.empty()) j["markdown"] = a.markdown;
-    j["seconds"] = seconds_since(start);
-    print_json(j);
+    print_json_result(a, results, verdicts, summary_files, seconds_since(start));
     return kOk;
   }
   if (a.common.quiet) return kOk;
-  for (const SeriesEntry& e : entries) print_summary(*e.series, e.files, e.directory);
+  for (const SeriesEntry& e : results.entries()) print_summary(*e.series, e.files, e.directory);
   for (const BarTotal& t : verdicts.totals) {
     std::cout << "verdict " << t.bar << " (" << t.regime << "): " << t.passed << " of " << t.rows << " pass"
               << (t.required > 0 ? ", " + std::to_string(t.original_passed) + " of the 7 original phantoms" : "")

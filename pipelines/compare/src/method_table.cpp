@@ -251,11 +251,11 @@ std::vector<std::string> standard_method_ids() {
   return ids;
 }
 
-std::vector<MethodSpec> method_table(const MethodTableOptions& o) {
-  check(o);
-  const int n = o.iterations;
-  std::vector<MethodSpec> rows;
-  // libsmooth's baselines at the shared iteration count.
+namespace {
+
+// libsmooth's baselines at the shared iteration count, then the two presets: the paper's method as the
+// paper configures it (its own 40 iterations, said in its title) and the default.
+void add_library_rows(std::vector<MethodSpec>& rows, int n) {
   const auto baseline = [&](SmoothingMethod m, const char* title, std::array<double, 3> colour) {
     SmoothOptions options;
     if (m != SmoothingMethod::None) options.iterations = n;
@@ -267,21 +267,21 @@ std::vector<MethodSpec> method_table(const MethodTableOptions& o) {
   baseline(SmoothingMethod::Taubin, "Taubin", {0.17, 0.63, 0.17});
   baseline(SmoothingMethod::MeanCurvatureFlow, "mean curvature flow", {0.58, 0.40, 0.74});
   baseline(SmoothingMethod::MinDistFlow, "MIN-DIST flow", {0.55, 0.34, 0.29});
-  {
-    // The paper's method as the paper configures it: its own 40 iterations, said in the title.
-    const MethodConfig xu = preset(Preset::Xu2006);
-    const int its = iterations_of(xu.method, xu.options);
-    rows.push_back(library_row(xu.method, xu.options, std::string(to_string(xu.method)),
-                               "the paper's method (xu2006 preset, " + std::to_string(its) + " iterations)",
-                               "paper (xu2006, " + std::to_string(its) + " its)", {0.84, 0.15, 0.16}, "xu2006"));
-  }
-  {
-    MethodConfig d = preset(Preset::Default);
-    d.options.iterations = n;  // used only if the method has an iteration count
-    rows.push_back(library_row(d.method, d.options, std::string(to_string(d.method)),
-                               std::string(to_string(d.method)) + " smoothing (the default)",
-                               std::string(to_string(d.method)) + " (default)", {0.80, 0.0, 0.80}, "default"));
-  }
+  const MethodConfig xu = preset(Preset::Xu2006);
+  const int its = iterations_of(xu.method, xu.options);
+  rows.push_back(library_row(xu.method, xu.options, std::string(to_string(xu.method)),
+                             "the paper's method (xu2006 preset, " + std::to_string(its) + " iterations)",
+                             "paper (xu2006, " + std::to_string(its) + " its)", {0.84, 0.15, 0.16}, "xu2006"));
+  MethodConfig d = preset(Preset::Default);
+  d.options.iterations = n;  // used only if the method has an iteration count
+  const std::string name(to_string(d.method));
+  rows.push_back(library_row(d.method, d.options, name, name + " smoothing (the default)", name + " (default)",
+                             {0.80, 0.0, 0.80}, "default"));
+}
+
+// VTK's two filters on the contour mesh at the shared count, and 3D Slicer's voxel route.
+void add_external_rows(std::vector<MethodSpec>& rows, const MethodTableOptions& o) {
+  const int n = o.iterations;
   std::ostringstream sinc;
   sinc << "3D Slicer's settings: " << n << " iterations, passband " << o.sinc_passband
        << ", normalized coordinates, no boundary or feature-edge smoothing";
@@ -295,48 +295,47 @@ std::vector<MethodSpec> method_table(const MethodTableOptions& o) {
   rows.push_back(external_row(ExternalMethod::VtkSmoothFeatureEdges, "vtkSmoothPolyDataFilter + feature edges",
                               "vtkSmoothPolyData + features", {0.09, 0.75, 0.81}, Route::Contour, laplace.str(),
                               [n, o](const MethodContext& ctx) { return run_vtk_smooth(ctx, n, o); }));
-  rows.push_back(external_row(
-      ExternalMethod::VoxelFlyingEdges, "voxel route: flying edges", "voxel route, unsmoothed", {0.3, 0.3, 0.3},
-      Route::Voxel,
-      "threshold (islands and holes under the contour route's speck size removed and filled), "
-      "vtkDiscreteFlyingEdges3D on the padded binary image, unsmoothed",
-      [o](const MethodContext& ctx) {
-        return run_voxel(ctx, false, o.voxel_sinc_iterations, o.sinc_passband,
-                         std::string(to_string(ExternalMethod::VoxelFlyingEdges)));
-      }));
-  std::ostringstream voxel;
-  voxel << "3D Slicer's voxel route: threshold, islands and holes removed, vtkDiscreteFlyingEdges3D, "
-        << "vtkWindowedSincPolyDataFilter (" << o.voxel_sinc_iterations << " iterations, passband " << o.sinc_passband
-        << ")";
+  const auto voxel = [o](bool smoothed, ExternalMethod m) {
+    return [o, smoothed, m](const MethodContext& ctx) {
+      return run_voxel(ctx, smoothed, o.voxel_sinc_iterations, o.sinc_passband, std::string(to_string(m)));
+    };
+  };
+  rows.push_back(external_row(ExternalMethod::VoxelFlyingEdges, "voxel route: flying edges", "voxel route, unsmoothed",
+                              {0.3, 0.3, 0.3}, Route::Voxel,
+                              "threshold (islands and holes under the contour route's speck size removed and filled), "
+                              "vtkDiscreteFlyingEdges3D on the padded binary image, unsmoothed",
+                              voxel(false, ExternalMethod::VoxelFlyingEdges)));
+  std::ostringstream slicer;
+  slicer << "3D Slicer's voxel route: threshold, islands and holes removed, vtkDiscreteFlyingEdges3D, "
+         << "vtkWindowedSincPolyDataFilter (" << o.voxel_sinc_iterations << " iterations, passband " << o.sinc_passband
+         << ")";
   rows.push_back(external_row(ExternalMethod::VoxelWindowedSinc, "voxel route: flying edges + windowed sinc (3D Slicer)",
-                              "voxel route (3D Slicer)", {0.74, 0.74, 0.13}, Route::Voxel, voxel.str(),
-                              [o](const MethodContext& ctx) {
-                                return run_voxel(ctx, true, o.voxel_sinc_iterations, o.sinc_passband,
-                                                 std::string(to_string(ExternalMethod::VoxelWindowedSinc)));
-                              }));
+                              "voxel route (3D Slicer)", {0.74, 0.74, 0.13}, Route::Voxel, slicer.str(),
+                              voxel(true, ExternalMethod::VoxelWindowedSinc)));
+}
 
-  std::set<std::string> ids;  // every standard id, run or not: a variant may not take one
-  for (const MethodSpec& s : rows) ids.insert(s.id);
-  if (!o.only.empty()) {
-    for (const std::string& id : o.only) {
-      if (std::none_of(rows.begin(), rows.end(), [&](const MethodSpec& s) { return s.id == id; })) {
-        std::string known;
-        for (const MethodSpec& s : rows) known += (known.empty() ? "" : ", ") + s.id;
-        throw InvalidInputError("comparison: unknown method '" + id + "' (the methods are " + known + ")");
-      }
+// Keeps the rows named in `only` (all when it is empty); throws for a name that is not a row's.
+void keep_only(std::vector<MethodSpec>& rows, const std::vector<std::string>& only) {
+  if (only.empty()) return;
+  for (const std::string& id : only) {
+    if (std::none_of(rows.begin(), rows.end(), [&](const MethodSpec& s) { return s.id == id; })) {
+      std::string known;
+      for (const MethodSpec& s : rows) known += (known.empty() ? "" : ", ") + s.id;
+      throw InvalidInputError("comparison: unknown method '" + id + "' (the methods are " + known + ")");
     }
-    std::erase_if(rows, [&](const MethodSpec& s) {
-      return std::find(o.only.begin(), o.only.end(), s.id) == o.only.end();
-    });
   }
+  std::erase_if(rows, [&](const MethodSpec& s) { return std::find(only.begin(), only.end(), s.id) == only.end(); });
+}
 
+// The variants, after the standard rows; `taken` holds the ids in use.
+void add_variant_rows(std::vector<MethodSpec>& rows, const MethodTableOptions& o, std::set<std::string> taken) {
   std::size_t colour = 0;
   for (const MethodVariant& v : o.variants) {
-    if (!ids.insert(v.id).second) {
+    if (!taken.insert(v.id).second) {
       throw InvalidInputError("comparison: the variant name '" + v.id + "' is already a method's or another variant's");
     }
     SmoothOptions options = v.options;
-    if (v.preset != "xu2006" && !options.iterations) options.iterations = n;  // the shared count
+    if (v.preset != "xu2006" && !options.iterations) options.iterations = o.iterations;  // the shared count
     MethodSpec s = library_row(v.method, options, v.id, v.id, v.id, kVariantColours[colour++ % kVariantColours.size()],
                                v.preset);
     s.settings = std::string(to_string(v.method)) + (v.preset.empty() ? "" : " (" + v.preset + " preset)") + " with " +
@@ -344,6 +343,19 @@ std::vector<MethodSpec> method_table(const MethodTableOptions& o) {
     s.variant = true;
     rows.push_back(std::move(s));
   }
+}
+
+}  // namespace
+
+std::vector<MethodSpec> method_table(const MethodTableOptions& o) {
+  check(o);
+  std::vector<MethodSpec> rows;
+  add_library_rows(rows, o.iterations);
+  add_external_rows(rows, o);
+  std::set<std::string> ids;  // every standard id, run or not: a variant may not take one
+  for (const MethodSpec& s : rows) ids.insert(s.id);
+  keep_only(rows, o.only);
+  add_variant_rows(rows, o, std::move(ids));
   return rows;
 }
 
