@@ -9,15 +9,18 @@
 #include <filesystem>
 #include <string>
 
+#include <unistd.h>
+
 namespace contourmesh::test {
 
-/// A fresh directory named after the running test, removed at scope exit.
+/// A fresh directory named after the running test and the process, removed at scope exit (the process id
+/// keeps two build trees' test runs on one machine out of each other's way).
 class ScopedTempDir {
  public:
   explicit ScopedTempDir(const std::string& prefix)
       : path_(std::filesystem::temp_directory_path() /
               (prefix + "_" + ::testing::UnitTest::GetInstance()->current_test_info()->test_suite_name() + "_" +
-               ::testing::UnitTest::GetInstance()->current_test_info()->name())) {
+               ::testing::UnitTest::GetInstance()->current_test_info()->name() + "_" + std::to_string(::getpid()))) {
     std::filesystem::remove_all(path_);
     std::filesystem::create_directories(path_);
   }

@@ -1,5 +1,6 @@
 #include "cli_common.h"
 
+#include <reconstruct/phantom.h>
 #include <smooth/errors.h>
 
 #include <CLI/CLI.hpp>
@@ -86,6 +87,27 @@ void add_max_vertices_option(CLI::App* command, Index& max_vertices) {
                    "Refuse meshes (read or produced) with more vertices than this, before allocating them")
       ->check(CLI::Range(1, std::numeric_limits<Index>::max()))
       ->capture_default_str();
+}
+
+CLI::Option* add_contour_noise_option(CLI::App* command, double& contour_noise) {
+  return command
+      ->add_option("--contour-noise", contour_noise,
+                   "Phantom contour noise: RMS in mm of each slice's own random displacement of its contours "
+                   "(waves of centimetres plus bumps of a few mm; the paper's noise model), 0 to 10")
+      ->capture_default_str();
+}
+
+void check_contour_noise(double contour_noise) {
+  if (!std::isfinite(contour_noise) || contour_noise < 0.0 || contour_noise > kMaxContourNoise) {
+    throw InvalidInputError("--contour-noise must be an RMS in [0, " + std::to_string(static_cast<int>(kMaxContourNoise)) +
+                            "] mm");
+  }
+}
+
+std::string phantom_shape_names(const std::string& separator) {
+  std::string names;
+  for (PhantomShape s : all_phantom_shapes()) names += (names.empty() ? "" : separator) + std::string(to_string(s));
+  return names;
 }
 
 double seconds_since(std::chrono::steady_clock::time_point start) {

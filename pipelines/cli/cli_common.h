@@ -12,6 +12,7 @@
 
 namespace CLI {
 class App;
+class Option;
 }
 
 namespace contourmesh::cli {
@@ -43,6 +44,15 @@ void print_json(const nlohmann::json& json);
 /// Registers --max-vertices N on `command`: meshes read or produced with more vertices are refused
 /// (exit 2) before the memory is allocated. Default kDefaultMaxVertices.
 void add_max_vertices_option(CLI::App* command, Index& max_vertices);
+
+/// Registers --contour-noise MM on `command` (per-slice contour noise of a phantom, default 0).
+CLI::Option* add_contour_noise_option(CLI::App* command, double& contour_noise);
+
+/// Throws InvalidInputError unless `contour_noise` is a finite RMS in [0, kMaxContourNoise] mm.
+void check_contour_noise(double contour_noise);
+
+/// The built-in phantoms' names joined by `separator`, in PhantomShape order.
+[[nodiscard]] std::string phantom_shape_names(const std::string& separator);
 
 /// Seconds since `start`.
 double seconds_since(std::chrono::steady_clock::time_point start);

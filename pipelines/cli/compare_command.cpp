@@ -49,6 +49,7 @@ struct CompareArgs {
   std::string note;
   std::string spacing = "0.7,0.7,2";
   double noise = 20.0;
+  double contour_noise = 0.0;
   double blur = 0.5;
   std::uint64_t seed = 1;
   std::string seeds;
@@ -84,6 +85,7 @@ std::string command_line(const CompareArgs& a) {
     if (!a.seeds.empty()) s << " --seeds " << a.seeds;
     if (a.spacing != "0.7,0.7,2") s << " --spacing " << a.spacing;
     if (a.noise != 20.0) s << " --noise " << a.noise;
+    if (a.contour_noise != 0.0) s << " --contour-noise " << a.contour_noise;
     if (a.blur != 0.5) s << " --blur " << a.blur;
     if (a.seed != 1) s << " --seed " << a.seed;
   }
@@ -190,8 +192,11 @@ Plan make_plan(const CompareArgs& a) {
   } else if (name == "all") {
     p.regimes = default_regimes();
   } else {
+    // One regime from --noise and --contour-noise.
     if (!(a.noise >= 0.0)) throw InvalidInputError("--noise must be a sigma >= 0 in HU");
+    check_contour_noise(a.contour_noise);
     std::ostringstream regime;
+    if (a.contour_noise > 0.0) regime << "contour" << a.contour_noise << "-";
     regime << "ct" << a.noise;
     p.regimes = {parse_regime(regime.str())};
   }
@@ -431,8 +436,8 @@ void add_compare_command(CLI::App& app) {
   CLI::Option* input =
       cmd->add_option("input", args->input, "CT volume or DICOM directory (default: the phantom --phantom)");
   CLI::Option* phantom = cmd->add_option("--phantom", args->phantom,
-                                         "Phantom to compare on, or 'all' (one subdirectory each, plus a summary; "
-                                         "see `contourmesh phantom --help` for the names; default femur)");
+                                         "Phantom to compare on, or 'all' (one subdirectory each, plus a summary): " +
+                                             phantom_shape_names(" | ") + " | all (default femur)");
   CLI::Option* truth = cmd->add_option("--truth", args->truth,
                                        "With an input volume: reference surface mesh to measure distances against");
   phantom->excludes(input);
@@ -451,6 +456,7 @@ void add_compare_command(CLI::App& app) {
   cmd->add_option("--noise", args->noise, "Phantom Gaussian noise, HU (one regime)")
       ->capture_default_str()
       ->excludes(regimes);
+  add_contour_noise_option(cmd, args->contour_noise)->excludes(input)->excludes(regimes);
   cmd->add_option("--blur", args->blur, "Phantom Gaussian blur, mm")->capture_default_str();
   cmd->add_option("--seed", args->seed, "Phantom noise seed (one run)")->capture_default_str()->excludes(seeds);
   cmd->add_option("--threshold", args->threshold,

@@ -34,6 +34,7 @@ struct PhantomArgs {
   std::string output;
   std::string spacing = "0.7,0.7,2";
   double noise = 20.0;
+  double contour_noise = 0.0;
   double blur = 0.5;
   std::uint64_t seed = 1;
   double margin = PhantomVolumeOptions{}.margin;
@@ -62,9 +63,11 @@ int run_phantom(const PhantomArgs& a) {
   PhantomVolumeOptions options;
   options.spacing = parse_spacing(a.spacing);
   if (!std::isfinite(a.noise) || a.noise < 0.0) throw InvalidInputError("--noise must be a sigma >= 0 in HU");
+  check_contour_noise(a.contour_noise);
   if (!std::isfinite(a.blur) || a.blur < 0.0) throw InvalidInputError("--blur must be a sigma >= 0 in mm");
   if (!std::isfinite(a.margin) || a.margin < 0.0) throw InvalidInputError("--margin must be >= 0 mm");
   options.noise = a.noise;
+  options.contour_noise = a.contour_noise;
   options.blur = a.blur;
   options.seed = a.seed;
   options.margin = a.margin;
@@ -88,6 +91,7 @@ int run_phantom(const PhantomArgs& a) {
     j["bone_hu"] = options.bone_hu;
     j["tissue_hu"] = options.tissue_hu;
     j["noise"] = options.noise;
+    j["contour_noise"] = options.contour_noise;
     j["blur"] = options.blur;
     j["seed"] = options.seed;
     j["solid_volume_mm3"] = phantom.volume;
@@ -102,7 +106,9 @@ int run_phantom(const PhantomArgs& a) {
     if (a.common.quiet) return kOk;
     std::cout << std::setprecision(6) << "phantom " << to_string(shape) << ": " << size[0] << " x " << size[1] << " x "
               << size[2] << " voxels of " << options.spacing.x() << " x " << options.spacing.y() << " x "
-              << options.spacing.z() << " mm, noise " << options.noise << " HU, blur " << options.blur << " mm, seed "
+              << options.spacing.z() << " mm, noise " << options.noise << " HU, ";
+    if (options.contour_noise > 0.0) std::cout << "contour noise " << options.contour_noise << " mm, ";
+    std::cout << "blur " << options.blur << " mm, seed "
               << options.seed << "\n"
               << "  solid volume " << phantom.volume << " mm^3, " << phantom.surface_components << " surface"
               << (phantom.surface_components == 1 ? "" : "s") << ", Euler characteristic "
@@ -116,14 +122,14 @@ int run_phantom(const PhantomArgs& a) {
 
 void add_phantom_command(CLI::App& app) {
   auto args = std::make_shared<PhantomArgs>();
-  std::string shapes;
-  for (PhantomShape s : all_phantom_shapes()) shapes += (shapes.empty() ? "" : " | ") + std::string(to_string(s));
+  const std::string shapes = phantom_shape_names(" | ");
   CLI::App* cmd = app.add_subcommand("phantom", "Write a synthetic CT volume (HU) of a built-in phantom");
   cmd->add_option("--shape", args->shape, shapes)->required();
   cmd->add_option("-o,--output", args->output, "Output volume: .mha, .nrrd, .nii or .nii.gz")->required();
   cmd->add_option("--spacing", args->spacing, "Voxel size in mm: sx,sy,sz (z is the slice axis)")
       ->capture_default_str();
   cmd->add_option("--noise", args->noise, "Gaussian noise sigma in HU (>= 0)")->capture_default_str();
+  add_contour_noise_option(cmd, args->contour_noise);
   cmd->add_option("--blur", args->blur, "Gaussian blur sigma in mm (>= 0; partial-volume / scanner PSF)")
       ->capture_default_str();
   cmd->add_option("--seed", args->seed, "Noise seed (>= 0): the same seed gives the same volume")

@@ -37,6 +37,7 @@ struct RunArgs {
   std::string shape = "femur";
   std::string spacing = "0.7,0.7,2";
   double noise = 20.0;
+  double contour_noise = 0.0;
   double blur = 0.5;
   std::uint64_t seed = 1;
   std::optional<double> threshold;
@@ -69,6 +70,7 @@ int run_run(const RunArgs& a) {
     }
   }
   if (!(a.feature_radius > 0.0)) throw InvalidInputError("--feature-radius must be > 0 mm");
+  check_contour_noise(a.contour_noise);
   apply_common_options(a.common);
   ProgressDisplay progress("run", a.common.quiet);
   // The default output goes to out/: create the directory, then check it can take the file.
@@ -95,11 +97,14 @@ int run_run(const RunArgs& a) {
     PhantomVolumeOptions vo;
     vo.spacing = parse_spacing(a.spacing);
     vo.noise = a.noise;
+    vo.contour_noise = a.contour_noise;
     vo.blur = a.blur;
     vo.seed = a.seed;
     image = render_phantom(*phantom, vo);
     std::ostringstream s;
-    s << "phantom '" << a.shape << "' (" << vo.noise << " HU noise, " << vo.blur << " mm blur)";
+    s << "phantom '" << a.shape << "' (" << vo.noise << " HU noise, ";
+    if (vo.contour_noise > 0.0) s << vo.contour_noise << " mm contour noise, ";
+    s << vo.blur << " mm blur)";
     source = s.str();
   } else {
     image = read_volume(a.input);
@@ -248,18 +253,19 @@ void add_run_command(CLI::App& app) {
   auto args = std::make_shared<RunArgs>();
   CLI::App* cmd = app.add_subcommand(
       "run", "The whole pipeline: volume (or a built-in phantom) -> contours -> mesh -> smoothing -> file");
-  cmd->add_option("input", args->input, "CT volume or DICOM directory; none: the built-in phantom --shape");
+  CLI::Option* input =
+      cmd->add_option("input", args->input, "CT volume or DICOM directory; none: the built-in phantom --shape");
   cmd->add_option("-o,--output", args->output, "Output mesh (.stl .ply .vtp .obj); format from the extension unless --format")
       ->capture_default_str();
   cmd->add_option("--format", args->format, "Output format: auto | stl | stl-ascii | ply | vtp | obj")
       ->capture_default_str();
   cmd->add_option("--labels-out", args->labels_out,
                   "paper, cross-slice: also write the reconstructed mesh with per-vertex labels and curvatures (.vtp or .ply)");
-  cmd->add_option("--shape", args->shape, "Phantom when no input: ridge-box | femur | pelvis | skull | branch | "
-                                          "two-objects | cavity")
+  cmd->add_option("--shape", args->shape, "Phantom when no input: " + phantom_shape_names(" | "))
       ->capture_default_str();
   cmd->add_option("--spacing", args->spacing, "Phantom voxel size, mm: sx,sy,sz")->capture_default_str();
   cmd->add_option("--noise", args->noise, "Phantom Gaussian noise, HU")->capture_default_str();
+  add_contour_noise_option(cmd, args->contour_noise)->excludes(input);
   cmd->add_option("--blur", args->blur, "Phantom Gaussian blur, mm")->capture_default_str();
   cmd->add_option("--seed", args->seed, "Phantom noise seed")->capture_default_str();
   cmd->add_option("--threshold", args->threshold,

@@ -21,6 +21,8 @@
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
+#include <iterator>
+#include <string>
 
 #include "test_support.h"
 
@@ -302,6 +304,32 @@ TEST_F(Cli, PhantomThenReconstructGivesAClosedMeshWithIds) {
   const Mesh m = read_mesh(mesh);
   EXPECT_TRUE(m.has_contour_ids());
   EXPECT_EQ(m.num_vertices(), j["vertices"].get<int>());
+}
+
+// --contour-noise reaches the volume on phantom and run, is range-checked (exit 2), and is refused
+// next to an input volume (exit 1), which it could not change.
+TEST_F(Cli, ContourNoiseOption) {
+  const fs::path clean = dir_ / "clean.mha", noisy = dir_ / "noisy.mha";
+  const std::string common = " --shape ridge-box --spacing 1.5,1.5,3 --noise 0 --blur 0 --json";
+  ASSERT_EQ(run_cli("phantom -o " + clean.string() + common, dir_).code, 0);
+  const CliRun r = run_cli("phantom -o " + noisy.string() + common + " --contour-noise 0.5", dir_);
+  ASSERT_EQ(r.code, 0) << r.err;
+  EXPECT_EQ(nlohmann::json::parse(r.out)["contour_noise"], 0.5);
+  std::ifstream a(clean, std::ios::binary), b(noisy, std::ios::binary);
+  const std::string bytes_a((std::istreambuf_iterator<char>(a)), {}), bytes_b((std::istreambuf_iterator<char>(b)), {});
+  EXPECT_NE(bytes_a, bytes_b);
+  for (const char* bad : {"-0.1", "11", "nan"}) {
+    const CliRun e = run_cli("phantom -o " + noisy.string() + common + " --contour-noise " + bad, dir_);
+    EXPECT_EQ(e.code, 2) << bad;
+    EXPECT_NE(e.err.find("--contour-noise"), std::string::npos) << e.err;
+  }
+  const CliRun run = run_cli("run -o " + (dir_ / "box.stl").string() +
+                                 " --shape ridge-box --spacing 1.5,1.5,3 --contour-noise 0.4 --method none",
+                             dir_);
+  ASSERT_EQ(run.code, 0) << run.err;
+  EXPECT_NE(run.out.find("0.4 mm contour noise"), std::string::npos) << run.out;
+  EXPECT_EQ(run_cli("run " + clean.string() + " -o x.stl --contour-noise 0.4", dir_).code, 1);
+  EXPECT_EQ(run_cli("compare " + clean.string() + " --out cmp --contour-noise 0.4", dir_).code, 1);
 }
 
 TEST_F(Cli, ReconstructRejectsBadVolumesWithExitTwo) {

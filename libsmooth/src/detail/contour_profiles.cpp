@@ -58,6 +58,7 @@ ContourFrame make_contour_frame(const Mesh& mesh) {
   std::nth_element(heights.begin(), heights.begin() + static_cast<std::ptrdiff_t>(heights.size() / 2), heights.end());
   f.slice_spacing = heights[heights.size() / 2];
   f.point_spacing = edge_sum / static_cast<double>(edges);
+  f.edges = SliceEdgeGrid(mesh, f.contour, f.on_contour, f.axis, 2.0 * f.point_spacing);
   if (!(f.slice_spacing > 0.0) || !(f.point_spacing > 0.0)) {
     throw InvalidInputError("cross-slice smoothing: the slices or the contour points are not apart");
   }
@@ -145,12 +146,14 @@ bool cut_contour(const ContourFrame& f, const Eigen::Matrix3Xd& x, const Index* 
 
 }  // namespace
 
-void cross_slice_profile(const ContourFrame& f, const Eigen::Matrix3Xd& x, Index i, const Eigen::Vector3d& m, int reach,
-                         Profile& out) {
+void cross_slice_profile(const ContourFrame& f, const Eigen::Matrix3Xd& x, const Eigen::Matrix3Xd& normals, Index i,
+                         const Eigen::Vector3d& m, int reach, Profile& out) {
   constexpr int kMaxStarts = 16;
   const Eigen::Vector3d v = x.col(i);
   const Eigen::Vector3d plane_normal = f.axis.cross(m);
   const double max_offset = 6.0 * f.slice_spacing;
+  const double search_radius = 1.5 * f.slice_spacing;
+  const std::int32_t own_slice = f.mesh->slice_ids[static_cast<std::size_t>(i)];
   std::array<Index, kMaxStarts> start{};
   // Samples of each side, nearest first; written out in increasing height at the end (no sort).
   std::array<std::array<double, 2 * kMaxProfile>, 2> side{};
@@ -164,16 +167,25 @@ void cross_slice_profile(const ContourFrame& f, const Eigen::Matrix3Xd& x, Index
     };
     const std::vector<Index>& next = upward ? f.above : f.below;
     next_slice(f, i, upward, add);
-    for (int k = 1; k <= reach && starts > 0; ++k) {
+    Eigen::Vector3d previous = v;
+    for (int k = 1; k <= reach; ++k) {
       Eigen::Vector3d cut = Eigen::Vector3d::Zero();
       Index edge_a = -1, edge_b = -1;
-      if (!cut_contour(f, x, start.data(), starts, v, plane_normal, cut, edge_a, edge_b)) break;
+      if (starts == 0 || !cut_contour(f, x, start.data(), starts, v, plane_normal, cut, edge_a, edge_b)) {
+        EdgeCut found;
+        const std::int32_t slice = own_slice + (upward ? k : -k);
+        if (!f.edges.cut(slice, x, normals, v, plane_normal, previous, m, search_radius, found)) break;
+        cut = found.point;
+        edge_a = found.a;
+        edge_b = found.b;
+      }
       const Eigen::Vector3d r = cut - v;
       if ((r - r.dot(f.axis) * f.axis).squaredNorm() > max_offset * max_offset) break;
       auto& s = side[static_cast<std::size_t>(dir)];
       const int c = count[static_cast<std::size_t>(dir)]++;
       s[static_cast<std::size_t>(2 * c)] = r.dot(f.axis) / f.slice_spacing;
       s[static_cast<std::size_t>(2 * c + 1)] = r.dot(m);
+      previous = cut;
       // The next cut starts from the nearest neighbours of the cut edge's ends in the next slice.
       starts = 0;
       for (Index e : {edge_a, edge_b}) {
@@ -244,7 +256,7 @@ double profile_noise(const ContourFrame& f, const Eigen::Matrix3Xd& x, const Eig
   for (Index i = 0; i < x.cols(); i += std::max<Index>(stride, 1)) {
     if (!f.is_contour_vertex(i) || !in_slice_normal(f, normals.col(i), m)) continue;
     if (across) {
-      cross_slice_profile(f, x, i, m, 2, p);
+      cross_slice_profile(f, x, normals, i, m, 2, p);
     } else {
       along_contour_profile(f, x, i, m, 2, p);
     }

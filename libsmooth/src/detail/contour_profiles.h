@@ -4,6 +4,7 @@
 #pragma once
 
 #include "detail/lpa_ici.h"
+#include "detail/slice_edge_grid.h"
 #include "smooth/adjacency.h"
 #include "smooth/contour_structure.h"
 #include "smooth/mesh.h"
@@ -28,6 +29,8 @@ struct ContourFrame {
   /// Per contour vertex, the contour vertex of the slice above (below) joined to it that is nearest
   /// in the slice plane, or -1: where a profile starts looking for its next cut.
   std::vector<Index> above, below;
+  /// The contour edges of every slice, for cuts where the connectivity does not lead to the next slice.
+  SliceEdgeGrid edges;
 
   [[nodiscard]] bool is_contour_vertex(Index i) const { return on_contour[static_cast<std::size_t>(i)] != 0; }
 };
@@ -40,11 +43,13 @@ struct ContourFrame {
 [[nodiscard]] bool in_slice_normal(const ContourFrame& frame, const Eigen::Vector3d& surface_normal,
                                    Eigen::Vector3d& m);
 
-/// The profile across the slices of contour vertex i on `positions`: samples (height along the axis
-/// in slice spacings, offset along m), up to `reach` slices each way, through the plane at v_i with
-/// normal axis x m. Stops at a slice where the plane misses the corresponding contour (ends, branchings).
-void cross_slice_profile(const ContourFrame& frame, const Eigen::Matrix3Xd& positions, Index i,
-                         const Eigen::Vector3d& m, int reach, Profile& out);
+/// The profile across the slices of contour vertex i on `positions` (with vertex normals `normals`):
+/// samples (height along the axis in slice spacings, offset along m), up to `reach` slices each way,
+/// through the plane at v_i with normal axis x m. Each cut is looked for along the mesh from the
+/// previous one, and where the mesh does not lead there (a branching, a cap), among the next slice's
+/// contour edges facing the same way within three slice spacings. Stops at a slice without such a cut.
+void cross_slice_profile(const ContourFrame& frame, const Eigen::Matrix3Xd& positions, const Eigen::Matrix3Xd& normals,
+                         Index i, const Eigen::Vector3d& m, int reach, Profile& out);
 
 /// The profile along contour vertex i's own contour: samples (signed arc length in point spacings,
 /// offset along m) of up to `reach` vertices each way (fewer on short contours).

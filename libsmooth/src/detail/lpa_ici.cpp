@@ -62,6 +62,8 @@ bool fit_parabola(const Moments& m, double& value, double& variance) {
   return std::isfinite(value) && variance > 0.0;
 }
 
+// Least-squares line through the window, evaluated at 0. On a window symmetric about 0 this is the mean
+// (variance 1 / n), and unlike the mean it follows a sloped profile without bias.
 bool fit_mean(const Moments& m, double& value, double& variance) {
   if (m.distinct < 1) return false;
   value = m.t[0] / m.s[0];
@@ -69,8 +71,17 @@ bool fit_mean(const Moments& m, double& value, double& variance) {
   return true;
 }
 
-// The window kinds: below (x <= 0), above (x >= 0), symmetric parabola, symmetric mean.
-enum Kind { kBelow = 0, kAbove = 1, kSymmetric = 2, kMean = 3, kKinds = 4 };
+bool fit_line(const Moments& m, double& value, double& variance) {
+  if (m.distinct < 2) return false;
+  const double det = m.s[0] * m.s[2] - m.s[1] * m.s[1];
+  if (!(det > 1e-9 * std::max(m.s[0] * m.s[2], 1e-300))) return false;
+  value = (m.s[2] * m.t[0] - m.s[1] * m.t[1]) / det;
+  variance = m.s[2] / det;
+  return std::isfinite(value);
+}
+
+// The window kinds: below (x <= 0), above (x >= 0), and over both sides a parabola, a line, the mean.
+enum Kind { kBelow = 0, kAbove = 1, kSymmetric = 2, kLine = 3, kMean = 4, kKinds = 5 };
 
 // The ICI state of one window kind.
 struct Grown {
@@ -133,7 +144,10 @@ LpaIciResult lpa_ici(const Profile& p, const LpaIciOptions& o) {
     if (added_up && !g[kAbove].stopped && fit_parabola(above, value, variance)) g[kAbove].offer(value, variance, h, o);
     if (added_down || added_up) {
       if (!g[kSymmetric].stopped && fit_parabola(both, value, variance)) g[kSymmetric].offer(value, variance, h, o);
-      if (o.symmetric_mean && !g[kMean].stopped && fit_mean(both, value, variance)) g[kMean].offer(value, variance, h, o);
+      if (o.symmetric_mean) {
+        if (!g[kLine].stopped && fit_line(both, value, variance)) g[kLine].offer(value, variance, h, o);
+        if (!g[kMean].stopped && fit_mean(both, value, variance)) g[kMean].offer(value, variance, h, o);
+      }
     }
     const bool more = lo >= 0 || hi < p.size;
     if (!more) break;
@@ -141,12 +155,21 @@ LpaIciResult lpa_ici(const Profile& p, const LpaIciOptions& o) {
     for (const Grown& k : g) all_stopped = all_stopped && k.stopped;
     if (all_stopped) break;
   }
-  // The mean replaces the symmetric parabola where it agrees with it and is more precise.
+  // The line or the mean (whichever is more precise) replaces the parabola where it agrees with it: a
+  // straight profile, or a flat one seen from one side near a profile's end (lower variance than the
+  // line on a lopsided window).
   Grown symmetric = g[kSymmetric];
-  const Grown& mean = g[kMean];
-  if (mean.variance > 0.0 && symmetric.variance > 0.0 && mean.variance < symmetric.variance &&
-      std::abs(mean.value - symmetric.value) <= o.gamma * o.sigma * std::sqrt(symmetric.variance)) {
-    symmetric = mean;
+  if (symmetric.variance > 0.0) {
+    const double tolerance = o.gamma * o.sigma * std::sqrt(symmetric.variance);
+    const Grown* best = nullptr;
+    for (const Grown* simpler : std::array<const Grown*, 2>{&g[kLine], &g[kMean]}) {
+      if (simpler->variance > 0.0 && simpler->variance < symmetric.variance &&
+          std::abs(simpler->value - symmetric.value) <= tolerance &&
+          (best == nullptr || simpler->variance < best->variance)) {
+        best = simpler;
+      }
+    }
+    if (best != nullptr) symmetric = *best;
   }
   double num = 0.0, den = 0.0;
   for (const Grown* k : std::array<const Grown*, 3>{&g[kBelow], &g[kAbove], &symmetric}) {

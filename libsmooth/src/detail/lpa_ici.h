@@ -39,8 +39,8 @@ struct LpaIciOptions {
   double sigma = 0.0;  ///< noise standard deviation of y
   double gamma = 2.0;  ///< confidence-interval width, in standard deviations
   int max_half_width = 8;  ///< largest window half-width, in x units
-  /// Add the window mean (degree 0) over symmetric windows, which replaces the symmetric quadratic
-  /// when it agrees with it within gamma of the quadratic's deviation (straight profiles).
+  /// Add a line (degree 1) over the two-sided windows, which replaces the parabola when it agrees
+  /// with it within gamma of the parabola's deviation (straight profiles: a third of its variance).
   bool symmetric_mean = true;
 };
 
@@ -56,7 +56,7 @@ struct LpaIciResult {
 
 /// Estimates y(0) from `profile`, which must hold a sample at x = 0 (returns it unchanged otherwise).
 /// One-sided windows fit parabolas (their estimate at the window's end is biased by third-order terms
-/// only), symmetric windows a parabola and, optionally, the mean.
+/// only), two-sided windows a parabola and, optionally, a line.
 [[nodiscard]] LpaIciResult lpa_ici(const Profile& profile, const LpaIciOptions& options);
 
 }  // namespace contourmesh::detail

@@ -65,10 +65,7 @@ std::vector<Regime> default_regimes() {
 
 void apply_regime(const Regime& regime, PhantomVolumeOptions& volume) {
   volume.noise = regime.ct_noise_hu;
-  // TODO(merge of the phantoms branch): volume.contour_noise = regime.contour_noise_mm;
-  if (regime.contour_noise_mm > 0.0) {
-    throw InvalidInputError("regime " + regime.name + ": contour noise needs PhantomVolumeOptions::contour_noise");
-  }
+  volume.contour_noise = regime.contour_noise_mm;
 }
 
 std::vector<std::uint64_t> parse_seeds(std::string_view text) {

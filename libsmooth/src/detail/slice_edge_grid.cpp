@@ -1,0 +1,121 @@
+#include "detail/slice_edge_grid.h"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+
+namespace contourmesh::detail {
+
+SliceEdgeGrid::SliceEdgeGrid(const Mesh& mesh, const ContourNeighbours& contour,
+                             const std::vector<std::uint8_t>& on_contour, const Eigen::Vector3d& axis, double cell)
+    : cell_(std::max(cell, 1e-9)) {
+  e1_ = axis.unitOrthogonal();
+  e2_ = axis.cross(e1_);
+  const Index n = mesh.num_vertices();
+  std::int32_t lo = std::numeric_limits<std::int32_t>::max(), hi = std::numeric_limits<std::int32_t>::min();
+  for (Index i = 0; i < n; ++i) {
+    if (!on_contour[static_cast<std::size_t>(i)]) continue;
+    for (Index j : contour.of[static_cast<std::size_t>(i)]) {
+      if (j > i && on_contour[static_cast<std::size_t>(j)] && mesh.slice_ids[static_cast<std::size_t>(j)] == mesh.slice_ids[static_cast<std::size_t>(i)]) {
+        edge_a_.push_back(i);
+        edge_b_.push_back(j);
+        lo = std::min(lo, mesh.slice_ids[static_cast<std::size_t>(i)]);
+        hi = std::max(hi, mesh.slice_ids[static_cast<std::size_t>(i)]);
+      }
+    }
+  }
+  if (edge_a_.empty()) return;
+  first_slice_ = lo;
+  slices_.resize(static_cast<std::size_t>(hi - lo + 1));
+  const auto uv = [&](Index v) {
+    return Eigen::Vector2d(mesh.positions.col(v).dot(e1_), mesh.positions.col(v).dot(e2_));
+  };
+  // Bounds per slice, then cell counts, then CSR fill (an edge goes into every cell its box touches).
+  std::vector<Eigen::AlignedBox2d> bounds(slices_.size());
+  for (std::size_t e = 0; e < edge_a_.size(); ++e) {
+    const auto s = static_cast<std::size_t>(mesh.slice_ids[static_cast<std::size_t>(edge_a_[e])] - lo);
+    bounds[s].extend(uv(edge_a_[e]));
+    bounds[s].extend(uv(edge_b_[e]));
+  }
+  for (std::size_t s = 0; s < slices_.size(); ++s) {
+    Slice& sl = slices_[s];
+    if (bounds[s].isEmpty()) continue;
+    sl.u0 = bounds[s].min().x();
+    sl.v0 = bounds[s].min().y();
+    sl.nu = static_cast<std::int64_t>(std::floor(bounds[s].sizes().x() / cell_)) + 1;
+    sl.nv = static_cast<std::int64_t>(std::floor(bounds[s].sizes().y() / cell_)) + 1;
+    sl.start.assign(static_cast<std::size_t>(sl.nu * sl.nv + 1), 0);
+  }
+  const auto cells_of = [&](std::size_t e, auto&& visit) {
+    const auto s = static_cast<std::size_t>(mesh.slice_ids[static_cast<std::size_t>(edge_a_[e])] - lo);
+    const Slice& sl = slices_[s];
+    const Eigen::Vector2d a = uv(edge_a_[e]), b = uv(edge_b_[e]);
+    const auto cu = [&](double u) { return std::clamp<std::int64_t>(static_cast<std::int64_t>(std::floor((u - sl.u0) / cell_)), 0, sl.nu - 1); };
+    const auto cv = [&](double v) { return std::clamp<std::int64_t>(static_cast<std::int64_t>(std::floor((v - sl.v0) / cell_)), 0, sl.nv - 1); };
+    for (std::int64_t y = cv(std::min(a.y(), b.y())); y <= cv(std::max(a.y(), b.y())); ++y) {
+      for (std::int64_t x = cu(std::min(a.x(), b.x())); x <= cu(std::max(a.x(), b.x())); ++x) visit(s, y * sl.nu + x);
+    }
+  };
+  for (std::size_t e = 0; e < edge_a_.size(); ++e) {
+    cells_of(e, [&](std::size_t s, std::int64_t c) { ++slices_[s].start[static_cast<std::size_t>(c) + 1]; });
+  }
+  std::vector<std::vector<std::int64_t>> next(slices_.size());
+  for (std::size_t s = 0; s < slices_.size(); ++s) {
+    Slice& sl = slices_[s];
+    for (std::size_t c = 1; c < sl.start.size(); ++c) sl.start[c] += sl.start[c - 1];
+    sl.edges.resize(sl.start.empty() ? 0 : static_cast<std::size_t>(sl.start.back()));
+    next[s].assign(sl.start.begin(), sl.start.empty() ? sl.start.begin() : sl.start.end() - 1);
+  }
+  for (std::size_t e = 0; e < edge_a_.size(); ++e) {
+    cells_of(e, [&](std::size_t s, std::int64_t c) {
+      slices_[s].edges[static_cast<std::size_t>(next[s][static_cast<std::size_t>(c)]++)] = static_cast<Index>(e);
+    });
+  }
+}
+
+bool SliceEdgeGrid::cut(std::int32_t slice, const Eigen::Matrix3Xd& x, const Eigen::Matrix3Xd& normals,
+                        const Eigen::Vector3d& origin, const Eigen::Vector3d& plane_normal, const Eigen::Vector3d& near,
+                        const Eigen::Vector3d& facing, double radius, EdgeCut& out) const {
+  const std::int64_t s = static_cast<std::int64_t>(slice) - first_slice_;
+  if (s < 0 || s >= static_cast<std::int64_t>(slices_.size())) return false;
+  const Slice& sl = slices_[static_cast<std::size_t>(s)];
+  if (sl.nu == 0) return false;
+  const Eigen::Vector2d q(near.dot(e1_), near.dot(e2_));
+  const std::int64_t cu = static_cast<std::int64_t>(std::floor((q.x() - sl.u0) / cell_));
+  const std::int64_t cv = static_cast<std::int64_t>(std::floor((q.y() - sl.v0) / cell_));
+  const std::int64_t rings = static_cast<std::int64_t>(std::ceil(radius / cell_)) + 1;
+  double best = radius * radius;
+  bool found = false;
+  for (std::int64_t r = 0; r <= rings; ++r) {
+    // Cells at ring r are at least (r - 1) cells from q: nothing closer can follow.
+    const double ring_distance = std::max<double>(0.0, static_cast<double>(r - 1)) * cell_;
+    if (found && ring_distance * ring_distance > best) break;
+    for (std::int64_t y = cv - r; y <= cv + r; ++y) {
+      if (y < 0 || y >= sl.nv) continue;
+      const bool edge_row = y == cv - r || y == cv + r;
+      for (std::int64_t xx = cu - r; xx <= cu + r; xx += (edge_row || r == 0) ? 1 : 2 * r) {
+        if (xx < 0 || xx >= sl.nu) continue;
+        const std::int64_t c = y * sl.nu + xx;
+        for (std::int64_t k = sl.start[static_cast<std::size_t>(c)]; k < sl.start[static_cast<std::size_t>(c) + 1]; ++k) {
+          const Index e = sl.edges[static_cast<std::size_t>(k)];
+          const Index a = edge_a_[static_cast<std::size_t>(e)], b = edge_b_[static_cast<std::size_t>(e)];
+          const double sa = (x.col(a) - origin).dot(plane_normal), sb = (x.col(b) - origin).dot(plane_normal);
+          if ((sa <= 0.0) == (sb <= 0.0)) continue;
+          if ((normals.col(a) + normals.col(b)).dot(facing) <= 0.0) continue;
+          const Eigen::Vector3d p = x.col(a) + (sa / (sa - sb)) * (x.col(b) - x.col(a));
+          const Eigen::Vector2d d(p.dot(e1_) - q.x(), p.dot(e2_) - q.y());
+          if (d.squaredNorm() < best) {
+            best = d.squaredNorm();
+            out.point = p;
+            out.a = a;
+            out.b = b;
+            found = true;
+          }
+        }
+      }
+    }
+  }
+  return found;
+}
+
+}  // namespace contourmesh::detail
