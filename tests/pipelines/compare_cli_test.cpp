@@ -11,6 +11,7 @@
 #include <cmath>
 #include <filesystem>
 #include <fstream>
+#include <sstream>
 #include <string>
 #include <vector>
 
@@ -91,7 +92,7 @@ TEST(CompareCli, RegimesSeedsVariantsAndTheSummary) {
   test::ScopedTempDir tmp("contourmesh_compare");
   const fs::path out = tmp.path() / "out";
   const fs::path md = tmp.path() / "results.md";
-  const CliRun r = run_cli("compare --phantom ridge-box --spacing 2,2,4 --regimes ct20,ct60 --seeds 1-2 --methods "
+  const CliRun r = run_cli("compare --phantom ridge-box --spacing 2,2,4 --regimes ct20,contour0.4 --seeds 1-2 --methods "
                            "none,cross-slice,voxel-windowed-sinc --variant along-off:stages=across-only --no-render "
                            "--no-curves --out " +
                                out.string() + " --markdown " + md.string() + " --json",
@@ -118,13 +119,26 @@ TEST(CompareCli, RegimesSeedsVariantsAndTheSummary) {
   EXPECT_EQ(summary["series"].size(), 2u);
   EXPECT_EQ(summary["verdicts"].size(), 2u);
   EXPECT_FALSE(summary["verdicts"][0]["do_no_harm"].is_null());
-  EXPECT_TRUE(summary["verdicts"][1]["beat_voxel_route"].is_null()) << "ct60: bar 2 does not apply";
+  EXPECT_TRUE(summary["verdicts"][1]["beat_voxel_route"].is_null()) << "contour noise: bar 2 does not apply";
   const std::string page = read_text(md);
-  for (const char* text : {"## Verdicts of the default", "## ct20", "## ct60", "## Feature labels", "along-off",
+  for (const char* text : {"## Verdicts of the default", "## ct20", "## contour0.4", "## Feature labels", "along-off",
                            "the mean over the noise seeds 1, 2"}) {
     EXPECT_NE(page.find(text), std::string::npos) << text;
   }
   EXPECT_NE(r.out.find("\"verdicts\""), std::string::npos);
+  // Every row of the verdict table has its six cells: a '|' inside a cell ("|dV|") is escaped.
+  std::istringstream lines(page);
+  int rows = 0;
+  for (std::string line; std::getline(lines, line);) {
+    const bool verdict_row = (line.rfind("| ct20 | ridge-box |", 0) == 0 || line.rfind("| contour0.4 | ridge-box |", 0) == 0) &&
+                             line.find("RMS ") != std::string::npos;
+    if (!verdict_row) continue;
+    int bars = 0;
+    for (std::size_t i = 0; i < line.size(); ++i) bars += line[i] == '|' && (i == 0 || line[i - 1] != '\\');
+    EXPECT_EQ(bars, 7) << line;
+    ++rows;
+  }
+  EXPECT_EQ(rows, 2);
 }
 
 TEST(CompareCli, WithoutADisplayTheRendersAreSkippedAndSaidSo) {

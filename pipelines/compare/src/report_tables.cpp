@@ -28,7 +28,12 @@ int best_of(const std::vector<MethodSummary>& methods, const std::function<doubl
   return best;
 }
 
-std::string cell_text(const Cell& c) { return c.best && !c.text.empty() ? "**" + c.text + "**" : c.text; }
+// A cell's text for Markdown: '|' escaped (it would end the cell), bold when best.
+std::string cell_text(const Cell& c) {
+  std::string text;
+  for (char ch : c.text) text += ch == '|' ? std::string("\\|") : std::string(1, ch);
+  return c.best && !text.empty() ? "**" + text + "**" : text;
+}
 
 }  // namespace
 
