@@ -7,4 +7,5 @@ cd "$(dirname "$0")/.."
 scripts/setup.sh
 cmake --preset release >/dev/null
 cmake --build --preset release
+scripts/python_path.sh build/release   # python3 -c "import contourmesh" works from here on
 build/release/pipelines/contourmesh run -o out/femur.stl "$@"

@@ -7,11 +7,16 @@ packages=(
   build-essential cmake ninja-build pkg-config
   libeigen3-dev                       # libsmooth
   libinsighttoolkit5-dev libgdcm-tools  # libreconstruct (GDCM's CMake targets want the tools)
+  libtbb-dev                          # libreconstruct: parallel loops (segmentation per slice)
   libvtk9-dev                         # pipelines: mesh I/O, VTK filters, rendering
   libcli11-dev nlohmann-json3-dev     # the contourmesh CLI
   libgtest-dev libbenchmark-dev       # tests and benchmarks
   xvfb xauth libgl1-mesa-dri          # offscreen renders of `contourmesh compare` (VTK draws through X)
   clang libclang-rt-dev llvm          # fuzz targets (scripts/run_fuzzers.sh): clang, libFuzzer, llvm-symbolizer
+  strace                              # tests: the atomic writes fsync before they rename (skipped without it)
+  python3-dev pybind11-dev python3-numpy python3-pytest python3-vtk9  # the Python module and its tests
+  libxml2-utils                       # xmllint: the Slicer module description against its schema
+  snakemake                           # the cohort workflow (pipelines/workflows/cohort)
 )
 
 missing=()

@@ -5,6 +5,8 @@
 
 #include <gtest/gtest.h>
 
+#include <unistd.h>
+
 #include <cstdint>
 #include <filesystem>
 #include <string>
@@ -13,14 +15,15 @@
 
 namespace contourmesh::test {
 
-/// A fresh directory named after the running test and the process, removed at scope exit (the process id
-/// keeps two build trees' test runs on one machine out of each other's way).
+/// A fresh directory named after the running test and the process, removed at scope exit (the process
+/// id keeps two builds' test runs on one machine, which share /tmp, out of each other's files).
 class ScopedTempDir {
  public:
   explicit ScopedTempDir(const std::string& prefix)
       : path_(std::filesystem::temp_directory_path() /
-              (prefix + "_" + ::testing::UnitTest::GetInstance()->current_test_info()->test_suite_name() + "_" +
-               ::testing::UnitTest::GetInstance()->current_test_info()->name() + "_" + std::to_string(::getpid()))) {
+              (prefix + "_" + std::to_string(::getpid()) + "_" +
+               ::testing::UnitTest::GetInstance()->current_test_info()->test_suite_name() + "_" +
+               ::testing::UnitTest::GetInstance()->current_test_info()->name())) {
     std::filesystem::remove_all(path_);
     std::filesystem::create_directories(path_);
   }

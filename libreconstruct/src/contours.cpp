@@ -106,8 +106,11 @@ std::optional<Meeting> first_meeting(const std::vector<const std::vector<Eigen::
   while ((std::floor(extent.x() / cell) + 1.0) * (std::floor(extent.y() / cell) + 1.0) > max_cells) cell *= 2.0;
   const auto nx = static_cast<std::size_t>(std::floor(extent.x() / cell)) + 1;
   const auto ny = static_cast<std::size_t>(std::floor(extent.y() / cell)) + 1;
+  // floor((v - origin) / cell) clamped to [0, count - 1]; the cast truncates, which is floor for the
+  // positive values it sees (and no libm call).
   auto cell_of = [&](double v, double origin, std::size_t count) {
-    return std::min(count - 1, static_cast<std::size_t>(std::max(0.0, std::floor((v - origin) / cell))));
+    const double u = (v - origin) / cell;
+    return std::min(count - 1, u > 0.0 ? static_cast<std::size_t>(u) : std::size_t{0});
   };
   // Edges per cell (counting sort into CSR).
   std::vector<std::size_t> start(nx * ny + 1, 0);

@@ -15,7 +15,8 @@ double seconds_since(std::chrono::steady_clock::time_point t) {
 }
 
 // Removes the connected components enclosing less than `min_volume` (cavity surfaces, which enclose a
-// negative volume, are kept) and compacts the vertex array.
+// negative volume, are kept) and vertices in no triangle, and compacts the vertex array. A mesh with
+// nothing to remove is returned as it is.
 Mesh drop_small_components(Mesh mesh, double min_volume, std::size_t& dropped) {
   const Index n = mesh.num_vertices();
   const ComponentLabels components = component_labels(mesh);
@@ -25,23 +26,32 @@ Mesh drop_small_components(Mesh mesh, double min_volume, std::size_t& dropped) {
         mesh.positions.col(t[0]).dot(mesh.positions.col(t[1]).cross(mesh.positions.col(t[2]))) / 6.0;
   }
   auto too_small = [&](Index label) { return volume[label] >= 0.0 && volume[label] < min_volume; };
+  std::vector<std::uint8_t> small(static_cast<std::size_t>(components.count), 0);
+  std::size_t small_count = 0;
+  for (Index label = 0; label < components.count; ++label) {
+    small[label] = too_small(label) ? 1 : 0;
+    small_count += small[label];
+  }
+  dropped += small_count;
   std::vector<Index> remap(static_cast<std::size_t>(n), -1);
-  Mesh kept;
-  std::vector<Index> keep_vertices;
+  Index kept_vertices = 0;
   for (Index i = 0; i < n; ++i) {
     const Index label = components.of_vertex[i];
-    if (label < 0 || too_small(label)) continue;
-    remap[i] = static_cast<Index>(keep_vertices.size());
-    keep_vertices.push_back(i);
+    if (label >= 0 && !small[label]) remap[i] = kept_vertices++;
   }
-  for (Index label = 0; label < components.count; ++label) dropped += too_small(label) ? 1 : 0;
-  kept.positions.resize(3, static_cast<Eigen::Index>(keep_vertices.size()));
-  for (std::size_t k = 0; k < keep_vertices.size(); ++k) {
-    const Index i = keep_vertices[k];
-    kept.positions.col(static_cast<Eigen::Index>(k)) = mesh.positions.col(i);
-    kept.slice_ids.push_back(mesh.slice_ids[i]);
-    kept.contour_ids.push_back(mesh.contour_ids[i]);
+  if (kept_vertices == n) return mesh;  // every vertex kept, in order: the compaction is the identity
+  Mesh kept;
+  kept.positions.resize(3, kept_vertices);
+  kept.slice_ids.resize(static_cast<std::size_t>(kept_vertices));
+  kept.contour_ids.resize(static_cast<std::size_t>(kept_vertices));
+  for (Index i = 0; i < n; ++i) {
+    const Index k = remap[i];
+    if (k < 0) continue;
+    kept.positions.col(k) = mesh.positions.col(i);
+    kept.slice_ids[k] = mesh.slice_ids[i];
+    kept.contour_ids[k] = mesh.contour_ids[i];
   }
+  kept.triangles.reserve(mesh.triangles.size());
   for (const Triangle& t : mesh.triangles) {
     if (remap[t[0]] >= 0) kept.triangles.push_back({remap[t[0]], remap[t[1]], remap[t[2]]});
   }

@@ -150,10 +150,11 @@ CrossSliceResult cross_slice_smooth(const Mesh& mesh, const CrossSliceOptions& o
   result.noise_across = options.noise_across.value_or(detail::profile_noise(frame, mesh.positions, normals, true));
   lpa.sigma = result.noise_across;
   lpa.max_half_width = options.reach;
+  const detail::NextCuts cuts = detail::next_cuts(frame, mesh.positions, normals);
   result.profiles = smooth_profiles(frame, mesh.positions, normals, lpa, ProfileFrame::Tangent, displacement,
-                                    [&](const Eigen::Matrix3Xd& x, const Eigen::Matrix3Xd& nx, Index i,
+                                    [&](const Eigen::Matrix3Xd& x, const Eigen::Matrix3Xd&, Index i,
                                         const Eigen::Vector3d& m, detail::Profile& p) {
-                                      detail::cross_slice_profile(frame, x, nx, i, m, options.reach, p);
+                                      detail::chained_profile(frame, x, cuts, i, m, options.reach, p);
                                     });
   if (options.progress && !options.progress("smooth", 0.5)) throw CancelledError("smoothing");
 

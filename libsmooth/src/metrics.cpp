@@ -1,6 +1,7 @@
 #include "smooth/metrics.h"
 
 #include "smooth/errors.h"
+#include "smooth/limits.h"
 
 #include <algorithm>
 #include <cmath>
@@ -42,6 +43,9 @@ double volume_shrinking_rate(double original_volume, double smoothed_volume) {
 }
 
 std::vector<double> volume_shrinking_curve(const Mesh& mesh, const SmoothingOptions& options) {
+  // One value per iteration: the iteration count is bounded by the memory it would take.
+  check_allocation("volume curve of " + std::to_string(options.iterations) + " iterations", 0.0,
+                   8.0 * (std::max(options.iterations, 0) + 1.0), ResourceLimits{});
   const double v0 = enclosed_volume(mesh);
   std::vector<double> curve{0.0};
   if (options.method == SmoothingMethod::None) {

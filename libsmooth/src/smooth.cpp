@@ -1,6 +1,7 @@
 #include "smooth/smooth.h"
 
 #include "smooth/adjacency.h"
+#include "smooth/divergence.h"
 #include "smooth/errors.h"
 
 #include <chrono>
@@ -20,6 +21,7 @@ SmoothResult run_baseline(const Mesh& mesh, SmoothingMethod method, const Smooth
   o.method = method;
   o.iterations = iterations_of(method, options);
   o.progress = options.progress;
+  o.on_iteration = divergence_guard(mesh.positions, "smoothing", std::move(o.on_iteration));
   SmoothResult r;
   const auto t = Clock::now();
   r.mesh = mesh;
@@ -35,6 +37,8 @@ SmoothResult run_feature_preserving(const Mesh& mesh, const SmoothOptions& optio
   o.progress = options.progress;
   o.detection.progress = {};
   o.limits = options.limits;
+  // Against the input's bounds: the adaptive mesh's added vertices lie among the input's.
+  o.on_iteration = divergence_guard(mesh.positions, "smoothing", std::move(o.on_iteration));
   FeatureSmoothingResult f = feature_preserving_smooth(mesh, o);
   SmoothResult r;
   r.mesh = std::move(f.mesh);
@@ -104,6 +108,9 @@ SmoothResult smooth(const Mesh& mesh, SmoothingMethod method, const SmoothOption
     case SmoothingMethod::MeanCurvatureFlow:
     case SmoothingMethod::MinDistFlow: r = run_baseline(mesh, method, options); break;
   }
+  // The guard saw every iteration; this also covers the methods without iterations and the paper's
+  // resolution step.
+  check_not_diverged(r.mesh.positions, DivergenceBounds::of(mesh.positions), "smoothing");
   r.method = method;
   r.seconds.total = seconds_since(start);
   return r;

@@ -268,6 +268,8 @@ MeshRepair repair_mesh(Mesh& mesh, const RepairOptions& options) {
         for (Index& v : t) v = new_index[representative[v]];
       }
       mesh = std::move(merged);
+      report.vertex_map.resize(static_cast<std::size_t>(n));
+      for (Index i = 0; i < n; ++i) report.vertex_map[i] = new_index[representative[i]];
     }
   }
 

@@ -1,11 +1,16 @@
 #include "cli_common.h"
 
 #include <reconstruct/phantom.h>
+#include <smooth/atomic_file.h>
 #include <smooth/errors.h>
 
 #include <CLI/CLI.hpp>
 
+#include <unistd.h>
+
+#include <csignal>
 #include <cmath>
+#include <cstring>
 #include <filesystem>
 #include <limits>
 #include <new>
@@ -15,19 +20,77 @@
 
 namespace contourmesh::cli {
 
+namespace {
+
+int run_guarded_body(const std::string& command, const std::function<int()>& body);
+
+volatile std::sig_atomic_t g_signal = 0;
+
+extern "C" void on_cancel_signal(int signal) {
+  if (g_signal != 0) {  // the second one: stop now, without leaving temporaries behind
+    remove_pending_temporaries();
+    ::_exit(kSignalBase + signal);
+  }
+  g_signal = signal;
+}
+
+const char* signal_name(int signal) { return signal == SIGINT ? "SIGINT" : signal == SIGTERM ? "SIGTERM" : "a signal"; }
+
+}  // namespace
+
+void install_signal_handlers() {
+  struct sigaction action {};
+  action.sa_handler = on_cancel_signal;
+  sigemptyset(&action.sa_mask);
+  action.sa_flags = 0;  // no SA_RESTART: a blocking read returns, and the next progress report cancels
+  ::sigaction(SIGINT, &action, nullptr);
+  ::sigaction(SIGTERM, &action, nullptr);
+}
+
+bool cancel_requested() { return g_signal != 0; }
+int cancel_signal() { return static_cast<int>(g_signal); }
+
+void check_distinct_outputs(const std::vector<std::pair<std::string, std::string>>& outputs) {
+  std::vector<std::pair<std::string, std::filesystem::path>> paths;
+  for (const auto& [label, path] : outputs) paths.emplace_back(label, path);
+  contourmesh::check_distinct_outputs(paths);
+}
+
 int run_guarded(const std::string& command, const std::function<int()>& body) {
+  const int code = run_guarded_body(command, body);
+  if (cancel_requested()) {
+    if (code == kOk) {
+      std::cerr << "contourmesh " << command << ": interrupted by " << signal_name(cancel_signal())
+                << " after the outputs were complete\n";
+    }
+    return kSignalBase + cancel_signal();
+  }
+  return code;
+}
+
+namespace {
+
+int run_guarded_body(const std::string& command, const std::function<int()>& body) {
   try {
     return body();
+  } catch (const UsageError& e) {
+    std::cerr << "contourmesh " << command << ": error: " << e.what() << "\n";
+    return kUsage;
   } catch (const LimitError& e) {
     const std::string what = e.what();
-    std::cerr << "contourmesh " << command << ": error: " << what
+    std::cerr << "contourmesh " << command << ": error: " << cli_wording(what)
               << (what.find("limit of") != std::string::npos ? "; raise it with --max-vertices" : "") << "\n";
     return kBadInput;
   } catch (const InvalidInputError& e) {
-    std::cerr << "contourmesh " << command << ": error: " << e.what() << "\n";
+    std::cerr << "contourmesh " << command << ": error: " << cli_wording(e.what()) << "\n";
     return kBadInput;
   } catch (const CancelledError& e) {
-    std::cerr << "contourmesh " << command << ": " << e.what() << "\n";
+    if (cancel_requested()) {
+      std::cerr << "contourmesh " << command << ": cancelled by " << signal_name(cancel_signal())
+                << "; no partial file was left\n";
+    } else {
+      std::cerr << "contourmesh " << command << ": " << e.what() << "\n";
+    }
     return kBadInput;
   } catch (const std::filesystem::filesystem_error& e) {
     // Creating an output directory, and the like: the path the user gave is unusable.
@@ -44,9 +107,23 @@ int run_guarded(const std::string& command, const std::function<int()>& body) {
   }
 }
 
+}  // namespace
+
 namespace {
 int g_exit_code = kOk;
 }  // namespace
+
+std::string cli_wording(std::string text) {
+  static const std::pair<const char*, const char*> kPhrases[] = {
+      {"give the slice axis", "give --slice-axis"},
+      {"allow uneven slices", "give --allow-uneven-slices"},
+      {"treat non-finite voxels as air", "give --non-finite-as-air"},
+  };
+  for (const auto& [library, cli] : kPhrases) {
+    if (const auto at = text.find(library); at != std::string::npos) text.replace(at, std::strlen(library), cli);
+  }
+  return text;
+}
 
 void set_exit_code(int code) { g_exit_code = code; }
 int last_exit_code() { return g_exit_code; }

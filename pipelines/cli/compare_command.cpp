@@ -5,6 +5,7 @@
 #include "cli_common.h"
 #include "isolated_process.h"
 #include "progress_display.h"
+#include "volume_options.h"
 
 #include <compare/comparison.h>
 #include <compare/report.h>
@@ -68,6 +69,7 @@ struct CompareArgs {
   bool no_curves = false;
   Index max_vertices = kDefaultMaxVertices;
   bool json = false;
+  VolumeArgs volume;
   CommonArgs common;
 };
 
@@ -333,7 +335,7 @@ void run_volume(const CompareArgs& a, const Setup& setup, ComparisonOptions opti
     reference = read_mesh(a.truth, ro);
   }
   progress.stage("read");
-  const CtImage::Pointer image = read_volume(a.input);
+  const CtImage::Pointer image = read_volume(a.input, volume_read_options(a.volume, "compare"));
   options.reconstruction.segmentation.threshold = a.threshold.value_or(300.0);
   options.volume_curves = !a.no_curves;
   const ComparisonTruth truth =
@@ -489,6 +491,7 @@ void add_compare_command(CLI::App& app) {
       ->capture_default_str();
   cmd->add_flag("--no-render", args->no_render, "Skip the PNG renders of the meshes (they need an X display)");
   cmd->add_flag("--no-curves", args->no_curves, "Skip the volume-shrinking curves (saves the extra runs)");
+  add_volume_options(cmd, args->volume);
   add_common_options(cmd, args->common);
   add_max_vertices_option(cmd, args->max_vertices);
   cmd->add_flag("--json", args->json, "Print one JSON object on stdout instead of the summary");

@@ -7,7 +7,6 @@
 
 #include <pipelines/atomic_file.h>
 #include <pipelines/mesh_io.h>
-#include <smooth/adjacency.h>
 #include <smooth/errors.h>
 #include <smooth/feature_detection.h>
 #include <smooth/smooth.h>
@@ -50,16 +49,27 @@ int run_detect(const DetectArgs& a) {
   MeshReadOptions read_options;
   read_options.arrays = {a.slice_array, a.contour_array};
   read_options.max_vertices = a.max_vertices;
-  Mesh mesh = read_mesh(a.input, read_options);
-  check_mesh(mesh, a.input, "detect");
-  const MeshAdjacency adjacency = build_adjacency(mesh);
-  const std::string id_source = prepare_ids_for_method(config, mesh, adjacency, a.features, a.input, "detect");
-  const FeatureLabels f = label_features(mesh, config.method, config.options);
+  ProgressDisplay progress("detect", a.common.quiet);
+  progress.stage("read");
+  PreparedMesh input = prepare_for_method(config, read_mesh(a.input, read_options), a.features, a.input, "detect");
+  const Mesh mesh = std::move(input.mesh);
+  const std::string id_source(to_string(input.id_source));
+  config.options.progress = progress.callback();
+  config.options.limits.max_vertices = a.max_vertices;
+  FeatureLabels f;
+  try {
+    f = label_features(mesh, config.method, config.options);
+  } catch (const InvalidInputError&) {
+    rethrow_with_context(a.input);
+  }
   const LabelCounts counts = count_labels(f.labels);
   MeshWriteOptions write_options;
   write_options.arrays = read_options.arrays;
   write_options.point_scalars = label_arrays(f);
+  progress.stage("write");
+  write_options.progress = progress.callback();
   write_mesh(mesh, a.output, write_options);
+  progress.finish();
   if (a.json) {
     nlohmann::json j;
     j["command"] = "detect";

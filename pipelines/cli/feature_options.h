@@ -4,6 +4,7 @@
 #include <pipelines/mesh_io.h>
 #include <smooth/adjacency.h>
 #include <smooth/feature_detection.h>
+#include <smooth/input_policy.h>
 #include <smooth/mesh.h>
 
 #include <optional>
@@ -37,25 +38,20 @@ void add_feature_options(CLI::App* command, FeatureArgs& args);
 /// (throws InvalidInputError for a bad --measure or --in-slice).
 void apply_detection_args(const FeatureArgs& args, DetectionOptions& options);
 
-/// Makes sure detection can run on `mesh`: keeps the ids it was read with ("file"; a gap in the slice
-/// ids is closed with a warning), corrects ids inconsistent with the mesh from its slice planes
-/// ("file-repaired", see repair_contour_ids; with a warning naming the inconsistency), recovers them
-/// from the slice planes ("slice-planes": along --slice-axis for a mesh without ids, or when the
-/// correction fails), or switches `detection` to the curvature-only fallback
-/// ("none", with a warning on stderr). Throws InvalidInputError naming the file when --slice-axis was
-/// given but the vertices do not lie on planes normal to it.
-[[nodiscard]] std::string prepare_contour_ids(Mesh& mesh, const MeshAdjacency& adjacency, const FeatureArgs& args,
-                                              const std::string& path, const std::string& command,
-                                              DetectionOptions& detection);
+/// The slice axis of --slice-axis (x, y or z), unset when not given; InvalidInputError otherwise.
+[[nodiscard]] std::optional<Eigen::Vector3d> slice_axis_option(const FeatureArgs& args);
+
+/// Runs the one input policy (prepare_input_mesh, smooth/input_policy.h; the VTK filter runs the same)
+/// on a mesh read from `path`: each warning is one line "contourmesh COMMAND: warning: PATH: ...", and
+/// an error is rethrown naming `path` (exit 2). `use` says whether the contour ids are needed (then they
+/// are made usable: see ContourIdUse::Detection; --slice-axis recovers missing or unusable ids), and
+/// `missing` what happens without usable ids: curvature-only detection with a warning, or an error.
+[[nodiscard]] PreparedMesh prepare_input(Mesh mesh, const std::string& path, const std::string& command,
+                                         ContourIdUse use, const FeatureArgs& args,
+                                         MissingIds missing = MissingIds::CurvatureOnly);
 
 /// The per-vertex arrays of a detection, for --labels-out: FeatureLabel (0 smooth, 1 edge, 2 corner,
 /// 3 noise), Umbrella, KappaMin, KappaMax, KBelow, K0, KAbove, Psi.
 [[nodiscard]] std::vector<PointScalars> detection_arrays(const FeatureDetection& detection);
-
-/// Prepares a mesh read from `path`: non-finite coordinates, bad indices and id mismatches throw
-/// InvalidInputError naming `path`; coincident vertices are merged and triangles with a repeated vertex
-/// and duplicate triangles dropped (repair_mesh), with one warning line; topology problems that
-/// smoothing tolerates (zero-area triangles, non-manifold edges and vertices) are one warning line.
-void check_mesh(Mesh& mesh, const std::string& path, const std::string& command);
 
 }  // namespace contourmesh::cli

@@ -11,11 +11,13 @@ int main(int argc, char** argv) {
   app.require_subcommand(1);
   app.fallthrough(false);
   contourmesh::cli::add_phantom_command(app);
+  contourmesh::cli::add_contours_command(app);
   contourmesh::cli::add_reconstruct_command(app);
   contourmesh::cli::add_detect_command(app);
   contourmesh::cli::add_smooth_command(app);
   contourmesh::cli::add_run_command(app);
   contourmesh::cli::add_compare_command(app);
+  contourmesh::cli::install_signal_handlers();
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {

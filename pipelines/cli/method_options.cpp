@@ -91,22 +91,26 @@ MethodConfig method_config(const MethodArgs& args, const StepArgs& steps, const 
   return c;
 }
 
-std::string prepare_ids_for_method(MethodConfig& config, Mesh& mesh, const MeshAdjacency& adjacency,
-                                   const FeatureArgs& features, const std::string& path, const std::string& command) {
-  if (config.method == SmoothingMethod::FeaturePreserving) {
-    return prepare_contour_ids(mesh, adjacency, features, path, command, config.options.paper.detection);
+PreparedMesh prepare_for_method(MethodConfig& config, Mesh mesh, const FeatureArgs& features, const std::string& path,
+                                const std::string& command) {
+  switch (config.method) {
+    case SmoothingMethod::FeaturePreserving: {
+      PreparedMesh prepared = prepare_input(std::move(mesh), path, command, ContourIdUse::Detection, features);
+      if (prepared.detection_mode == DetectionMode::CurvatureOnly) {
+        config.options.paper.detection.mode = DetectionMode::CurvatureOnly;
+      }
+      return prepared;
+    }
+    case SmoothingMethod::CrossSlice:
+      if (!mesh.has_contour_ids() && features.slice_axis.empty()) {
+        throw InvalidInputError(path +
+                                ": cross-slice smoothing needs contour ids: write the mesh as .vtp or .ply with them, "
+                                "give --slice-axis to recover them, or choose another --method");
+      }
+      return prepare_input(std::move(mesh), path, command, ContourIdUse::Detection, features, MissingIds::Refuse);
+    default:
+      return prepare_input(std::move(mesh), path, command, ContourIdUse::PassThrough, features);
   }
-  if (config.method != SmoothingMethod::CrossSlice) return {};
-  const auto missing = [&](const std::string& why) {
-    return InvalidInputError(path + ": cross-slice smoothing needs contour ids" + why +
-                             ": write the mesh as .vtp or .ply with them, give --slice-axis to recover them, or "
-                             "choose another --method");
-  };
-  if (!mesh.has_contour_ids() && features.slice_axis.empty()) throw missing("");
-  DetectionOptions probe;  // tells whether the ids survived (curvature-only means they did not)
-  const std::string source = prepare_contour_ids(mesh, adjacency, features, path, command, probe);
-  if (!mesh.has_contour_ids() || probe.mode == DetectionMode::CurvatureOnly) throw missing(", and they could not be recovered");
-  return source;
 }
 
 std::vector<PointScalars> label_arrays(const FeatureLabels& f) {

@@ -43,13 +43,13 @@ void add_step_options(CLI::App* command, StepArgs& args);
 /// --keep-adaptive without the paper's method, or a detection option out of its vocabulary.
 [[nodiscard]] MethodConfig method_config(const MethodArgs& args, const StepArgs& steps, const FeatureArgs& features);
 
-/// Makes `mesh`'s contour ids ready for the selected method (prepare_contour_ids for the paper's
-/// detection, which may fall back to curvature-only detection; cross-slice smoothing needs the ids, so
-/// a mesh without them that --slice-axis cannot fix is an InvalidInputError naming `path`). Returns the
-/// id source ("file", "file-repaired", "slice-planes", "none"), or "" for a method that needs no ids.
-[[nodiscard]] std::string prepare_ids_for_method(MethodConfig& config, Mesh& mesh, const MeshAdjacency& adjacency,
-                                                 const FeatureArgs& features, const std::string& path,
-                                                 const std::string& command);
+/// Runs the one input policy (prepare_input) on a mesh read from `path` for the selected method: the
+/// contour ids are made usable for the methods that use them (paper, cross-slice) and passed through
+/// for the others. Without usable ids the paper's method falls back to curvature-only detection (set in
+/// `config`, with a warning); cross-slice smoothing cannot, so such a mesh is an InvalidInputError naming
+/// `path` and saying how to recover the ids.
+[[nodiscard]] PreparedMesh prepare_for_method(MethodConfig& config, Mesh mesh, const FeatureArgs& features,
+                                              const std::string& path, const std::string& command);
 
 /// The point arrays of a method's labels, for --labels-out and `detect`: FeatureLabel (0 smooth, 1 edge,
 /// 2 corner, 3 noise), then the paper's detection arrays (detection_arrays) or cross-slice's crease

@@ -73,9 +73,13 @@ int run_phantom(const PhantomArgs& a) {
   options.margin = a.margin;
   check_output(a.output);
 
+  ProgressDisplay progress("phantom", a.common.quiet || a.json);
+  progress.stage("phantom");
   const Phantom phantom = make_phantom(shape);
   const CtImage::Pointer image = render_phantom(phantom, options);
-  write_volume(image, a.output);
+  progress.stage("write");
+  write_volume(image, a.output, progress.callback());
+  progress.finish();
 
   const auto size = image->GetLargestPossibleRegion().GetSize();
   const Eigen::Vector3d origin(image->GetOrigin()[0], image->GetOrigin()[1], image->GetOrigin()[2]);

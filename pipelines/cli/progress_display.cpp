@@ -1,30 +1,63 @@
 #include "progress_display.h"
 
+#include "cli_common.h"
+#include "library_messages.h"
+
+#include <reconstruct/threads.h>
 #include <smooth/errors.h>
+#include <smooth/limits.h>
 
 #include <CLI/CLI.hpp>
 #include <itkMultiThreaderBase.h>
+#include <vtkMultiThreader.h>
 
 #include <unistd.h>
 
 #include <algorithm>
 #include <cstdio>
 #include <iostream>
+#include <optional>
 
 namespace contourmesh::cli {
 
+namespace {
+bool g_verbose = false;
+// Stack and per-thread buffers reserved for each worker thread, for the memory check of --threads.
+constexpr double kBytesPerThread = 2.0 * 1024 * 1024;
+}  // namespace
+
 void add_common_options(CLI::App* command, CommonArgs& args) {
+  args.command = command->get_name();
   command->add_flag("-q,--quiet", args.quiet, "No progress and no summary; errors are still printed");
-  command->add_option("--threads", args.threads, "Worker threads for the ITK stages (read, segment; 0: every core)")
+  command->add_flag("--verbose", args.verbose,
+                    "Let ITK, GDCM, MetaIO and VTK print their own (multi-line) messages on stderr");
+  command->add_option("--threads", args.threads,
+                      "Threads for every parallel stage (segmentation, ITK and VTK filters; 0: every core)")
       ->capture_default_str();
 }
 
 void apply_common_options(const CommonArgs& args) {
+  g_verbose = args.verbose;
+  configure_library_messages(args.command, args.verbose);
   if (args.threads < 0) throw InvalidInputError("--threads must be >= 0, got " + std::to_string(args.threads));
   if (args.threads > 0) {
-    itk::MultiThreaderBase::SetGlobalDefaultNumberOfThreads(static_cast<itk::ThreadIdType>(args.threads));
+    const auto most = itk::MultiThreaderBase::GetGlobalMaximumNumberOfThreads();
+    if (static_cast<unsigned long>(args.threads) > most) {
+      throw InvalidInputError("--threads " + std::to_string(args.threads) + ": more than the " + std::to_string(most) +
+                              " worker threads ITK can run");
+    }
+    check_allocation("--threads " + std::to_string(args.threads), 0.0, args.threads * kBytesPerThread,
+                     ResourceLimits{});
   }
+  // One subcommand runs per process: the limit lasts until the process exits. VTK's image filters
+  // thread with their own vtkMultiThreader (0: no cap), not with TBB.
+  static std::optional<ThreadLimit> limit;
+  limit.reset();
+  limit.emplace(args.threads);
+  vtkMultiThreader::SetGlobalMaximumNumberOfThreads(args.threads);
 }
+
+bool verbose() { return g_verbose; }
 
 ProgressDisplay::ProgressDisplay(std::string command, bool quiet)
     : command_(std::move(command)), quiet_(quiet), terminal_(isatty(fileno(stderr)) != 0) {}
@@ -35,6 +68,7 @@ ProgressDisplay::~ProgressDisplay() {
 }
 
 void ProgressDisplay::stage(std::string_view name) {
+  if (cancel_requested()) throw CancelledError(std::string(name));
   finish();
   stage_ = name;
   stage_start_ = std::chrono::steady_clock::now();
@@ -44,6 +78,7 @@ void ProgressDisplay::stage(std::string_view name) {
 
 ProgressCallback ProgressDisplay::callback() {
   return [this](std::string_view name, double fraction) {
+    if (cancel_requested()) return false;
     if (name != stage_) stage(name);
     draw(fraction, false);
     return true;

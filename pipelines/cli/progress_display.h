@@ -15,15 +15,24 @@ namespace contourmesh::cli {
 
 struct CommonArgs {
   bool quiet = false;
-  int threads = 0;  ///< 0: every core
+  bool verbose = false;  ///< let ITK, GDCM, MetaIO, NIfTI and VTK print their own messages
+  int threads = 0;       ///< 0: every core
+  std::string command;   ///< the subcommand's name, set by add_common_options
 };
 
-/// Registers --quiet / -q and --threads on a subcommand.
+/// Registers --quiet / -q, --verbose and --threads on a subcommand.
 void add_common_options(CLI::App* command, CommonArgs& args);
 
-/// Validates --threads (>= 0; InvalidInputError otherwise) and gives ITK that many worker
-/// threads. libsmooth itself is single-threaded.
+/// Validates --threads (>= 0, at most ITK's maximum, and a stack per thread within the memory
+/// available: InvalidInputError or LimitError otherwise) and caps every parallel stage at that many
+/// threads for the rest of the process (ThreadLimit: TBB loops, ITK filters, VTK's SMP tools; and
+/// vtkMultiThreader, which VTK's image filters use).
+/// Without --verbose, the messages of ITK, GDCM and VTK are turned into one line each
+/// ("contourmesh COMMAND: warning: ITK: ..."), or dropped where the command reports the problem itself.
 void apply_common_options(const CommonArgs& args);
+
+/// Whether --verbose was given to the running command.
+[[nodiscard]] bool verbose();
 
 /// Stage-by-stage progress on stderr. On a terminal: one line redrawn in place with the stage name, a
 /// bar and the elapsed time. Otherwise (a pipe, a log file): one line per finished stage. Nothing with
@@ -35,10 +44,11 @@ class ProgressDisplay {
   ProgressDisplay(const ProgressDisplay&) = delete;
   ProgressDisplay& operator=(const ProgressDisplay&) = delete;
 
-  /// Ends the current stage (if any) and starts `name`.
+  /// Ends the current stage (if any) and starts `name`; throws CancelledError instead once SIGINT or
+  /// SIGTERM arrived.
   void stage(std::string_view name);
-  /// A callback for library calls: switches stage when the name changes, draws the fraction. Never
-  /// cancels.
+  /// A callback for library calls: switches stage when the name changes, draws the fraction. Returns
+  /// false (cancel) once SIGINT or SIGTERM arrived (cancel_requested()).
   [[nodiscard]] ProgressCallback callback();
   /// Ends the current stage.
   void finish();

@@ -1,10 +1,19 @@
-// contourmesh reconstruct IN -o mesh.vtp: CT volume (file or DICOM directory) -> contours -> tiled mesh.
+// contourmesh reconstruct IN -o mesh.vtp: CT volume (file or DICOM directory) -> contours -> tiled mesh;
+// or drawn contours (an RT Structure Set with --roi, a contour-stack file) -> tiled mesh.
 #include "cli_common.h"
+#include "contour_input.h"
+#include "input_selection.h"
 #include "progress_display.h"
+#include "volume_options.h"
 
 #include <pipelines/atomic_file.h>
+#include <pipelines/contour_stack_io.h>
 #include <pipelines/mesh_io.h>
+#include <reconstruct/contour_deviation.h>
+#include <reconstruct/contour_reconstruction.h>
+#include <reconstruct/label_map.h>
 #include <reconstruct/reconstruction.h>
+#include <reconstruct/threads.h>
 #include <reconstruct/volume.h>
 #include <smooth/errors.h>
 #include <smooth/limits.h>
@@ -13,7 +22,11 @@
 
 #include <CLI/CLI.hpp>
 
+#include <filesystem>
+#include <future>
 #include <iomanip>
+#include <optional>
+#include <vector>
 #include <iostream>
 #include <memory>
 
@@ -26,17 +39,33 @@ struct ReconstructArgs {
   std::string output;
   double threshold = 300.0;
   bool otsu = false;
-  double sampling = 0.0;
+  std::optional<double> sampling;
   std::string smoothing = "none";
   std::string keep = "all";
   double min_area = 2.0;
   bool fill_holes = false;
   std::string end_caps = "half-spacing";
   std::string format = "auto";
+  std::string contours_out;
   Index max_vertices = kDefaultMaxVertices;
   bool json = false;
+  ContourArgs contour;
+  VolumeArgs volume;
+  InputSelectionArgs selection;
   CommonArgs common;
 };
+
+// Options of one route, refused on the other's input.
+const std::vector<std::string> kVolumeOptions{"--threshold", "--otsu",   "--smoothing", "--keep",       "--min-area",
+                                              "--fill-holes", "--label", "--labels",    "--series",     "--list-series"};
+const std::vector<std::string> kContourOptions{"--roi", "--align", "--single-slice", "--slab-thickness",
+                                               "--planarity-tolerance", "--sampling-tolerance"};
+
+EndCaps parse_end_caps(const std::string& s) {
+  if (s == "half-spacing") return EndCaps::HalfSpacing;
+  if (s == "end-slice") return EndCaps::AtEndSlice;
+  throw InvalidInputError("--end-caps must be half-spacing or end-slice, got '" + s + "'");
+}
 
 ImageSmoothing parse_smoothing(const std::string& s) {
   if (s == "none") return ImageSmoothing::None;
@@ -45,32 +74,116 @@ ImageSmoothing parse_smoothing(const std::string& s) {
   throw InvalidInputError("--smoothing must be none, median or anisotropic, got '" + s + "'");
 }
 
+// --label / --labels: one mesh per label of a label map or a 3D Slicer segmentation; every output is
+// checked before any work.
+int run_reconstruct_labels(const ReconstructArgs& a, const ReconstructionOptions& options,
+                           const MeshWriteOptions& write_options, std::chrono::steady_clock::time_point start) {
+  apply_common_options(a.common);
+  ProgressDisplay progress("reconstruct", a.common.quiet);
+  progress.stage("read");
+  const SelectedLabels selected = read_selected_labels(a.input, a.selection);
+  for (const Label& label : selected.labels) check_output_path(label_output_path(a.output, label, a.selection));
+  nlohmann::json meshes = nlohmann::json::array();
+  for (const Label& label : selected.labels) {
+    Reconstruction r;
+    try {
+      r = reconstruct_label(selected.map, label, options, progress.callback());
+    } catch (const LimitError& e) {
+      throw LimitError(a.input + ": " + e.what());
+    } catch (const InvalidInputError& e) {
+      throw InvalidInputError(a.input + ": " + e.what());
+    }
+    const std::filesystem::path output = label_output_path(a.output, label, a.selection);
+    progress.stage("write");
+    write_mesh(r.mesh, output, write_options);
+    const TopologySummary topo = summarize_topology(r.mesh);
+    nlohmann::json j;
+    j["label"] = label.display_name();
+    j["label_value"] = label.value;
+    j["label_layer"] = label.layer;
+    j["label_voxels"] = label.voxels;
+    j["output"] = output.string();
+    j["slices_with_contours"] = r.report.slices_with_contours;
+    j["contours"] = r.report.contours;
+    j["hole_contours"] = r.report.hole_contours;
+    j["branchings"] = r.report.tiling.branchings;
+    j["caps"] = r.report.tiling.caps;
+    j["vertices"] = r.mesh.num_vertices();
+    j["faces"] = r.mesh.num_faces();
+    j["components"] = topo.components;
+    j["is_closed"] = topo.closed;
+    j["is_manifold"] = topo.manifold;
+    j["euler_characteristic"] = topo.euler_characteristic;
+    j["volume"] = enclosed_volume(r.mesh);
+    const auto spacing = selected.map.layers[static_cast<std::size_t>(label.layer)]->GetSpacing();
+    j["voxel_volume"] = static_cast<double>(label.voxels) * spacing[0] * spacing[1] * spacing[2];
+    j["seconds_segment"] = r.report.seconds_segment;
+    j["seconds_tile"] = r.report.seconds_tile;
+    meshes.push_back(j);
+  }
+  progress.finish();
+  if (a.json) {
+    print_json({{"command", "reconstruct"}, {"input", a.input}, {"labels", meshes}, {"seconds", seconds_since(start)}});
+    return kOk;
+  }
+  if (a.common.quiet) return kOk;
+  std::cout << "reconstructed " << meshes.size() << " label" << (meshes.size() == 1 ? "" : "s") << " of " << a.input
+            << "\n";
+  for (const nlohmann::json& j : meshes) {
+    const int components = j["components"].get<int>();
+    std::cout << std::fixed << std::setprecision(1) << "label " << j["label"].get<std::string>() << " (value "
+              << j["label_value"].get<int>() << ", " << j["label_voxels"].get<std::size_t>() << " voxels, "
+              << j["voxel_volume"].get<double>() << " mm^3)\n"
+              << "  mesh       " << j["vertices"].get<Index>() << " vertices, " << j["faces"].get<Index>()
+              << " triangles, " << components << " component" << (components == 1 ? "" : "s") << ", "
+              << (j["is_closed"].get<bool>() ? "closed" : "OPEN") << ", volume " << j["volume"].get<double>()
+              << " mm^3\n"
+              << "  wrote      " << j["output"].get<std::string>() << "\n";
+  }
+  return kOk;
+}
+
 int run_reconstruct(const ReconstructArgs& a) {
   const auto start = std::chrono::steady_clock::now();
+  if (a.selection.list_series) return print_series_list(a.input, a.json);
+  if (a.output.empty()) {
+    std::cerr << "contourmesh reconstruct: --output is required\n";
+    return kUsage;
+  }
   ReconstructionOptions options;
   auto& seg = options.segmentation;
   seg.threshold = a.threshold;
   seg.threshold_method = a.otsu ? ThresholdMethod::Otsu : ThresholdMethod::Fixed;
-  seg.sampling = a.sampling;
+  seg.sampling = a.sampling.value_or(0.0);
   seg.smoothing = parse_smoothing(a.smoothing);
   if (a.keep == "all") seg.components = ComponentSelection::KeepAll;
   else if (a.keep == "largest") seg.components = ComponentSelection::KeepLargest;
   else throw InvalidInputError("--keep must be all or largest, got '" + a.keep + "'");
   seg.min_region_area = a.min_area;
   seg.fill_holes = a.fill_holes;
-  if (a.end_caps == "half-spacing") options.tiling.end_caps = EndCaps::HalfSpacing;
-  else if (a.end_caps == "end-slice") options.tiling.end_caps = EndCaps::AtEndSlice;
-  else throw InvalidInputError("--end-caps must be half-spacing or end-slice, got '" + a.end_caps + "'");
+  options.tiling.end_caps = parse_end_caps(a.end_caps);
   MeshWriteOptions write_options;
   write_options.format = parse_mesh_format(a.format);
   if (write_options.format == MeshFormat::Auto) (void)format_from_extension(a.output);  // fail before the work
-  check_output_path(a.output);
   options.tiling.limits.max_vertices = a.max_vertices;
+  if (labels_requested(a.selection)) {
+    if (!a.contours_out.empty()) throw InvalidInputError("--contours-out is not available with --label or --labels");
+    return run_reconstruct_labels(a, options, write_options, start);
+  }
+  check_output_path(a.output);
+  if (!a.contours_out.empty()) {
+    if (!is_contour_stack_path(a.contours_out)) throw InvalidInputError(a.contours_out + ": contour files end in .json");
+    check_output_path(a.contours_out);
+  }
+  options.tiling.limits.max_vertices = a.max_vertices;
+  options.segmentation.limits.max_vertices = a.max_vertices;
 
   apply_common_options(a.common);
   ProgressDisplay progress("reconstruct", a.common.quiet);
   progress.stage("read");
-  const CtImage::Pointer image = read_volume(a.input);
+  VolumeReadOptions read = volume_read_options(a.volume, "reconstruct");
+  read.series_uid = a.selection.series;
+  const CtImage::Pointer image = read_volume(a.input, read);
   Reconstruction r;
   try {
     r = reconstruct(*image, options, progress.callback());
@@ -79,10 +192,20 @@ int run_reconstruct(const ReconstructArgs& a) {
   } catch (const InvalidInputError& e) {
     throw InvalidInputError(a.input + ": " + e.what());
   }
+  // The summary's topology is computed while the file is written, when a second thread is allowed.
+  std::future<TopologySummary> topology =
+      std::async(available_threads() > 1 ? std::launch::async : std::launch::deferred,
+                 [&r] { return summarize_topology(r.mesh); });
   progress.stage("write");
+  write_options.progress = progress.callback();
   write_mesh(r.mesh, a.output, write_options);
+  if (!a.contours_out.empty()) {
+    ContourStackFile contours;
+    contours.stack = r.contours;
+    write_contour_stack(contours, a.contours_out);
+  }
   progress.finish();
-  const TopologySummary topo = summarize_topology(r.mesh);
+  const TopologySummary topo = topology.get();
   const double volume = enclosed_volume(r.mesh);
   const auto size = image->GetLargestPossibleRegion().GetSize();
   const auto spacing = image->GetSpacing();
@@ -91,6 +214,7 @@ int run_reconstruct(const ReconstructArgs& a) {
     j["command"] = "reconstruct";
     j["input"] = a.input;
     j["output"] = a.output;
+    if (!a.selection.series.empty()) j["series"] = a.selection.series;
     j["size"] = {size[0], size[1], size[2]};
     j["spacing"] = {spacing[0], spacing[1], spacing[2]};
     j["threshold"] = r.report.threshold;
@@ -109,6 +233,7 @@ int run_reconstruct(const ReconstructArgs& a) {
     j["is_manifold"] = topo.manifold;
     j["euler_characteristic"] = topo.euler_characteristic;
     j["volume"] = volume;
+    if (!a.contours_out.empty()) j["contours_out"] = a.contours_out;
     j["seconds_segment"] = r.report.seconds_segment;
     j["seconds_tile"] = r.report.seconds_tile;
     j["seconds"] = seconds_since(start);
@@ -127,22 +252,155 @@ int run_reconstruct(const ReconstructArgs& a) {
             << (topo.closed ? "closed" : "OPEN") << ", " << (topo.manifold ? "manifold" : "NOT manifold")
             << ", Euler characteristic " << topo.euler_characteristic << ", volume " << std::setprecision(1) << volume
             << " mm^3\n"
-            << "  wrote      " << a.output << " in " << std::setprecision(2) << seconds_since(start) << " s\n";
+            << "  wrote      " << a.output << (a.contours_out.empty() ? "" : " and " + a.contours_out) << " in "
+            << std::setprecision(2) << seconds_since(start) << " s\n";
   return kOk;
+}
+
+// The file extension of a mesh format (".vtp" for Auto: it keeps the contour ids).
+std::string mesh_extension(MeshFormat format) {
+  switch (format) {
+    case MeshFormat::StlBinary:
+    case MeshFormat::StlAscii: return ".stl";
+    case MeshFormat::Ply: return ".ply";
+    case MeshFormat::Obj: return ".obj";
+    case MeshFormat::Vtp:
+    case MeshFormat::Auto: break;
+  }
+  return ".vtp";
+}
+
+// One ROI (or contour file): tiled, written, checked against its drawn contours; its JSON object.
+nlohmann::json reconstruct_one(const ReconstructArgs& a, InputKind kind, const ContourInput& in,
+                               const std::filesystem::path& output, const std::filesystem::path& contours_out,
+                               const MeshWriteOptions& write_options, ProgressDisplay& progress) {
+  const auto t0 = std::chrono::steady_clock::now();
+  const ContourReconstruction r = reconstruct_from_contours(
+      in.stack, in.what, contour_options(a.contour, in, a.sampling, parse_end_caps(a.end_caps), a.max_vertices),
+      progress.callback());
+  print_warnings("reconstruct", r.report.warnings);
+  progress.stage("write");
+  write_mesh(r.mesh, output, write_options);
+  if (!contours_out.empty()) write_input_contours(in, contours_out);
+  const TopologySummary topo = summarize_topology(r.mesh);
+  const double volume = enclosed_volume(r.mesh);
+  const ContourDeviation deviation = contour_deviation(r.mesh, in.stack);
+  const double difference = 100.0 * (volume - r.report.slicewise_volume) / r.report.slicewise_volume;
+  const double seconds = seconds_since(t0);
+  nlohmann::json j;
+  j["status"] = "ok";
+  describe_input(j, in);
+  j["output"] = output.string();
+  if (!contours_out.empty()) j["contours_out"] = contours_out.string();
+  j["slices"] = r.report.slices;
+  j["contours"] = r.report.contours;
+  j["hole_contours"] = r.report.hole_contours;
+  j["points_drawn"] = r.report.points_drawn;
+  j["points_tiled"] = r.report.points_tiled;
+  j["branchings"] = r.report.tiling.branchings;
+  j["caps"] = r.report.tiling.caps;
+  j["slabs"] = r.report.slabs;
+  j["aligned_gaps"] = r.report.aligned_gaps;
+  j["vertices"] = r.mesh.num_vertices();
+  j["faces"] = r.mesh.num_faces();
+  j["components"] = topo.components;
+  j["is_closed"] = topo.closed;
+  j["is_manifold"] = topo.manifold;
+  j["euler_characteristic"] = topo.euler_characteristic;
+  j["volume"] = volume;
+  j["slicewise_volume"] = r.report.slicewise_volume;
+  j["volume_difference_percent"] = difference;
+  j["contour_deviation_mean"] = deviation.mean;
+  j["contour_deviation_max"] = deviation.max;
+  j["slices_without_section"] = deviation.slices_without_section;
+  j["seconds_tile"] = r.report.seconds_tile;
+  j["seconds"] = seconds;
+  if (a.json || a.common.quiet) return j;
+  std::cout << std::fixed << std::setprecision(2) << "reconstructed " << in.what
+            << (kind == InputKind::StructureSet ? " of " + a.input : "") << "\n"
+            << "  contours   " << r.report.contours << " (" << r.report.hole_contours
+            << (r.report.hole_contours == 1 ? " hole) on " : " holes) on ") << r.report.slices << " slices, "
+            << r.report.points_drawn << " points drawn, " << r.report.points_tiled << " tiled; "
+            << r.report.tiling.branchings << " branchings, " << r.report.tiling.caps << " caps, " << r.report.slabs
+            << " single-slice slabs\n"
+            << "  mesh       " << r.mesh.num_vertices() << " vertices, " << r.mesh.num_faces() << " triangles, "
+            << topo.components << " component" << (topo.components == 1 ? "" : "s") << ", "
+            << (topo.closed ? "closed" : "OPEN") << ", " << (topo.manifold ? "manifold" : "NOT manifold")
+            << ", Euler characteristic " << topo.euler_characteristic << "\n"
+            << "  volume     " << std::setprecision(1) << volume << " mm^3; slice-wise " << r.report.slicewise_volume
+            << " mm^3 (" << std::showpos << std::setprecision(2) << difference << std::noshowpos << " %)\n"
+            << std::setprecision(3) << "  contours   reproduced in their slice planes within " << deviation.max
+            << " mm (mean " << deviation.mean << " mm)\n"
+            << "  wrote      " << output.string() << (contours_out.empty() ? "" : " and " + contours_out.string())
+            << " in " << std::setprecision(2) << seconds << " s\n";
+  return j;
+}
+
+int run_reconstruct_contours(const ReconstructArgs& a, InputKind kind) {
+  const auto start = std::chrono::steady_clock::now();
+  MeshWriteOptions write_options;
+  write_options.format = parse_mesh_format(a.format);
+  (void)parse_end_caps(a.end_caps);
+  apply_common_options(a.common);
+  ProgressDisplay progress("reconstruct", a.common.quiet);
+  progress.stage("read");
+  const ContourInputs loaded = load_contour_inputs(a.input, kind, a.contour);
+  print_warnings("reconstruct", loaded.warnings);
+  print_warnings("reconstruct", loaded.skipped);
+  const auto outputs = roi_outputs(a.output, loaded, mesh_extension(write_options.format));
+  const auto contour_outputs = roi_outputs(a.contours_out, loaded, ".json", true);
+  if (write_options.format == MeshFormat::Auto) {
+    for (const auto& p : outputs) (void)format_from_extension(p);
+  }
+  std::size_t failed = 0;
+  nlohmann::json rois = for_each_roi(
+      "reconstruct", a.input, loaded,
+      [&](const ContourInput& in, std::size_t i) {
+        return reconstruct_one(a, kind, in, outputs[i], contour_outputs[i], write_options, progress);
+      },
+      failed);
+  progress.finish();
+  if (a.json) print_json(roi_results_json("reconstruct", a.input, loaded, std::move(rois), failed, start));
+  if (failed > 0 && !a.json) {
+    std::cerr << "contourmesh reconstruct: " << failed << " of " << loaded.inputs.size() << " ROIs failed\n";
+  }
+  return failed > 0 ? kBadInput : kOk;
+}
+
+int run_reconstruct_any(const ReconstructArgs& a, const CLI::App* cmd) {
+  const InputKind kind = input_kind(a.input);
+  if (kind == InputKind::Volume) {
+    reject_options(cmd, kContourOptions, "applies to contours (an RT Structure Set or a .json contour file)");
+    return run_reconstruct(a);
+  }
+  reject_options(cmd, kVolumeOptions, "applies to CT volumes, not to contours");
+  if (a.output.empty()) {
+    std::cerr << "contourmesh reconstruct: --output is required\n";
+    return kUsage;
+  }
+  return run_reconstruct_contours(a, kind);
 }
 
 }  // namespace
 
 void add_reconstruct_command(CLI::App& app) {
   auto args = std::make_shared<ReconstructArgs>();
-  CLI::App* cmd = app.add_subcommand("reconstruct", "Segment a CT volume and tile its contours into a closed mesh");
-  cmd->add_option("input", args->input, "CT volume (.mha .mhd .nrrd .nii .nii.gz) or a DICOM series directory")
+  CLI::App* cmd = app.add_subcommand(
+      "reconstruct", "Segment a CT volume, or take drawn contours, and tile the contours into a closed mesh");
+  cmd->add_option("input", args->input,
+                  "CT volume (.mha .mhd .nrrd .nii .nii.gz), DICOM series directory, RT Structure Set (with "
+                  "--roi), contour file (.json), or with --label(s) a label map or 3D Slicer segmentation (.seg.nrrd)")
       ->required();
-  cmd->add_option("-o,--output", args->output, "Output mesh (.vtp or .ply keep the contour ids)")->required();
-  cmd->add_option("--threshold", args->threshold, "Foreground threshold, HU (bone: 300)")->capture_default_str();
-  cmd->add_flag("--otsu", args->otsu, "Use Otsu's threshold instead of --threshold");
-  cmd->add_option("--sampling", args->sampling, "Distance between contour points, mm (0: the pixel spacing, at most 1 mm)")
-      ->capture_default_str();
+  cmd->add_option("-o,--output", args->output,
+                  "Output mesh (.vtp or .ply keep the contour ids); with --roi all a directory, or a path with {roi}; "
+                  "with --labels a path whose stem gets _<label>, or with {label}");
+  CLI::Option* threshold =
+      cmd->add_option("--threshold", args->threshold, "Foreground threshold, HU (bone: 300)")->capture_default_str();
+  CLI::Option* otsu = cmd->add_flag("--otsu", args->otsu, "Use Otsu's threshold instead of --threshold");
+  add_input_selection_options(cmd, args->selection, {threshold, otsu});
+  cmd->add_option("--sampling", args->sampling,
+                  "Distance between contour points, mm (CT default 0: the pixel spacing, at most 1 mm; contours "
+                  "default 1, 0: as drawn)");
   cmd->add_option("--smoothing", args->smoothing, "Image denoising: none | median | anisotropic")->capture_default_str();
   cmd->add_option("--keep", args->keep, "Components: all | largest (3-D)")->capture_default_str();
   cmd->add_option("--min-area", args->min_area, "Drop regions and fill holes smaller than this, mm^2")
@@ -153,10 +411,15 @@ void add_reconstruct_command(CLI::App& app) {
       ->capture_default_str();
   cmd->add_option("--format", args->format, "Output format: auto | stl | stl-ascii | ply | vtp | obj")
       ->capture_default_str();
+  cmd->add_option("--contours-out", args->contours_out,
+                  "Also write the contours (found in the CT, or as normalised from the input) to this .json file");
+  add_contour_options(cmd, args->contour);
+  add_volume_options(cmd, args->volume);
   add_max_vertices_option(cmd, args->max_vertices);
   cmd->add_flag("--json", args->json, "Print one JSON object on stdout instead of the summary");
   add_common_options(cmd, args->common);
-  cmd->callback([args] { set_exit_code(run_guarded("reconstruct", [&] { return run_reconstruct(*args); })); });
+  cmd->callback(
+      [args, cmd] { set_exit_code(run_guarded("reconstruct", [&] { return run_reconstruct_any(*args, cmd); })); });
 }
 
 }  // namespace contourmesh::cli

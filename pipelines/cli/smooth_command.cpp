@@ -109,23 +109,24 @@ int run_smooth(const SmoothArgs& a) {
 
   check_output_path(a.output);
   if (!a.labels_out.empty()) check_output_path(a.labels_out);
+  check_distinct_outputs({{"-o", a.output}, {"--labels-out", a.labels_out}});
 
   progress.stage("read");
 
-  Mesh mesh = read_mesh(a.input, read_options);
-  check_mesh(mesh, a.input, "smooth");
+  PreparedMesh input = prepare_for_method(config, read_mesh(a.input, read_options), a.features, a.input, "smooth");
+  const Mesh mesh = std::move(input.mesh);
+  const std::string id_source(to_string(input.id_source));
   const MeshAdjacency adjacency = build_adjacency(mesh);
   const double volume_before = enclosed_volume(mesh);
   const bool closed = adjacency.is_closed();
 
-  const std::string id_source = prepare_ids_for_method(config, mesh, adjacency, a.features, a.input, "smooth");
   config.options.progress = progress.callback();
   config.options.limits.max_vertices = a.max_vertices;
   SmoothResult r;
   try {
-    r = smooth(mesh, method, config.options);
-  } catch (const LimitError& e) {
-    throw LimitError(a.input + ": " + e.what());
+    r = smooth(mesh, method, config.options);  // also stops a diverging run (DivergenceError)
+  } catch (const InvalidInputError&) {
+    rethrow_with_context(a.input);
   }
   nlohmann::json j;
   const std::string summary = describe_stages(r, id_source, j);
@@ -133,10 +134,12 @@ int run_smooth(const SmoothArgs& a) {
     MeshWriteOptions labels;
     labels.arrays = read_options.arrays;
     labels.point_scalars = label_arrays({r.labels, r.detection, r.creases, 0.0});
+    labels.progress = progress.callback();
     write_mesh(mesh, a.labels_out, labels);
     j["labels_out"] = a.labels_out;
   }
   progress.stage("write");
+  write_options.progress = progress.callback();
   write_mesh(r.mesh, a.output, write_options);
   progress.finish();
 

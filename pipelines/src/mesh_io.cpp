@@ -5,6 +5,7 @@
 #include "pipelines/vtk_convert.h"
 
 #include "mesh_readers.h"
+#include "mesh_writers.h"
 #include "vtkCheckedXMLPolyDataReader.h"
 
 #include <smooth/errors.h>
@@ -12,10 +13,8 @@
 #include <vtkAlgorithm.h>
 #include <vtkLogger.h>
 #include <vtkNew.h>
-#include <vtkOBJWriter.h>
 #include <vtkOutputWindow.h>
 #include <vtkPolyData.h>
-#include <vtkSTLWriter.h>
 #include <vtkSmartPointer.h>
 #include <vtkStringOutputWindow.h>
 #include <vtkXMLPolyDataWriter.h>
@@ -224,43 +223,54 @@ void write_mesh(const Mesh& mesh, const fs::path& path, const MeshWriteOptions& 
                             " cannot carry per-vertex arrays such as '" + options.point_scalars.front().name +
                             "': write .vtp or .ply");
   }
-  write_atomically(path, [&](const fs::path& tmp) {
-    if (format == MeshFormat::Ply) {
-      std::ofstream out(tmp, std::ios::binary);
-      if (!out) throw InvalidInputError(path.string() + ": cannot open for writing");
-      write_ply(out, mesh, options.arrays, options.point_scalars);
-      out.flush();
-      if (!out) throw InvalidInputError(path.string() + ": write failed (disk full?)");
-      return;
+  // No format gets a non-finite coordinate: such a file could not be read back, by us or anyone.
+  if (!mesh.positions.allFinite()) {
+    for (Index i = 0; i < mesh.num_vertices(); ++i) {
+      if (!mesh.positions.col(i).allFinite()) {
+        std::ostringstream msg;
+        msg << path.string() << ": cannot write: vertex " << i << " has a non-finite coordinate ("
+            << mesh.positions(0, i) << ", " << mesh.positions(1, i) << ", " << mesh.positions(2, i) << ")";
+        throw InvalidInputError(msg.str());
+      }
     }
-    CapturedVtkMessages messages;
-    const vtkSmartPointer<vtkPolyData> poly = to_polydata(mesh, options.arrays, options.point_scalars);
-    int ok = 0;
-    if (format == MeshFormat::StlBinary || format == MeshFormat::StlAscii) {
-      vtkNew<vtkSTLWriter> writer;
-      writer->SetInputData(poly);
-      writer->SetFileName(tmp.c_str());
-      if (format == MeshFormat::StlBinary) writer->SetFileTypeToBinary();
-      else writer->SetFileTypeToASCII();
-      ok = writer->Write() && writer->GetErrorCode() == 0;
-    } else if (format == MeshFormat::Vtp) {
-      vtkNew<vtkXMLPolyDataWriter> writer;
-      writer->SetInputData(poly);
-      writer->SetFileName(tmp.c_str());
-      writer->SetDataModeToAppended();
-      writer->SetCompressorTypeToZLib();
-      ok = writer->Write() && writer->GetErrorCode() == 0;
-    } else {
-      vtkNew<vtkOBJWriter> writer;
-      writer->SetInputData(poly);
-      writer->SetFileName(tmp.c_str());
-      ok = writer->Write();
-    }
-    const std::string error = messages.first_error();
-    if (!ok || !error.empty()) {
-      throw InvalidInputError(path.string() + ": cannot write: " + (error.empty() ? "VTK writer failed" : error));
-    }
-  });
+  }
+  write_atomically(
+      path,
+      [&](const fs::path& tmp) {
+        try {
+          if (format == MeshFormat::StlBinary || format == MeshFormat::StlAscii) {
+            detail::write_stl(tmp, mesh, format == MeshFormat::StlBinary);
+            return;
+          }
+          if (format == MeshFormat::Obj) {
+            detail::write_obj(tmp, mesh);
+            return;
+          }
+        } catch (const InvalidInputError&) {
+          rethrow_with_context(path.string());
+        }
+        if (format == MeshFormat::Ply) {
+          std::ofstream out(tmp, std::ios::binary);
+          if (!out) throw InvalidInputError(path.string() + ": cannot open for writing");
+          write_ply(out, mesh, options.arrays, options.point_scalars);
+          out.close();
+          if (!out) throw InvalidInputError(path.string() + ": cannot write: write failed (disk full?)");
+          return;
+        }
+        CapturedVtkMessages messages;
+        const vtkSmartPointer<vtkPolyData> poly = to_polydata(mesh, options.arrays, options.point_scalars);
+        vtkNew<vtkXMLPolyDataWriter> writer;
+        writer->SetInputData(poly);
+        writer->SetFileName(tmp.c_str());
+        writer->SetDataModeToAppended();
+        writer->SetCompressorTypeToZLib();
+        const int ok = writer->Write() && writer->GetErrorCode() == 0;
+        const std::string error = messages.first_error();
+        if (!ok || !error.empty()) {
+          throw InvalidInputError(path.string() + ": cannot write: " + (error.empty() ? "VTK writer failed" : error));
+        }
+      },
+      options.progress);
 }
 
 }  // namespace contourmesh

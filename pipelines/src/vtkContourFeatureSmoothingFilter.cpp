@@ -4,18 +4,19 @@
 #include "vtk_progress.h"
 
 #include <smooth/adjacency.h>
-#include <smooth/contour_structure.h>
 #include <smooth/errors.h>
 #include <smooth/feature_detection.h>
+#include <smooth/input_policy.h>
 #include <smooth/smooth.h>
-#include <smooth/validation.h>
 
+#include <vtkAbstractArray.h>
 #include <vtkDataArray.h>
 #include <vtkInformation.h>
 #include <vtkInformationVector.h>
 #include <vtkObjectFactory.h>
 #include <vtkPointData.h>
 #include <vtkPolyData.h>
+#include <vtkSmartPointer.h>
 
 #include <cstdint>
 #include <optional>
@@ -108,18 +109,11 @@ void set_properties(Filter* f, const contourmesh::MethodConfig& config) {
   f->SetKeepAdaptiveMesh(o.paper.output == OutputResolution::Adaptive);
 }
 
-// Fatal problems (what the CLI rejects) throw; problems smoothing tolerates are counted.
-std::size_t check_mesh(const contourmesh::Mesh& mesh) {
-  std::size_t tolerated = 0;
-  for (const contourmesh::MeshProblem& p : contourmesh::find_mesh_problems(mesh)) {
-    if (p.kind == contourmesh::MeshProblemKind::NonFiniteCoordinate ||
-        p.kind == contourmesh::MeshProblemKind::IndexOutOfRange ||
-        p.kind == contourmesh::MeshProblemKind::IdSizeMismatch) {
-      throw InvalidInputError("input: " + contourmesh::describe(p));
-    }
-    ++tolerated;
-  }
-  return tolerated;
+// The input's point arrays for the prepared mesh's vertices: the first input point merged into each.
+std::vector<vtkIdType> representatives(const std::vector<contourmesh::Index>& vertex_map, contourmesh::Index count) {
+  std::vector<vtkIdType> first(static_cast<std::size_t>(count), -1);
+  for (std::size_t i = vertex_map.size(); i-- > 0;) first[vertex_map[i]] = static_cast<vtkIdType>(i);
+  return first;
 }
 
 }  // namespace
@@ -203,37 +197,65 @@ int vtkContourFeatureSmoothingFilter::Execute(vtkPolyData* input, vtkPolyData* o
   const ContourIdArrayNames names{this->ContourIdArrayName, this->ContourIndexArrayName};
   Mesh mesh = from_polydata(input, names);
   if (mesh.triangles.empty()) throw InvalidInputError("input has no triangles");
-  if (const std::size_t tolerated = check_mesh(mesh)) {
-    vtkWarningMacro(<< "input: " << tolerated << " topology problem" << (tolerated == 1 ? "" : "s")
-                    << " (degenerate, duplicate or non-manifold triangles), first: "
-                    << describe(find_mesh_problems(mesh).front()));
-  }
-  const Index n = mesh.num_vertices();
-
-  std::vector<std::uint8_t> locked;
-  if (this->LockedArrayName != nullptr && this->LockedArrayName[0] != '\0') {
-    vtkDataArray* array = input->GetPointData()->GetArray(this->LockedArrayName);
-    if (array == nullptr) {
-      throw InvalidInputError(std::string("input has no point array '") + this->LockedArrayName +
-                              "' (LockedArrayName)");
-    }
-    if (array->GetNumberOfComponents() != 1 || array->GetNumberOfTuples() != n) {
-      throw InvalidInputError(std::string("locked array '") + this->LockedArrayName + "' is not one value per point");
-    }
-    locked.resize(static_cast<std::size_t>(n));
-    for (Index i = 0; i < n; ++i) locked[i] = array->GetComponent(i, 0) != 0.0;
-  }
+  const Index n_input = mesh.num_vertices();
 
   const SmoothingMethod method = to_library(this->Method);
   const bool cross_slice = method == SmoothingMethod::CrossSlice;
   // The paper's detection runs for its method, and for labels of a method that has none of its own.
   const bool detect = method == SmoothingMethod::FeaturePreserving || (this->GenerateLabels && !produces_labels(method));
-  if (cross_slice && !locked.empty()) {
-    throw InvalidInputError("cross-slice smoothing cannot lock vertices: unset LockedArrayName or choose another Method");
-  }
-  const MeshAdjacency adjacency = build_adjacency(mesh);
 
-  // Detection options, and contour ids for the detection (as the CLI's prepare_contour_ids).
+  // The one input policy, as `contourmesh smooth` runs it (smooth/input_policy.h): refusals, repairs,
+  // orientation, and contour ids made usable for the detection or for cross-slice smoothing, which
+  // cannot do without them.
+  InputPolicyOptions policy;
+  policy.ids = cross_slice || (detect && this->DetectionMode != DETECTION_CURVATURE_ONLY) ? ContourIdUse::Detection
+                                                                                         : ContourIdUse::PassThrough;
+  if (this->SliceAxis != SLICE_AXIS_NONE) policy.slice_axis = Eigen::Vector3d::Unit(this->SliceAxis);
+  policy.slice_tolerance = this->SliceTolerance;
+  policy.missing_ids =
+      this->DetectionMode == DETECTION_AUTOMATIC && !cross_slice ? MissingIds::CurvatureOnly : MissingIds::Refuse;
+  if (policy.ids == ContourIdUse::Detection && !mesh.has_contour_ids() && !policy.slice_axis &&
+      policy.missing_ids == MissingIds::Refuse) {
+    if (cross_slice) {
+      throw InvalidInputError(std::string("input has no contour-id point array '") + this->ContourIdArrayName +
+                              "', which cross-slice smoothing needs: set SliceAxis to recover the ids by binning "
+                              "the vertices along the slice axis, or choose another Method");
+    }
+    throw InvalidInputError(std::string("input has no contour-id point array '") + this->ContourIdArrayName +
+                            "': set SliceAxis to recover the ids by binning the vertices along the slice axis, "
+                            "or SetDetectionModeToCurvatureOnly()");
+  }
+  PreparedMesh prepared;
+  try {
+    prepared = prepare_input_mesh(std::move(mesh), policy);
+  } catch (const InvalidInputError&) {
+    rethrow_with_context("input");
+  }
+  for (const std::string& warning : prepared.warnings) vtkWarningMacro(<< "input: " << warning);
+  mesh = std::move(prepared.mesh);
+  const Index n = mesh.num_vertices();
+  const std::vector<Index>& vertex_map = prepared.repair.vertex_map;  // empty: input point i is vertex i
+
+  std::vector<std::uint8_t> locked;
+  if (this->LockedArrayName != nullptr && this->LockedArrayName[0] != '\0') {
+    if (cross_slice) {
+      throw InvalidInputError("cross-slice smoothing cannot lock vertices: unset LockedArrayName or choose another Method");
+    }
+    vtkDataArray* array = input->GetPointData()->GetArray(this->LockedArrayName);
+    if (array == nullptr) {
+      throw InvalidInputError(std::string("input has no point array '") + this->LockedArrayName +
+                              "' (LockedArrayName)");
+    }
+    if (array->GetNumberOfComponents() != 1 || array->GetNumberOfTuples() != n_input) {
+      throw InvalidInputError(std::string("locked array '") + this->LockedArrayName + "' is not one value per point");
+    }
+    locked.assign(static_cast<std::size_t>(n), 0);
+    for (Index i = 0; i < n_input; ++i) {
+      if (array->GetComponent(i, 0) != 0.0) locked[vertex_map.empty() ? i : vertex_map[i]] = 1;
+    }
+  }
+
+  // Detection options.
   DetectionOptions detection;
   detection.anisotropy = this->Anisotropy;
   if (this->Gamma >= 0.0) detection.gamma = this->Gamma;
@@ -249,33 +271,9 @@ int vtkContourFeatureSmoothingFilter::Execute(vtkPolyData* input, vtkPolyData* o
   detection.prefilter_iterations = this->PrefilterIterations;
   detection.curvature.umbilic_tolerance = this->UmbilicTolerance;
   detection.curvature.min_reciprocal_condition = this->MinReciprocalCondition;
-  if (detect || cross_slice) {
-    if (this->DetectionMode == DETECTION_CURVATURE_ONLY && !cross_slice) {
-      detection.mode = contourmesh::DetectionMode::CurvatureOnly;
-    } else if (!mesh.has_contour_ids()) {
-      if (this->SliceAxis != SLICE_AXIS_NONE) {
-        const Eigen::Vector3d axis = Eigen::Vector3d::Unit(this->SliceAxis);
-        if (!assign_ids_by_slice_planes(mesh, adjacency, axis, this->SliceTolerance)) {
-          throw InvalidInputError(std::string("input has no point array '") + this->ContourIdArrayName +
-                                  "' and its vertices do not lie on planes normal to the slice axis " +
-                                  "xyz"[this->SliceAxis] +
-                                  ", so contour ids cannot be recovered (not a contour-based mesh?)");
-        }
-      } else if (cross_slice) {
-        throw InvalidInputError(std::string("input has no contour-id point array '") + this->ContourIdArrayName +
-                                "', which cross-slice smoothing needs: set SliceAxis to recover the ids by binning "
-                                "the vertices along the slice axis, or choose another Method");
-      } else if (this->DetectionMode == DETECTION_AUTOMATIC) {
-        vtkWarningMacro(<< "input has no point array '" << this->ContourIdArrayName
-                        << "': using curvature-only feature detection (set SliceAxis to recover the ids of a "
-                           "contour-stack mesh)");
-        detection.mode = contourmesh::DetectionMode::CurvatureOnly;
-      } else {
-        throw InvalidInputError(std::string("input has no contour-id point array '") + this->ContourIdArrayName +
-                                "': set SliceAxis to recover the ids by binning the vertices along the slice axis, "
-                                "or SetDetectionModeToCurvatureOnly()");
-      }
-    }
+  if (this->DetectionMode == DETECTION_CURVATURE_ONLY ||
+      prepared.detection_mode == contourmesh::DetectionMode::CurvatureOnly) {
+    detection.mode = contourmesh::DetectionMode::CurvatureOnly;
   }
 
   // The library's options from the properties (as `contourmesh smooth` builds them from its flags).
@@ -317,8 +315,9 @@ int vtkContourFeatureSmoothingFilter::Execute(vtkPolyData* input, vtkPolyData* o
   o.progress = stages.callback();
   if (this->GenerateLabels && !produces_labels(method)) {
     detection.progress = o.progress;
-    labels = detect_features(mesh, adjacency, detection).labels;
+    labels = detect_features(mesh, build_adjacency(mesh), detection).labels;
   }
+  // smooth() also stops a diverging run (DivergenceError), as `contourmesh smooth` does.
   SmoothResult smoothed = smooth(mesh, method, o);
   if (produces_labels(method)) labels = std::move(smoothed.labels);
   const Mesh& result = smoothed.mesh;
@@ -332,15 +331,27 @@ int vtkContourFeatureSmoothingFilter::Execute(vtkPolyData* input, vtkPolyData* o
     extra.push_back(std::move(array));
   }
   vtkSmartPointer<vtkPolyData> poly = to_polydata(result, names, extra);
-  // At the input's resolution, pass the input's other point arrays (not its now stale normals).
+  // At the input's resolution, pass the input's other point arrays (not its now stale normals); where
+  // coincident input points were merged, each vertex takes the values of the first of them.
   if (result.num_vertices() == n) {
+    const std::vector<vtkIdType> source =
+        vertex_map.empty() ? std::vector<vtkIdType>() : representatives(vertex_map, n);
     vtkPointData* in = input->GetPointData();
     vtkPointData* out = poly->GetPointData();
     for (int a = 0; a < in->GetNumberOfArrays(); ++a) {
       vtkAbstractArray* array = in->GetAbstractArray(a);
       if (array == nullptr || array->GetName() == nullptr || array == in->GetNormals()) continue;
-      if (array->GetNumberOfTuples() != n || out->GetAbstractArray(array->GetName()) != nullptr) continue;
-      out->AddArray(array);
+      if (array->GetNumberOfTuples() != n_input || out->GetAbstractArray(array->GetName()) != nullptr) continue;
+      if (source.empty()) {
+        out->AddArray(array);
+        continue;
+      }
+      vtkSmartPointer<vtkAbstractArray> copy = vtkSmartPointer<vtkAbstractArray>::Take(array->NewInstance());
+      copy->SetName(array->GetName());
+      copy->SetNumberOfComponents(array->GetNumberOfComponents());
+      copy->SetNumberOfTuples(n);
+      for (Index j = 0; j < n; ++j) copy->SetTuple(j, source[j], array);
+      out->AddArray(copy);
     }
     if (vtkDataArray* scalars = in->GetScalars(); scalars != nullptr && scalars->GetName() != nullptr) {
       out->SetActiveScalars(scalars->GetName());

@@ -12,10 +12,12 @@
 #include <smooth/errors.h>
 #include <smooth/feature_detection.h>
 #include <smooth/feature_smoothing.h>
+#include <smooth/input_policy.h>
 #include <smooth/shapes.h>
 
 #include <cmath>
 #include <cstdint>
+#include <cstdio>
 #include <exception>
 #include <new>
 #include <numbers>
@@ -93,14 +95,14 @@ void perturb(ByteReader& in, Mesh& mesh, double feature_size) {
   }
 }
 
-// Damages the ids (or drops them), then does what the CLI does before detection
-// (pipelines/cli/feature_options.cpp, prepare_contour_ids): compact, check, repair or recover, or fall
-// back to curvature-only detection.
-void damage_and_recover_ids(ByteReader& in, Mesh& mesh, DetectionOptions& detection) {
+// Damages the ids (or drops them), then runs the input policy the CLI and the VTK filter share
+// (prepare_input_mesh: repairs, orientation, ids compacted, checked, repaired or recovered, or the
+// curvature-only fallback). Returns false when the policy refuses the mesh (with a one-line error).
+bool damage_and_recover_ids(ByteReader& in, Mesh& mesh, DetectionOptions& detection) {
   const std::uint8_t what = in.byte();
   if (!mesh.has_contour_ids()) {
     detection.mode = DetectionMode::CurvatureOnly;
-    return;
+    return true;
   }
   const Index n = mesh.num_vertices();
   if (what & 1) {
@@ -117,17 +119,22 @@ void damage_and_recover_ids(ByteReader& in, Mesh& mesh, DetectionOptions& detect
     if (!assign_ids_by_slice_planes(mesh, build_adjacency(mesh), Eigen::Vector3d::UnitZ())) {
       detection.mode = DetectionMode::CurvatureOnly;
     }
-    return;
+    return true;
   }
-  if (what & 4) return;  // detection on the ids as they are, consistent or not
-  compact_slice_ids(mesh);
-  const MeshAdjacency adjacency = build_adjacency(mesh);
-  if (find_contour_id_problem(mesh, adjacency).empty()) return;
-  if (repair_contour_ids(mesh, adjacency, Eigen::Vector3d::UnitZ())) return;
-  if (assign_ids_by_slice_planes(mesh, adjacency, Eigen::Vector3d::UnitZ())) return;
-  mesh.slice_ids.clear();
-  mesh.contour_ids.clear();
-  detection.mode = DetectionMode::CurvatureOnly;
+  if (what & 4) return true;  // detection on the ids as they are, consistent or not
+  InputPolicyOptions policy;
+  policy.ids = ContourIdUse::Detection;
+  if (what & 8) policy.slice_axis = Eigen::Vector3d::UnitZ();
+  try {
+    PreparedMesh prepared = prepare_input_mesh(std::move(mesh), policy);
+    mesh = std::move(prepared.mesh);
+    if (prepared.detection_mode == DetectionMode::CurvatureOnly) detection.mode = DetectionMode::CurvatureOnly;
+  } catch (const InvalidInputError& e) {
+    check_message_is_one_line(e.what(), "prepare_input_mesh");
+    if (verbose()) std::fprintf(stderr, "input refused: %s\n", e.what());
+    return false;
+  }
+  return true;
 }
 
 DetectionOptions decode_detection(ByteReader& in) {
@@ -173,7 +180,7 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
   mesh.positions *= scale;
   FeatureSmoothingOptions options;
   options.detection = fuzz::decode_detection(in);
-  fuzz::damage_and_recover_ids(in, mesh, options.detection);
+  if (!fuzz::damage_and_recover_ids(in, mesh, options.detection)) return 0;
   const std::uint8_t what = in.byte();
   options.max_levels = in.integer(0, 3);
   options.iterations = in.integer(0, 12);

@@ -8,12 +8,16 @@
 #include <itkMetaDataObject.h>
 
 #include <pipelines/mesh_io.h>
+#include <pipelines/vtk_convert.h>
 #include <reconstruct/volume.h>
 #include <smooth/adjacency.h>
 #include <smooth/shapes.h>
 
 #include <gtest/gtest.h>
 #include <nlohmann/json.hpp>
+#include <vtkNew.h>
+#include <vtkPolyData.h>
+#include <vtkXMLPolyDataWriter.h>
 
 #include <sys/stat.h>
 #include <sys/wait.h>
@@ -221,8 +225,8 @@ TEST_F(BadInput, TruncatedStlBinaryAndAscii) {
   expect_rejected(run("smooth " + binary.string() + " -o " + out.string()), {binary.string(), "10 whole triangles"});
 
   const fs::path ascii = dir_ / "cut_ascii.stl";
-  write_mesh(stack_, ascii, {MeshFormat::StlAscii, {}, {}});
-  cut(ascii, read_bytes(ascii).size() / 2);
+  write_mesh(stack_, ascii, {MeshFormat::StlAscii, {}, {}, {}});
+  cut(ascii, read_bytes(ascii).find('\n', read_bytes(ascii).size() / 2) + 1);  // after a whole line
   expect_rejected(run("smooth " + ascii.string() + " -o " + out.string()),
                   {ascii.string(), "the ASCII STL ends inside a solid", "truncated file?"});
   // A malformed line is named by its number.
@@ -266,21 +270,52 @@ TEST_F(BadInput, RandomBytesWithAMeshExtension) {
 
 // ----- Files that read but hold invalid data -----------------------------------------------------------
 
+// Replaces every occurrence of `from`'s bytes (or text) in a file by `to`'s.
+void patch(const fs::path& p, const std::string& from, const std::string& to) {
+  std::string bytes = read_bytes(p);
+  for (auto at = bytes.find(from); at != std::string::npos; at = bytes.find(from, at + to.size())) {
+    bytes.replace(at, from.size(), to);
+  }
+  std::ofstream(p, std::ios::binary | std::ios::trunc) << bytes;
+}
+
+template <typename T>
+std::string bytes_of(T value) {
+  std::string b(sizeof(T), '\0');
+  std::memcpy(b.data(), &value, sizeof(T));
+  return b;
+}
+
 TEST_F(BadInput, NonFiniteCoordinatesInEveryFormat) {
   const fs::path out = dir_ / "out.ply";
+  // The writers refuse NaN, so the broken files are written with a sentinel coordinate that is then
+  // patched to NaN in the bytes (the VTP uncompressed, so that its bytes can be found).
+  constexpr double kSentinel = 1234.5;
   Mesh bad = stack_;
-  bad.positions(1, 5) = std::numeric_limits<double>::quiet_NaN();
-  struct Case {
-    std::string file;
-    MeshFormat format;
-    std::string what;
-  };
-  for (const Case& c : {Case{"nan.stl", MeshFormat::StlBinary, "has a non-finite coordinate ("},
-                        Case{"nan_ascii.stl", MeshFormat::StlAscii, "has a non-finite coordinate 'nan'"},
-                        Case{"nan.ply", MeshFormat::Ply, "vertex 5 has a non-finite coordinate ("},
-                        Case{"nan.vtp", MeshFormat::Vtp, "vertex 5 has a non-finite coordinate ("}}) {
-    write_mesh(bad, dir_ / c.file, {c.format, {}, {}});
-    expect_rejected(run("smooth " + (dir_ / c.file).string() + " -o " + out.string()), {c.file, c.what});
+  bad.positions(1, 5) = kSentinel;
+  const double nan = std::numeric_limits<double>::quiet_NaN();
+  write_mesh(bad, dir_ / "nan.stl");
+  patch(dir_ / "nan.stl", bytes_of(static_cast<float>(kSentinel)), bytes_of(static_cast<float>(nan)));
+  write_mesh(bad, dir_ / "nan_ascii.stl", {MeshFormat::StlAscii, {}, {}, {}});
+  patch(dir_ / "nan_ascii.stl", "1234.5", "nan");
+  write_mesh(bad, dir_ / "nan.ply");
+  patch(dir_ / "nan.ply", bytes_of(kSentinel), bytes_of(nan));
+  {
+    vtkNew<vtkXMLPolyDataWriter> writer;
+    writer->SetInputData(to_polydata(bad, {}, {}));
+    writer->SetFileName((dir_ / "nan.vtp").c_str());
+    writer->SetDataModeToAppended();
+    writer->EncodeAppendedDataOff();
+    writer->SetCompressorTypeToNone();
+    ASSERT_EQ(writer->Write(), 1);
+    patch(dir_ / "nan.vtp", bytes_of(kSentinel), bytes_of(nan));
+  }
+  for (const auto& [file, what] : std::vector<std::pair<std::string, std::string>>{
+           {"nan.stl", "has a non-finite coordinate ("},
+           {"nan_ascii.stl", "has a non-finite coordinate 'nan'"},
+           {"nan.ply", "vertex 5 has a non-finite coordinate ("},
+           {"nan.vtp", "vertex 5 has a non-finite coordinate ("}}) {
+    expect_rejected(run("smooth " + (dir_ / file).string() + " -o " + out.string()), {file, what});
   }
   // vtkOBJReader reads "nan" as 0; ours refuses it, and infinities, naming the line.
   const fs::path obj_nan = write_text("nan.obj", tetra_obj("v 0 nan 0"));
@@ -433,7 +468,7 @@ TEST_F(BadInput, MissingContourIdsFallBackWithAWarning) {
   ASSERT_EQ(r.code, 0) << r.err;
   EXPECT_EQ(json_of(r)["id_source"], "slice-planes");
   r = run("detect " + (dir_ / "plain.stl").string() + " -o " + (dir_ / "l.vtp").string() + " --slice-axis x");
-  expect_rejected(r, {"plain.stl", "do not lie on planes normal to x"});
+  expect_rejected(r, {"plain.stl", "do not lie on planes normal to the slice axis x"});
   // The default, cross-slice smoothing, refuses a mesh without ids, naming the way out.
   r = run("smooth " + (dir_ / "plain.stl").string() + " -o " + (dir_ / "o.stl").string());
   expect_rejected(r, {"plain.stl", "cross-slice smoothing needs contour ids", "--slice-axis"});
@@ -468,10 +503,11 @@ TEST_F(BadInput, InconsistentContourIdsAreCorrected) {
   Mesh wrong = stack_;
   wrong.slice_ids[v] = 5;
   expect_same_labels(detect(wrong, "wrong.ply"), "file-repaired", "inconsistent contour ids (");
-  // Nonsense ids: negative, and far beyond the others.
+  // Nonsense ids: negative (refused: -1 is the only legal negative id), and far beyond the others.
   Mesh negative = stack_;
   negative.slice_ids[v] = -7;
-  expect_same_labels(detect(negative, "negative.ply"), "file-repaired", "has slice id -7");
+  expect_rejected(detect(negative, "negative.ply"),
+                  {"negative.ply: vertex " + std::to_string(v) + " has slice id -7", "ids are >= 0, or -1"});
   Mesh huge = stack_;
   huge.slice_ids[v] = 1'000'000;
   expect_same_labels(detect(huge, "huge.ply"), "file-repaired", "corrected them from the slice planes");
@@ -556,8 +592,25 @@ TEST_F(BadInput, DicomDirectoryWithTwoSeries) {
   write_dicom_series(two, "1.2.826.0.1.3680043.2.1125.82", 3);
   expect_rejected(run("reconstruct " + two.string() + " -o " + out.string()),
                   {two.string(), "holds 2 DICOM series", "1.2.826.0.1.3680043.2.1125.81",
-                   "1.2.826.0.1.3680043.2.1125.82", "put one series per directory"});
+                   "1.2.826.0.1.3680043.2.1125.82", "pick one with --series UID"});
   expect_rejected(run("run " + two.string() + " -o " + out.string()), {"holds 2 DICOM series"});
+  expect_nothing_written(out);
+  // --list-series names both; --series reads the one asked for (4 slices, not 3).
+  const CliRun list = run("reconstruct " + two.string() + " --list-series");
+  ASSERT_EQ(list.code, 0) << list.err;
+  EXPECT_NE(list.out.find("1.2.826.0.1.3680043.2.1125.81"), std::string::npos) << list.out;
+  EXPECT_NE(list.out.find("1.2.826.0.1.3680043.2.1125.82"), std::string::npos) << list.out;
+  const nlohmann::json listed = json_of(run("reconstruct " + two.string() + " --list-series --json"));
+  ASSERT_EQ(listed["series"].size(), 2u);
+  EXPECT_EQ(listed["series"][1]["files"], 3);
+  EXPECT_EQ(listed["series"][0]["modality"], "CT");
+  const CliRun picked =
+      run("reconstruct " + two.string() + " --series 1.2.826.0.1.3680043.2.1125.81 -o " + out.string() + " --json");
+  ASSERT_EQ(picked.code, 0) << picked.err;
+  EXPECT_EQ(json_of(picked)["slices"], 4);
+  fs::remove(out);
+  expect_rejected(run("reconstruct " + two.string() + " --series 1.2.3 -o " + out.string()),
+                  {"no DICOM series 1.2.3 in the directory"});
   expect_nothing_written(out);
 }
 
@@ -652,9 +705,11 @@ TEST_F(BadInput, MaxVerticesRefusesOversizedMeshesBeforeAllocating) {
   const fs::path volume = write_volume_file("v.mha", {24, 24, 5}, {1, 1, 1}, [](int i, int j, int k) {
     return k > 0 && k < 4 && (i - 12) * (i - 12) + (j - 12) * (j - 12) < 64 ? 1000.0f : -1000.0f;
   });
+  // The contour points are counted before they are resampled, so the limit stops the work there.
   expect_rejected(run("reconstruct " + volume.string() + " -o " + out.string() + " --max-vertices 50"),
-                  {volume.string(), "tiling", "exceed the limit of 50 vertices"});
-  expect_rejected(run("run " + volume.string() + " -o " + out.string() + " --max-vertices 50"), {"tiling"});
+                  {volume.string(), "contour resampling", "exceed the limit of 50 vertices"});
+  expect_rejected(run("run " + volume.string() + " -o " + out.string() + " --max-vertices 50"),
+                  {"contour resampling"});
   expect_nothing_written(out);
   // A volume header promising 170 TB of working memory: refused from the header, before any reading.
   const fs::path huge = write_text("huge.mha", "ObjectType = Image\nNDims = 3\nDimSize = 100000 100000 1000\n"

@@ -447,13 +447,15 @@ TEST_F(Cli, ProgressIsOneLinePerStageOffATerminalAndQuietSilencesIt) {
 TEST_F(Cli, HelpListsEveryOptionOfEverySubcommand) {
   const std::map<std::string, std::vector<std::string>> options = {
       {"phantom", {"--shape", "--spacing", "--noise", "--blur", "--seed", "--json"}},
-      {"reconstruct", {"--threshold", "--otsu", "--end-caps", "--keep", "--fill-holes", "--json", "--quiet", "--threads"}},
+      {"reconstruct", {"--threshold", "--otsu", "--end-caps", "--keep", "--fill-holes", "--json", "--quiet", "--threads",
+                       "--roi", "--contours-out", "--sampling", "--slab-thickness", "--align", "--single-slice"}},
+      {"contours", {"--list", "--roi", "--output", "--json", "--planarity-tolerance"}},
       {"detect", {"--method", "--preset", "--gamma", "--delta", "--measure", "--in-slice", "--prefilter", "--window", "--corner-spread", "--slice-axis",
                   "--json"}},
       {"smooth", {"--method", "--preset", "--iterations", "--gamma", "--delta", "--max-levels", "--keep-adaptive", "--labels-out",
                   "--in-slice", "--json", "--quiet", "--threads"}},
       {"run", {"--shape", "--noise", "--method", "--preset", "--iterations", "--threshold", "--end-caps", "--in-slice", "--measure",
-               "--json", "--quiet", "--threads"}},
+               "--json", "--quiet", "--threads", "--roi", "--sampling", "--slab-thickness"}},
   };
   for (const auto& [command, names] : options) {
     const CliRun r = run_cli(command + " --help", dir_);

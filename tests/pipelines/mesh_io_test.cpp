@@ -88,7 +88,7 @@ TEST_F(MeshIo, RoundTripKeepsPositionsConnectivityAndIds) {
 TEST_F(MeshIo, AsciiStlAndExplicitFormat) {
   const Mesh m = make_icosphere(2);
   const fs::path p = dir_ / "ascii.stl";
-  write_mesh(m, p, {MeshFormat::StlAscii, {}, {}});
+  write_mesh(m, p, {MeshFormat::StlAscii, {}, {}, {}});
   std::ifstream in(p);
   std::string first;
   in >> first;
@@ -96,7 +96,7 @@ TEST_F(MeshIo, AsciiStlAndExplicitFormat) {
   EXPECT_EQ(read_mesh(p).num_faces(), m.num_faces());
   // A .dat file written as PLY by explicit format, read back the same way.
   const fs::path q = dir_ / "mesh.dat";
-  write_mesh(m, q, {MeshFormat::Ply, {}, {}});
+  write_mesh(m, q, {MeshFormat::Ply, {}, {}, {}});
   EXPECT_EQ(read_mesh(q, {MeshFormat::Ply, {}}).num_vertices(), m.num_vertices());
 }
 
@@ -104,7 +104,7 @@ TEST_F(MeshIo, CustomIdArrayNames) {
   const Mesh m = stack_with_ids();
   const ContourIdArrayNames names{"Slice", "Which"};
   for (const char* file : {"n.vtp", "n.ply"}) {
-    write_mesh(m, dir_ / file, {MeshFormat::Auto, names, {}});
+    write_mesh(m, dir_ / file, {MeshFormat::Auto, names, {}, {}});
     EXPECT_FALSE(read_mesh(dir_ / file).has_contour_ids()) << file;
     EXPECT_EQ(read_mesh(dir_ / file, {MeshFormat::Auto, names}).slice_ids, m.slice_ids) << file;
   }

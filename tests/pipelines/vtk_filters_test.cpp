@@ -1,9 +1,9 @@
 // The VTK filters inside real VTK pipelines: vtkContourFeatureSmoothingFilter must give exactly what the
-// libsmooth calls give, vtkContourStackToSurfaceFilter exactly what reconstruct() gives; aborts, errors,
+// libsmooth calls give, vtkCtImageToContourSurfaceFilter exactly what reconstruct() gives; aborts, errors,
 // missing ids and option clamping behave as documented.
 #include <pipelines/mesh_io.h>
 #include <pipelines/vtkContourFeatureSmoothingFilter.h>
-#include <pipelines/vtkContourStackToSurfaceFilter.h>
+#include <pipelines/vtkCtImageToContourSurfaceFilter.h>
 #include <pipelines/vtk_convert.h>
 #include <pipelines/vtk_image_convert.h>
 #include <reconstruct/phantom.h>
@@ -423,7 +423,7 @@ TEST_F(VtkFilters, AbortFromProgressObserverStopsEarlyWithEmptyOutput) {
   EXPECT_GT(watch->events, 40) << "one report per iteration";
 
   // The reconstruction filter aborts the same way, during segmentation.
-  vtkNew<vtkContourStackToSurfaceFilter> surface;
+  vtkNew<vtkCtImageToContourSurfaceFilter> surface;
   surface->SetInputData(to_image_data(femur().GetPointer()));
   surface->SetThreshold(kIsoLevel);
   observe_messages(surface, messages);
@@ -533,7 +533,7 @@ TEST_F(VtkFilters, ReconstructionFilterMatchesReconstruct) {
 
   vtkNew<vtkTrivialProducer> source;
   source->SetOutput(to_image_data(image.GetPointer(), "HU"));
-  vtkNew<vtkContourStackToSurfaceFilter> filter;
+  vtkNew<vtkCtImageToContourSurfaceFilter> filter;
   filter->SetInputConnection(source->GetOutputPort());
   filter->SetThreshold(kIsoLevel);
   filter->KeepLargestComponentOn();
@@ -558,7 +558,7 @@ TEST_F(VtkFilters, ReconstructionFilterMatchesReconstruct) {
   EXPECT_TRUE(topology.manifold) << topology.first_problems;
 
   // Every option at its default is the library's default.
-  vtkNew<vtkContourStackToSurfaceFilter> defaults;
+  vtkNew<vtkCtImageToContourSurfaceFilter> defaults;
   defaults->SetInputConnection(source->GetOutputPort());
   defaults->Update();
   const Mesh d = from_polydata(defaults->GetOutput());
@@ -585,7 +585,7 @@ TEST_F(VtkFilters, ReconstructionFilterMatchesReconstruct) {
 // Same for the reconstruction options, on a noisy cavity phantom (specks, holes) segmented low, on two
 // objects side by side, and on the tilted pelvis ring (contours shift between slices).
 TEST_F(VtkFilters, NonDefaultReconstructionOptionsReachTheLibrary) {
-  using Filter = vtkContourStackToSurfaceFilter;
+  using Filter = vtkCtImageToContourSurfaceFilter;
   PhantomVolumeOptions vo;
   vo.spacing = {1.2, 1.2, 3.0};
   vo.margin = 3.0;
@@ -734,7 +734,7 @@ TEST_F(VtkFilters, ImageToSurfaceToSmoothingToStlChain) {
 
   vtkNew<vtkTrivialProducer> source;
   source->SetOutput(to_image_data(image.GetPointer()));
-  vtkNew<vtkContourStackToSurfaceFilter> surface;
+  vtkNew<vtkCtImageToContourSurfaceFilter> surface;
   surface->SetInputConnection(source->GetOutputPort());
   surface->SetThreshold(kIsoLevel);
   vtkNew<vtkContourFeatureSmoothingFilter> smoothing;
@@ -816,7 +816,7 @@ TEST_F(VtkFilters, SameResultAsTheCli) {
   const std::string reconstruct_cmd = std::string(CONTOURMESH_CLI) + " reconstruct " + volume.string() + " -o " +
                                       (dir / "rec.vtp").string() + " --threshold 520 --keep largest" + quiet;
   ASSERT_EQ(std::system(reconstruct_cmd.c_str()), 0) << reconstruct_cmd;
-  vtkNew<vtkContourStackToSurfaceFilter> surface;
+  vtkNew<vtkCtImageToContourSurfaceFilter> surface;
   surface->SetInputData(to_image_data(read_volume(volume).GetPointer()));
   surface->SetThreshold(520.0);
   surface->KeepLargestComponentOn();
@@ -870,7 +870,7 @@ TEST_F(VtkFilters, OptionsClampAndPrintSelfListsThem) {
   f->SetAnisotropy(0.2);
   EXPECT_EQ(f->GetAnisotropy(), 1.0);
 
-  vtkNew<vtkContourStackToSurfaceFilter> s;
+  vtkNew<vtkCtImageToContourSurfaceFilter> s;
   s->SetMinOverlapFraction(2.0);
   EXPECT_EQ(s->GetMinOverlapFraction(), 1.0);
   s->SetMinRegionArea(-1.0);
@@ -878,7 +878,7 @@ TEST_F(VtkFilters, OptionsClampAndPrintSelfListsThem) {
   s->SetThreshold(std::numeric_limits<double>::infinity());
   EXPECT_EQ(s->GetThreshold(), VTK_DOUBLE_MAX);
   s->SetDenoising(9);
-  EXPECT_EQ(s->GetDenoising(), vtkContourStackToSurfaceFilter::DENOISING_CURVATURE_ANISOTROPIC);
+  EXPECT_EQ(s->GetDenoising(), vtkCtImageToContourSurfaceFilter::DENOISING_CURVATURE_ANISOTROPIC);
   s->SetFullDynamicProgrammingLimit(-3);
   EXPECT_EQ(s->GetFullDynamicProgrammingLimit(), 0);
 
@@ -939,6 +939,19 @@ TEST_F(VtkFilters, LockedArrayKeepsVerticesInPlace) {
   ASSERT_EQ(out.num_vertices(), mesh.num_vertices());
   EXPECT_EQ(max_difference(out.positions, expected.positions), 0.0);
   for (std::size_t i = 0; i < mask.size(); i += 3) EXPECT_EQ(out.positions.col(i), mesh.positions.col(i));
+}
+
+// A run that diverges (a million Taubin iterations) is an error and an empty output, as in the CLI.
+TEST_F(VtkFilters, ADivergingRunIsAnErrorNotAnOverflowingMesh) {
+  vtkNew<vtkContourFeatureSmoothingFilter> filter;
+  filter->SetInputData(to_polydata(ridge_stack()));
+  filter->SetMethodToTaubin();
+  filter->SetNumberOfIterations(1000000);
+  vtkNew<MessageObserver> messages;
+  observe_messages(filter, messages);
+  filter->Update();
+  EXPECT_NE(messages->errors.find("smoothing diverged at iteration"), std::string::npos) << messages->errors;
+  EXPECT_EQ(filter->GetOutput()->GetNumberOfPoints(), 0);
 }
 
 // Presets set the method and the options they fix; the xu2006 preset is the library's, on the golden mesh

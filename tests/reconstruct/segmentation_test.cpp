@@ -118,6 +118,65 @@ TEST(Segmentation, ResamplingNeverMakesTheContoursOfASliceMeet) {
   EXPECT_NO_THROW(tile_contours(r.stack));
 }
 
+// A volume from a per-pixel function of (i, j, k), spacing `spacing`, origin 0.
+CtImage::Pointer pixel_volume(const std::array<int, 3>& n, const Eigen::Vector3d& spacing,
+                              const std::function<float(int, int, int)>& value) {
+  auto image = CtImage::New();
+  CtImage::RegionType region;
+  region.SetSize({{static_cast<itk::SizeValueType>(n[0]), static_cast<itk::SizeValueType>(n[1]),
+                   static_cast<itk::SizeValueType>(n[2])}});
+  image->SetRegions(region);
+  image->SetSpacing(spacing.data());
+  image->Allocate();
+  for (int k = 0; k < n[2]; ++k) {
+    for (int j = 0; j < n[1]; ++j) {
+      for (int i = 0; i < n[0]; ++i) image->SetPixel({{i, j, k}}, value(i, j, k));
+    }
+  }
+  return image;
+}
+
+// Sub-pixel position: on a ramp of 100 HU per pixel, the contour crosses each row where the linear
+// interpolation of the two pixel values meets the threshold.
+TEST(Segmentation, ContoursCrossPixelEdgesWhereTheValuesMeetTheThreshold) {
+  const Eigen::Vector3d spacing(0.5, 0.7, 1.0);
+  const auto image = pixel_volume({12, 8, 2}, spacing, [](int i, int, int) { return 100.0f * i + 7.0f; });
+  SegmentationOptions o;
+  o.threshold = 550;  // between pixel 5 (507) and pixel 6 (607): 0.43 of the way
+  o.sampling = 0.1;
+  const auto r = segment_contours(*image, o);
+  for (const SliceContours& s : r.stack.slices) {
+    ASSERT_EQ(s.contours.size(), 1u);
+    double min_x = 1e9;
+    for (const Eigen::Vector2d& p : s.contours[0].points) min_x = std::min(min_x, p.x());
+    EXPECT_NEAR(min_x, 5.43 * spacing.x(), 1e-9);
+    EXPECT_GT(signed_area(s.contours[0].points), 0.0);
+  }
+}
+
+// Regions are 4-connected: two pixel blocks touching at one corner are two contours, each around its
+// own block (at a threshold halfway between bone and background a k x k block's contour passes
+// through the pixel edges' midpoints: area k^2 - 1/2 pixels).
+TEST(Segmentation, BlocksTouchingAtACornerStayTwoRegions) {
+  const auto image = pixel_volume({14, 14, 2}, {1.0, 1.0, 1.0}, [](int i, int j, int) {
+    const bool a = i >= 2 && i < 6 && j >= 2 && j < 6, b = i >= 6 && i < 10 && j >= 6 && j < 10;
+    return a || b ? 1000.0f : 0.0f;
+  });
+  SegmentationOptions o;
+  o.threshold = 500;
+  o.sampling = 0.05;
+  const auto r = segment_contours(*image, o);
+  for (const SliceContours& s : r.stack.slices) {
+    ASSERT_EQ(s.contours.size(), 2u);
+    for (const Contour& c : s.contours) {
+      EXPECT_FALSE(c.is_hole);
+      EXPECT_NEAR(signed_area(c.points), 15.5, 0.01);
+    }
+    std::vector<std::vector<Eigen::Vector2d>> outlines{s.contours[0].points, s.contours[1].points};
+    EXPECT_FALSE(find_polygon_crossing(outlines));
+  }
+}
+
 TEST(Segmentation, KeepLargestDropsTheSmallerObject) {
   const auto image = make_volume({80, 40, 3}, {0.5, 0.5, 1.0}, {-20, -10, 0}, [](const Eigen::Vector3d& p) {
     return std::min(cylinder(p, -10, 0, 6), cylinder(p, 10, 0, 4));

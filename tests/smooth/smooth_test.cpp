@@ -150,6 +150,25 @@ TEST(SmoothEntryPoint, ProgressLimitsAndCancellation) {
   EXPECT_NO_THROW((void)smooth(m, SmoothingMethod::CrossSlice, o));
 }
 
+TEST(SmoothEntryPoint, ADivergingRunIsAnErrorAndTheFamilysObserverStillRuns) {
+  const Mesh m = small_stack();
+  for (SmoothingMethod method : {SmoothingMethod::Taubin, SmoothingMethod::FeaturePreserving}) {
+    SCOPED_TRACE(std::string(to_string(method)));
+    SmoothOptions o;
+    o.iterations = 1'000'000;  // amplifies the high frequencies until they overflow
+    int seen = 0;
+    o.baseline.on_iteration = o.paper.on_iteration = [&seen](int, const Eigen::Matrix3Xd&) { ++seen; };
+    try {
+      (void)smooth(m, method, o);
+      ADD_FAILURE() << "no DivergenceError";
+    } catch (const DivergenceError& e) {
+      EXPECT_NE(std::string(e.what()).find("smoothing diverged at iteration"), std::string::npos) << e.what();
+    }
+    EXPECT_GT(seen, 0);
+    EXPECT_LT(seen, 1'000'000);  // stopped at once, not at the end
+  }
+}
+
 TEST(SmoothEntryPoint, MethodsThatNeedIdsSaySo) {
   const Mesh sphere = make_icosphere(2);
   EXPECT_THROW((void)smooth(sphere, SmoothingMethod::FeaturePreserving), InvalidInputError);

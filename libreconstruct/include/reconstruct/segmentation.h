@@ -1,11 +1,12 @@
-// Segmentation of a CT volume into ordered contours per slice (SPEC 1 and 4): optional denoising,
-// threshold in HU (or Otsu), connected components, per-slice hole handling, sub-pixel contours with
-// itk::ContourExtractor2DImageFilter, orientation, and resampling to a target in-plane spacing.
+// Segmentation of a CT volume into ordered contours per slice (docs/reconstruction.md): optional
+// denoising, threshold in HU (or Otsu), connected components, per-slice hole handling, sub-pixel
+// contours by marching squares, orientation, and resampling to a target in-plane spacing.
 #pragma once
 
 #include "reconstruct/contours.h"
 #include "reconstruct/volume.h"
 
+#include <smooth/limits.h>
 #include <smooth/progress.h>
 
 #include <cstddef>
@@ -50,6 +51,10 @@ struct SegmentationOptions {
   static constexpr double kMaxDefaultSampling = 1.0;  ///< mm
   /// Contours shorter than this (mm) are dropped, with their holes. >= 0.
   double min_contour_length = 3.0;
+  /// Vertex cap and memory budget for the contour points: before each contour is resampled, the points
+  /// it would add to the stack are checked (a tiny `sampling` is refused with a LimitError at once,
+  /// instead of growing until the memory runs out).
+  ResourceLimits limits;
 };
 
 struct SegmentationResult {
@@ -62,8 +67,11 @@ struct SegmentationResult {
 
 /// Segments every slice (index axis 2) of `image` and extracts its contours in the slice frame
 /// (origin, axes and w from the image's origin, direction and spacing). Outer contours are
-/// counter-clockwise, holes clockwise with `parent` set. Throws InvalidInputError for an empty image
-/// or options out of range; CancelledError when `progress` (stage "segment") returns false.
+/// counter-clockwise, holes clockwise with `parent` set. Slices are segmented in parallel on the
+/// threads a ThreadLimit (threads.h) allows, every core by default; the result does not depend on
+/// their number. Throws InvalidInputError for an empty image or options out of range; LimitError when
+/// the resampled contour points would exceed `limits`; CancelledError when `progress` (stage
+/// "segment", called from the calling thread) returns false.
 [[nodiscard]] SegmentationResult segment_contours(const CtImage& image, const SegmentationOptions& options = {},
                                                   const ProgressCallback& progress = {});
 

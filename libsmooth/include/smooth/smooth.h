@@ -82,8 +82,11 @@ struct SmoothResult {
 [[nodiscard]] DetectionOptions* detection_options_of(SmoothingMethod method, SmoothOptions& options);
 
 /// Smooths `mesh` with `method`. FeaturePreserving and CrossSlice need contour ids (see their
-/// headers); baselines do not. Throws InvalidInputError for options out of range or missing ids,
-/// LimitError beyond `options.limits`, CancelledError on request.
+/// headers); baselines do not. Every iteration, and the result, are checked against the input's
+/// bounding box (divergence.h: divergence_guard, then the families' own `on_iteration` observers), so a
+/// diverging run stops with DivergenceError instead of returning overflowing coordinates. Throws
+/// InvalidInputError for options out of range or missing ids, LimitError beyond `options.limits`,
+/// DivergenceError, CancelledError on request.
 [[nodiscard]] SmoothResult smooth(const Mesh& mesh, SmoothingMethod method, const SmoothOptions& options = {});
 
 /// The labels of a method and what they were found from.

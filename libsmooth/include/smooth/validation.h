@@ -64,6 +64,9 @@ struct MeshRepair {
   Index merged_vertices = 0;     ///< vertices merged into an earlier vertex at the same position
   Index dropped_degenerate = 0;  ///< triangles with a repeated vertex index (after merging)
   Index dropped_duplicates = 0;  ///< triangles on the same three vertices as an earlier one, either orientation
+  /// When vertices were merged: the new index of every input vertex (merged ones share one); empty
+  /// when none was, so that the indices are unchanged.
+  std::vector<Index> vertex_map;
   [[nodiscard]] bool changed() const { return merged_vertices + dropped_degenerate + dropped_duplicates > 0; }
   /// One line, e.g. "merged 12 coincident vertices, dropped 3 triangles with a repeated vertex and 1
   /// duplicate triangle"; empty when nothing changed.

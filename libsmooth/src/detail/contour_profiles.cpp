@@ -207,6 +207,103 @@ void cross_slice_profile(const ContourFrame& f, const Eigen::Matrix3Xd& x, const
   }
 }
 
+NextCuts next_cuts(const ContourFrame& f, const Eigen::Matrix3Xd& x, const Eigen::Matrix3Xd& normals) {
+  constexpr int kMaxStarts = 16;
+  const Index n = static_cast<Index>(x.cols());
+  NextCuts cuts;
+  cuts.up.assign(static_cast<std::size_t>(n), EdgePoint{});
+  cuts.down.assign(static_cast<std::size_t>(n), EdgePoint{});
+  const double max_offset = 6.0 * f.slice_spacing;
+  const double search_radius = 1.5 * f.slice_spacing;
+  std::array<Index, kMaxStarts> start{};
+  for (Index i = 0; i < n; ++i) {
+    Eigen::Vector3d m;
+    if (!f.is_contour_vertex(i) || !in_slice_normal(f, normals.col(i), m)) continue;
+    const Eigen::Vector3d v = x.col(i);
+    const Eigen::Vector3d plane_normal = f.axis.cross(m);
+    for (const bool upward : {true, false}) {
+      int starts = 0;
+      next_slice(f, i, upward, [&](Index j) {
+        if (starts < kMaxStarts) start[static_cast<std::size_t>(starts++)] = j;
+      });
+      Eigen::Vector3d cut = Eigen::Vector3d::Zero();
+      Index a = -1, b = -1;
+      if (starts == 0 || !cut_contour(f, x, start.data(), starts, v, plane_normal, cut, a, b)) {
+        EdgeCut found;
+        const std::int32_t slice = f.mesh->slice_ids[static_cast<std::size_t>(i)] + (upward ? 1 : -1);
+        if (!f.edges.cut(slice, x, normals, v, plane_normal, v, m, search_radius, found)) continue;
+        cut = found.point;
+        a = found.a;
+        b = found.b;
+      }
+      const Eigen::Vector3d r = cut - v;
+      if ((r - r.dot(f.axis) * f.axis).squaredNorm() > max_offset * max_offset) continue;
+      const Eigen::Vector3d e = x.col(b) - x.col(a);
+      const double len2 = e.squaredNorm();
+      const double t = len2 > 0.0 ? std::clamp((cut - x.col(a)).dot(e) / len2, 0.0, 1.0) : 0.0;
+      (upward ? cuts.up : cuts.down)[static_cast<std::size_t>(i)] = EdgePoint{a, b, t};
+    }
+  }
+  return cuts;
+}
+
+void chained_profile(const ContourFrame& f, const Eigen::Matrix3Xd& x, const NextCuts& cuts, Index i,
+                     const Eigen::Vector3d& m, int reach, Profile& out) {
+  const Eigen::Vector3d v = x.col(i);
+  const Eigen::Vector3d plane_normal = f.axis.cross(m);
+  const double max_offset2 = 36.0 * f.slice_spacing * f.slice_spacing;
+  std::array<std::array<double, 2 * kMaxProfile>, 2> side{};
+  std::array<int, 2> count{0, 0};
+  reach = std::min(reach, kMaxProfile / 2 - 1);
+  for (int dir = 0; dir < 2; ++dir) {
+    const std::vector<EdgePoint>& next = dir == 1 ? cuts.up : cuts.down;
+    EdgePoint at = next[static_cast<std::size_t>(i)];
+    if (!at.valid()) continue;
+    Eigen::Vector3d point = at.on(x);
+    for (int k = 1; k <= reach; ++k) {
+      const Eigen::Vector3d r = point - v;
+      if ((r - r.dot(f.axis) * f.axis).squaredNorm() > max_offset2) break;
+      auto& s = side[static_cast<std::size_t>(dir)];
+      const int c = count[static_cast<std::size_t>(dir)]++;
+      s[static_cast<std::size_t>(2 * c)] = r.dot(f.axis) / f.slice_spacing;
+      s[static_cast<std::size_t>(2 * c + 1)] = r.dot(m);
+      if (k == reach) break;
+      // The next point: the edge's ends' own next cuts lead to the next contour; there the vertex's own
+      // plane is cut, from the nearer of the two (a step or two along the contour), so the chain does
+      // not drift along the contours. Where that fails, the interpolation of the two cuts serves.
+      const EdgePoint& from_a = next[static_cast<std::size_t>(at.a)];
+      const EdgePoint& from_b = next[static_cast<std::size_t>(at.b)];
+      if (!from_a.valid() && !from_b.valid()) break;
+      const EdgePoint& nearer = !from_b.valid() || (from_a.valid() && at.t < 0.5) ? from_a : from_b;
+      const std::array<Index, 2> starts{nearer.a, nearer.b};
+      Eigen::Vector3d cut = Eigen::Vector3d::Zero();
+      Index ea = -1, eb = -1;
+      if (cut_contour(f, x, starts.data(), 2, v, plane_normal, cut, ea, eb)) {
+        point = cut;
+        const Eigen::Vector3d e = x.col(eb) - x.col(ea);
+        const double len2 = e.squaredNorm();
+        at = EdgePoint{ea, eb, len2 > 0.0 ? std::clamp((cut - x.col(ea)).dot(e) / len2, 0.0, 1.0) : 0.0};
+      } else if (from_a.valid() && from_b.valid()) {
+        point = (1.0 - at.t) * from_a.on(x) + at.t * from_b.on(x);
+        at = nearer;
+      } else {
+        at = nearer;
+        point = at.on(x);
+      }
+    }
+  }
+  out.clear();
+  for (int c = count[0] - 1; c >= 0; --c) out.push(side[0][static_cast<std::size_t>(2 * c)], side[0][static_cast<std::size_t>(2 * c + 1)]);
+  out.push(0.0, 0.0);
+  for (int c = 0; c < count[1]; ++c) out.push(side[1][static_cast<std::size_t>(2 * c)], side[1][static_cast<std::size_t>(2 * c + 1)]);
+  for (int k = 1; k < out.size; ++k) {
+    if (out.x[static_cast<std::size_t>(k)] < out.x[static_cast<std::size_t>(k - 1)]) {
+      out.sort();
+      break;
+    }
+  }
+}
+
 void along_contour_profile(const ContourFrame& f, const Eigen::Matrix3Xd& x, Index i, const Eigen::Vector3d& m,
                            int reach, Profile& out) {
   out.clear();

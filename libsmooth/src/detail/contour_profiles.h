@@ -51,6 +51,32 @@ struct ContourFrame {
 void cross_slice_profile(const ContourFrame& frame, const Eigen::Matrix3Xd& positions, const Eigen::Matrix3Xd& normals,
                          Index i, const Eigen::Vector3d& m, int reach, Profile& out);
 
+/// A point on a contour edge: x_a + t (x_b - x_a).
+struct EdgePoint {
+  Index a = -1, b = -1;
+  double t = 0.0;
+  [[nodiscard]] bool valid() const { return a >= 0; }
+  [[nodiscard]] Eigen::Vector3d on(const Eigen::Matrix3Xd& x) const { return x.col(a) + t * (x.col(b) - x.col(a)); }
+};
+
+/// For every contour vertex, where its profile plane (through it, normal axis x m with m its in-slice
+/// normal) cuts the corresponding contour of the next slice above and below: the first step of every
+/// cross-slice profile, found once (along the mesh, or among the next slice's edges as
+/// cross_slice_profile does).
+struct NextCuts {
+  std::vector<EdgePoint> up, down;
+};
+[[nodiscard]] NextCuts next_cuts(const ContourFrame& frame, const Eigen::Matrix3Xd& positions,
+                                 const Eigen::Matrix3Xd& normals);
+
+/// The profile across the slices of contour vertex i, chained from the next cuts: the cut above the
+/// vertex, then above that cut the interpolation of the cuts above its edge's ends, and so on; samples
+/// as in cross_slice_profile (offsets along the vertex's own m). The chain follows the surface from
+/// slice to slice as the cuts of each contour's own planes lead, at two cuts per vertex in all instead
+/// of two per sample.
+void chained_profile(const ContourFrame& frame, const Eigen::Matrix3Xd& positions, const NextCuts& cuts, Index i,
+                     const Eigen::Vector3d& m, int reach, Profile& out);
+
 /// The profile along contour vertex i's own contour: samples (signed arc length in point spacings,
 /// offset along m) of up to `reach` vertices each way (fewer on short contours).
 void along_contour_profile(const ContourFrame& frame, const Eigen::Matrix3Xd& positions, Index i,

@@ -80,39 +80,62 @@ bool SliceEdgeGrid::cut(std::int32_t slice, const Eigen::Matrix3Xd& x, const Eig
   if (s < 0 || s >= static_cast<std::int64_t>(slices_.size())) return false;
   const Slice& sl = slices_[static_cast<std::size_t>(s)];
   if (sl.nu == 0) return false;
-  const Eigen::Vector2d q(near.dot(e1_), near.dot(e2_));
-  const std::int64_t cu = static_cast<std::int64_t>(std::floor((q.x() - sl.u0) / cell_));
-  const std::int64_t cv = static_cast<std::int64_t>(std::floor((q.y() - sl.v0) / cell_));
-  const std::int64_t rings = static_cast<std::int64_t>(std::ceil(radius / cell_)) + 1;
-  double best = radius * radius;
+  // The plane contains the slice axis, so it meets the slice in a line L, and `near` (a point of the
+  // plane) projects onto L. A crossing lies on L, in the cell that holds it (every edge is listed in
+  // each cell its box touches): walk the cells L passes through, outwards from `near` both ways.
+  const Eigen::Vector2d q(near.dot(e1_) - sl.u0, near.dot(e2_) - sl.v0);
+  Eigen::Vector2d dir(plane_normal.dot(e2_), -plane_normal.dot(e1_));  // L's direction in the slice plane
+  if (!(dir.norm() > 0.0)) return false;
+  dir.normalize();
+  double best = radius;
   bool found = false;
-  for (std::int64_t r = 0; r <= rings; ++r) {
-    // Cells at ring r are at least (r - 1) cells from q: nothing closer can follow.
-    const double ring_distance = std::max<double>(0.0, static_cast<double>(r - 1)) * cell_;
-    if (found && ring_distance * ring_distance > best) break;
-    for (std::int64_t y = cv - r; y <= cv + r; ++y) {
-      if (y < 0 || y >= sl.nv) continue;
-      const bool edge_row = y == cv - r || y == cv + r;
-      for (std::int64_t xx = cu - r; xx <= cu + r; xx += (edge_row || r == 0) ? 1 : 2 * r) {
-        if (xx < 0 || xx >= sl.nu) continue;
-        const std::int64_t c = y * sl.nu + xx;
-        for (std::int64_t k = sl.start[static_cast<std::size_t>(c)]; k < sl.start[static_cast<std::size_t>(c) + 1]; ++k) {
-          const Index e = sl.edges[static_cast<std::size_t>(k)];
-          const Index a = edge_a_[static_cast<std::size_t>(e)], b = edge_b_[static_cast<std::size_t>(e)];
-          const double sa = (x.col(a) - origin).dot(plane_normal), sb = (x.col(b) - origin).dot(plane_normal);
-          if ((sa <= 0.0) == (sb <= 0.0)) continue;
-          if ((normals.col(a) + normals.col(b)).dot(facing) <= 0.0) continue;
-          const Eigen::Vector3d p = x.col(a) + (sa / (sa - sb)) * (x.col(b) - x.col(a));
-          const Eigen::Vector2d d(p.dot(e1_) - q.x(), p.dot(e2_) - q.y());
-          if (d.squaredNorm() < best) {
-            best = d.squaredNorm();
-            out.point = p;
-            out.a = a;
-            out.b = b;
-            found = true;
-          }
-        }
+  const auto test_cell = [&](std::int64_t cu, std::int64_t cv) {
+    if (cu < 0 || cv < 0 || cu >= sl.nu || cv >= sl.nv) return;
+    const std::int64_t c = cv * sl.nu + cu;
+    for (std::int64_t k = sl.start[static_cast<std::size_t>(c)]; k < sl.start[static_cast<std::size_t>(c) + 1]; ++k) {
+      const Index e = sl.edges[static_cast<std::size_t>(k)];
+      const Index a = edge_a_[static_cast<std::size_t>(e)], b = edge_b_[static_cast<std::size_t>(e)];
+      const double sa = (x.col(a) - origin).dot(plane_normal), sb = (x.col(b) - origin).dot(plane_normal);
+      if ((sa <= 0.0) == (sb <= 0.0)) continue;
+      if ((normals.col(a) + normals.col(b)).dot(facing) <= 0.0) continue;
+      const Eigen::Vector3d p = x.col(a) + (sa / (sa - sb)) * (x.col(b) - x.col(a));
+      const double du = p.dot(e1_) - sl.u0 - q.x(), dv = p.dot(e2_) - sl.v0 - q.y();
+      const double d2 = du * du + dv * dv;
+      if (d2 < best * best) {
+        best = std::sqrt(d2);
+        out.point = p;
+        out.a = a;
+        out.b = b;
+        found = true;
       }
+    }
+  };
+  // Amanatides-Woo traversal from q along +dir and -dir up to `best`.
+  for (const double sign : {1.0, -1.0}) {
+    const Eigen::Vector2d d = sign * dir;
+    std::int64_t cu = static_cast<std::int64_t>(std::floor(q.x() / cell_));
+    std::int64_t cv = static_cast<std::int64_t>(std::floor(q.y() / cell_));
+    const std::int64_t step_u = d.x() >= 0.0 ? 1 : -1, step_v = d.y() >= 0.0 ? 1 : -1;
+    const double inf = std::numeric_limits<double>::infinity();
+    const double delta_u = d.x() != 0.0 ? cell_ / std::abs(d.x()) : inf;
+    const double delta_v = d.y() != 0.0 ? cell_ / std::abs(d.y()) : inf;
+    double next_u = d.x() != 0.0 ? ((static_cast<double>(cu) + (step_u > 0 ? 1.0 : 0.0)) * cell_ - q.x()) / d.x() : inf;
+    double next_v = d.y() != 0.0 ? ((static_cast<double>(cv) + (step_v > 0 ? 1.0 : 0.0)) * cell_ - q.y()) / d.y() : inf;
+    double travelled = 0.0;
+    for (int guard = 0; guard < 100000; ++guard) {
+      test_cell(cu, cv);
+      // Anything in later cells lies at least `travelled` from q along L.
+      if (travelled > best) break;
+      if (next_u < next_v) {
+        travelled = next_u;
+        next_u += delta_u;
+        cu += step_u;
+      } else {
+        travelled = next_v;
+        next_v += delta_v;
+        cv += step_v;
+      }
+      if (travelled > best) break;
     }
   }
   return found;

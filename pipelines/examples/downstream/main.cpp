@@ -1,17 +1,25 @@
 // A downstream program built against an installed ContourMesh (see CMakeLists.txt next to it): renders
 // the ridge-box phantom as a noisy CT volume (libreconstruct), reconstructs a mesh with contour ids,
 // smooths it with the paper's method (libsmooth), writes it as STL and reads it back (ContourMesh::vtk),
-// and prints a summary. Exits 0 only if every stage produced what it should.
+// runs the two surface filters (the CT image, and the contours it found as polylines) in VTK
+// pipelines, and prints a summary. Exits 0 only if every stage produced what it should.
 //
 // Usage: contourmesh_downstream [OUT.stl]   (default: downstream_ridge_box.stl)
 #include <pipelines/mesh_io.h>
+#include <pipelines/vtkContourPolylinesToSurfaceFilter.h>
+#include <pipelines/vtkCtImageToContourSurfaceFilter.h>
 #include <pipelines/vtk_convert.h>
+#include <pipelines/vtk_image_convert.h>
 #include <reconstruct/phantom.h>
 #include <reconstruct/reconstruction.h>
 #include <smooth/feature_smoothing.h>
 #include <smooth/metrics.h>
 #include <smooth/topology.h>
 
+#include <vtkCellArray.h>
+#include <vtkImageData.h>
+#include <vtkNew.h>
+#include <vtkPoints.h>
 #include <vtkPolyData.h>
 
 #include <cmath>
@@ -28,6 +36,25 @@ namespace {
 bool check(bool ok, const std::string& what) {
   if (!ok) std::cerr << "contourmesh_downstream: FAILED: " << what << '\n';
   return ok;
+}
+
+// The contours of a stack as closed polylines in physical space, one line cell each.
+vtkSmartPointer<vtkPolyData> contour_polylines(const cm::ContourStack& stack) {
+  vtkNew<vtkPoints> points;
+  vtkNew<vtkCellArray> lines;
+  for (const cm::SliceContours& slice : stack.slices) {
+    for (const cm::Contour& contour : slice.contours) {
+      lines->InsertNextCell(static_cast<vtkIdType>(contour.points.size()));
+      for (const Eigen::Vector2d& uv : contour.points) {
+        const Eigen::Vector3d p = stack.to_physical(uv, slice.w);
+        lines->InsertCellPoint(points->InsertNextPoint(p.x(), p.y(), p.z()));
+      }
+    }
+  }
+  auto poly = vtkSmartPointer<vtkPolyData>::New();
+  poly->SetPoints(points);
+  poly->SetLines(lines);
+  return poly;
 }
 
 }  // namespace
@@ -54,6 +81,16 @@ int main(int argc, char** argv) {
     const cm::Mesh reread = cm::read_mesh(out);
     const vtkSmartPointer<vtkPolyData> polydata = cm::to_polydata(smoothed.mesh);
 
+    // The VTK filters: CT image -> surface, and the contours found -> surface.
+    vtkNew<vtkCtImageToContourSurfaceFilter> image_surface;
+    image_surface->SetInputData(cm::to_image_data(image.GetPointer(), "HU"));
+    image_surface->SetThreshold(reconstruction_options.segmentation.threshold);
+    image_surface->Update();
+    vtkNew<vtkContourPolylinesToSurfaceFilter> polyline_surface;
+    polyline_surface->SetInputData(contour_polylines(reconstruction.contours));
+    polyline_surface->Update();
+    const cm::Mesh from_polylines = cm::from_polydata(polyline_surface->GetOutput());
+
     const cm::TopologySummary topology = cm::summarize_topology(smoothed.mesh);
     const double volume = cm::enclosed_volume(smoothed.mesh);
     const double volume_error = std::abs(volume - phantom.volume) / phantom.volume;
@@ -72,7 +109,10 @@ int main(int argc, char** argv) {
               << distance.mean << " mm\n"
               << "wrote " << out.string() << " (" << std::filesystem::file_size(out) << " bytes, "
               << reread.num_faces() << " triangles read back, " << polydata->GetNumberOfPolys()
-              << " polygons in vtkPolyData)\n";
+              << " polygons in vtkPolyData)\n"
+              << "VTK filters: " << image_surface->GetOutput()->GetNumberOfPolys() << " triangles from the image, "
+              << from_polylines.num_faces() << " from the contours as polylines (volume "
+              << cm::enclosed_volume(from_polylines) << " mm^3)\n";
 
     bool ok = true;
     ok &= check(reconstruction.mesh.has_contour_ids(), "the reconstructed mesh has contour ids");
@@ -83,6 +123,12 @@ int main(int argc, char** argv) {
     ok &= check(distance.mean < 0.5, "mean distance to the analytic surface below 0.5 mm");
     ok &= check(reread.num_faces() == smoothed.mesh.num_faces(), "the STL read back has every triangle");
     ok &= check(polydata->GetNumberOfPolys() == smoothed.mesh.num_faces(), "vtkPolyData has every triangle");
+    ok &= check(image_surface->GetOutput()->GetNumberOfPolys() == reconstruction.mesh.num_faces(),
+                "the image filter gives the reconstruction");
+    const cm::TopologySummary polyline_topology = cm::summarize_topology(from_polylines);
+    ok &= check(polyline_topology.closed && polyline_topology.manifold, "the polyline filter gives a closed manifold mesh");
+    ok &= check(std::abs(cm::enclosed_volume(from_polylines) - phantom.volume) < 0.05 * phantom.volume,
+                "the polyline filter's volume within 5 % of the analytic volume");
     return ok ? EXIT_SUCCESS : EXIT_FAILURE;
   } catch (const std::exception& e) {
     std::cerr << "contourmesh_downstream: " << e.what() << '\n';

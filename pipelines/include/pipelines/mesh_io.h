@@ -1,9 +1,11 @@
-// Mesh file I/O for ContourMesh: STL (binary, ASCII), PLY, VTP and OBJ, through VTK readers and
-// writers (PLY through our own codec so that the contour-id arrays survive, see ply_io.h).
+// Mesh file I/O for ContourMesh: STL (binary, ASCII), PLY, VTP and OBJ. STL, OBJ and PLY go through the
+// project's own parsers and writers (strict: VTK's accept truncated files, read "nan" as 0 and do not
+// check their writes); VTP through VTK's XML reader (wrapped to check what it trusts) and writer.
 #pragma once
 
 #include <smooth/limits.h>
 #include <smooth/mesh.h>
+#include <smooth/progress.h>
 
 #include <filesystem>
 #include <string>
@@ -20,6 +22,13 @@ enum class MeshFormat {
   Vtp,        ///< VTK XML PolyData, appended binary, zlib-compressed
   Obj,
 };
+
+/// The coordinate system of written meshes: LPS, the physical space ITK reads volumes in (patient left,
+/// posterior, superior). STL files carry it in their header and PLY files in a comment, in the form
+/// 3D Slicer writes and reads ("SPACE=LPS"), so that Slicer places the mesh on its volume.
+inline constexpr const char* kCoordinateSystemTag = "SPACE=LPS";
+/// The header of written STL files (binary: the 80-byte header; ASCII: the solid's name).
+inline constexpr const char* kStlHeader = "ContourMesh output. SPACE=LPS";
 
 /// "stl", "stl-ascii", "ply", "vtp", "obj" (and "auto").
 [[nodiscard]] std::string_view to_string(MeshFormat format);
@@ -61,6 +70,9 @@ struct MeshWriteOptions {
   ContourIdArrayNames arrays;
   /// Extra point arrays; writing them to STL or OBJ is an InvalidInputError.
   std::vector<PointScalars> point_scalars;
+  /// Called with ("write", 1) once the file is complete, before it replaces `path`: return false to
+  /// cancel (CancelledError; nothing is replaced, no temporary is left).
+  ProgressCallback progress;
 };
 
 /// Reads a triangle mesh. Polygons with more than three corners are triangulated; lines and vertices
@@ -76,11 +88,13 @@ struct MeshWriteOptions {
 /// InvalidInputError) beyond `options.max_vertices`.
 [[nodiscard]] Mesh read_mesh(const std::filesystem::path& path, const MeshReadOptions& options = {});
 
-/// Writes a mesh atomically: to a temporary file in the same directory, renamed over `path` only once
-/// complete, so a failure never leaves a partial file nor truncates an existing one. Contour ids are
-/// written for PLY and VTP when the mesh has them. Throws InvalidInputError naming the file on failure
-/// (missing directory, no permission, disk full), or when an extra array has the wrong size or the
-/// format cannot carry it.
+/// Writes a mesh atomically (smooth/atomic_file.h): to a temporary file next to the destination, flushed
+/// to disk and renamed over it only once complete, so a failure never leaves a partial file nor
+/// truncates an existing one; symbolic links are written through; only a regular file is replaced.
+/// Contour ids are written for PLY and VTP when the mesh has them. Throws InvalidInputError naming the
+/// file on failure (missing directory, no permission, a device, disk full or a file size limit: every
+/// write is checked), for a non-finite coordinate (any format), a coordinate beyond float range in
+/// STL, or an extra array of the wrong size or that the format cannot carry.
 void write_mesh(const Mesh& mesh, const std::filesystem::path& path, const MeshWriteOptions& options = {});
 
 }  // namespace contourmesh

@@ -9,7 +9,7 @@
 /// Smooths a triangle mesh whose points carry contour ids (SPEC 2): the slice index c(i) in the point
 /// array ContourIdArrayName (default "ContourId") and the contour within that slice in
 /// ContourIndexArrayName (default "ContourIndex"; absent means one contour per slice), the arrays
-/// vtkContourStackToSurfaceFilter and the contourmesh CLI write.
+/// vtkCtImageToContourSurfaceFilter and the contourmesh CLI write.
 ///
 /// Input: vtkPolyData; polygons are triangulated, strips converted, vertices and lines dropped.
 /// Output: the smoothed triangles, with double-precision points, the id arrays (as vtkIntArray, kNoId =

@@ -1,4 +1,4 @@
-#include "pipelines/vtkContourStackToSurfaceFilter.h"
+#include "pipelines/vtkCtImageToContourSurfaceFilter.h"
 
 #include "pipelines/vtk_convert.h"
 #include "pipelines/vtk_image_convert.h"
@@ -21,26 +21,26 @@
 #include <limits>
 #include <string>
 
-vtkStandardNewMacro(vtkContourStackToSurfaceFilter);
+vtkStandardNewMacro(vtkCtImageToContourSurfaceFilter);
 
-vtkContourStackToSurfaceFilter::vtkContourStackToSurfaceFilter()
+vtkCtImageToContourSurfaceFilter::vtkCtImageToContourSurfaceFilter()
     : ThresholdUsed(std::numeric_limits<double>::quiet_NaN()) {
   this->SetContourIdArrayName("ContourId");
   this->SetContourIndexArrayName("ContourIndex");
   this->SetInputArrayToProcess(0, 0, 0, vtkDataObject::FIELD_ASSOCIATION_POINTS, vtkDataSetAttributes::SCALARS);
 }
 
-vtkContourStackToSurfaceFilter::~vtkContourStackToSurfaceFilter() {
+vtkCtImageToContourSurfaceFilter::~vtkCtImageToContourSurfaceFilter() {
   this->SetContourIdArrayName(nullptr);
   this->SetContourIndexArrayName(nullptr);
 }
 
-int vtkContourStackToSurfaceFilter::FillInputPortInformation(int, vtkInformation* info) {
+int vtkCtImageToContourSurfaceFilter::FillInputPortInformation(int, vtkInformation* info) {
   info->Set(vtkAlgorithm::INPUT_REQUIRED_DATA_TYPE(), "vtkImageData");
   return 1;
 }
 
-int vtkContourStackToSurfaceFilter::RequestUpdateExtent(vtkInformation*, vtkInformationVector** inputVector,
+int vtkCtImageToContourSurfaceFilter::RequestUpdateExtent(vtkInformation*, vtkInformationVector** inputVector,
                                                         vtkInformationVector*) {
   // Tiling needs every slice: ask for the whole volume, whatever piece is requested downstream.
   vtkInformation* in = inputVector[0]->GetInformationObject(0);
@@ -52,7 +52,7 @@ int vtkContourStackToSurfaceFilter::RequestUpdateExtent(vtkInformation*, vtkInfo
   return 1;
 }
 
-bool vtkContourStackToSurfaceFilter::AbortRequested() {
+bool vtkCtImageToContourSurfaceFilter::AbortRequested() {
 #if VTK_MAJOR_VERSION > 9 || (VTK_MAJOR_VERSION == 9 && VTK_MINOR_VERSION >= 3)
   return this->CheckAbort();
 #else
@@ -60,7 +60,7 @@ bool vtkContourStackToSurfaceFilter::AbortRequested() {
 #endif
 }
 
-int vtkContourStackToSurfaceFilter::RequestData(vtkInformation*, vtkInformationVector** inputVector,
+int vtkCtImageToContourSurfaceFilter::RequestData(vtkInformation*, vtkInformationVector** inputVector,
                                                 vtkInformationVector* outputVector) {
   using namespace contourmesh;
   vtkImageData* input = vtkImageData::GetData(inputVector[0], 0);
@@ -83,6 +83,9 @@ int vtkContourStackToSurfaceFilter::RequestData(vtkInformation*, vtkInformationV
     vtkDataArray* scalars = this->GetInputArrayToProcess(0, inputVector);
     if (scalars == nullptr) throw InvalidInputError("the input image has no point scalars to segment");
     const CtImage::Pointer image = to_ct_image(input, scalars);
+    // As read_volume checks a file: a sheared or degenerate grid, or NaN voxels, would give a wrong surface.
+    check_volume_geometry(*image, "input");
+    check_voxel_values(*image, "input", NonFiniteVoxels::Refuse);
 
     ReconstructionOptions o;
     SegmentationOptions& seg = o.segmentation;
@@ -108,7 +111,7 @@ int vtkContourStackToSurfaceFilter::RequestData(vtkInformation*, vtkInformationV
     o.min_component_voxels = this->MinComponentVoxels;
 
     filter_detail::StageProgress stages(
-        this, [](vtkAlgorithm* a) { return static_cast<vtkContourStackToSurfaceFilter*>(a)->AbortRequested(); });
+        this, [](vtkAlgorithm* a) { return static_cast<vtkCtImageToContourSurfaceFilter*>(a)->AbortRequested(); });
     stages.add("segment", 0.0, 0.7);
     stages.add("tile", 0.7, 0.3);
     const Reconstruction r = reconstruct(*image, o, stages.callback());
@@ -127,7 +130,7 @@ int vtkContourStackToSurfaceFilter::RequestData(vtkInformation*, vtkInformationV
   }
 }
 
-void vtkContourStackToSurfaceFilter::PrintSelf(ostream& os, vtkIndent indent) {
+void vtkCtImageToContourSurfaceFilter::PrintSelf(ostream& os, vtkIndent indent) {
   this->Superclass::PrintSelf(os, indent);
   auto str = [](const char* s) { return s != nullptr ? s : "(none)"; };
   os << indent << "ThresholdMethod: " << (this->ThresholdMethod == THRESHOLD_OTSU ? "Otsu" : "Fixed") << "\n";

@@ -1,4 +1,4 @@
-// vtkContourStackToSurfaceFilter: libreconstruct's chain (segmentation -> contours -> tiling,
+// vtkCtImageToContourSurfaceFilter: libreconstruct's chain (segmentation -> contours -> tiling,
 // reconstruct()) as a VTK filter: a CT volume in, a closed tiled surface with contour ids out. Gives
 // the same mesh as reconstruct() and as `contourmesh reconstruct` with the same options.
 #pragma once
@@ -17,18 +17,19 @@
 /// these arrays, so image -> surface -> smoothing is a plain VTK chain.
 ///
 /// Setters clamp to the valid closed range; MinOverlapFraction 0 (the range is (0, 1]) is rejected
-/// when the filter runs. Errors (no scalars, no bone above the threshold, contours in fewer than two
-/// slices, options out of range): vtkErrorMacro naming the problem, an empty output, RequestData
-/// returns 0.
+/// when the filter runs. Errors (no scalars, NaN or infinite scalars, a spacing that is not finite and
+/// > 0, a direction matrix that is singular or not orthonormal, no bone above the threshold, contours in
+/// fewer than two slices, options out of range): vtkErrorMacro naming the problem, an empty output,
+/// RequestData returns 0.
 ///
 /// Progress: segmentation in [0, 0.7], tiling in [0.7, 1], once per slice. Cancellation through
 /// AbortExecute (vtkAlgorithm::CheckAbort on VTK >= 9.3), checked once per slice: an aborted run
 /// leaves the output empty and returns 1 (not an error); call Modified() before the next Update() to
 /// run again.
-class vtkContourStackToSurfaceFilter : public vtkPolyDataAlgorithm {
+class vtkCtImageToContourSurfaceFilter : public vtkPolyDataAlgorithm {
  public:
-  static vtkContourStackToSurfaceFilter* New();
-  vtkTypeMacro(vtkContourStackToSurfaceFilter, vtkPolyDataAlgorithm)  // no ";": the macro ends with "public:" (-Wpedantic)
+  static vtkCtImageToContourSurfaceFilter* New();
+  vtkTypeMacro(vtkCtImageToContourSurfaceFilter, vtkPolyDataAlgorithm)  // no ";": the macro ends with "public:" (-Wpedantic)
   void PrintSelf(ostream& os, vtkIndent indent) override;
 
   enum ThresholdMethodType {
@@ -158,8 +159,8 @@ class vtkContourStackToSurfaceFilter : public vtkPolyDataAlgorithm {
   ///@}
 
  protected:
-  vtkContourStackToSurfaceFilter();
-  ~vtkContourStackToSurfaceFilter() override;
+  vtkCtImageToContourSurfaceFilter();
+  ~vtkCtImageToContourSurfaceFilter() override;
 
   int FillInputPortInformation(int port, vtkInformation* info) override;
   int RequestUpdateExtent(vtkInformation* request, vtkInformationVector** inputVector,
@@ -186,8 +187,8 @@ class vtkContourStackToSurfaceFilter : public vtkPolyDataAlgorithm {
   char* ContourIndexArrayName = nullptr;
 
  private:
-  vtkContourStackToSurfaceFilter(const vtkContourStackToSurfaceFilter&) = delete;
-  void operator=(const vtkContourStackToSurfaceFilter&) = delete;
+  vtkCtImageToContourSurfaceFilter(const vtkCtImageToContourSurfaceFilter&) = delete;
+  void operator=(const vtkCtImageToContourSurfaceFilter&) = delete;
 
   bool AbortRequested();
 };

@@ -1,0 +1,385 @@
+#include "reconstruct/contour_reconstruction.h"
+
+#include "reconstruct/contour_deviation.h"
+#include "reconstruct/contour_resampling.h"
+#include "reconstruct/planar_contours.h"
+
+#include <smooth/errors.h>
+
+#include <Eigen/Geometry>
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <iomanip>
+#include <optional>
+#include <set>
+#include <sstream>
+#include <utility>
+
+namespace contourmesh {
+
+namespace {
+
+using Polygon = std::vector<Eigen::Vector2d>;
+
+std::string mm(double v) {
+  std::ostringstream s;
+  s << std::fixed << std::setprecision(2) << v;
+  return s.str();
+}
+
+void check_options(const ContourReconstructionOptions& o, const std::string& what) {
+  auto bad = [&](const std::string& text) { throw InvalidInputError(what + ": " + text); };
+  if (!(o.sampling >= 0.0) || !std::isfinite(o.sampling)) bad("the sampling must be a finite number >= 0 mm");
+  if (!(o.sampling_tolerance >= 0.0) || !std::isfinite(o.sampling_tolerance)) {
+    bad("the sampling tolerance must be a finite number >= 0 mm");
+  }
+  if (!(o.slab_thickness >= 0.0) || !std::isfinite(o.slab_thickness)) {
+    bad("the slab thickness must be a finite number >= 0 mm");
+  }
+}
+
+Eigen::Vector2d centroid(const Polygon& p) {
+  Eigen::Vector2d c = Eigen::Vector2d::Zero();
+  double a2 = 0.0;
+  for (std::size_t i = 0, j = p.size() - 1; i < p.size(); j = i++) {
+    const double cross = p[j].x() * p[i].y() - p[i].x() * p[j].y();
+    a2 += cross;
+    c += (p[j] + p[i]) * cross;
+  }
+  if (a2 == 0.0) {
+    for (const auto& q : p) c += q;
+    return c / static_cast<double>(p.size());
+  }
+  return c / (3.0 * a2);
+}
+
+// Fraction of the smaller region covered by the other, estimated on a 64 x 64 grid of sample points.
+double overlap_fraction(const Polygon& a, const Polygon& b) {
+  const bool a_smaller = std::abs(signed_area(a)) <= std::abs(signed_area(b));
+  const Polygon& small = a_smaller ? a : b;
+  const Polygon& large = a_smaller ? b : a;
+  Eigen::AlignedBox2d box;
+  for (const auto& p : small) box.extend(p);
+  constexpr int kGrid = 64;
+  std::size_t inside = 0, both = 0;
+  for (int i = 0; i < kGrid; ++i) {
+    for (int j = 0; j < kGrid; ++j) {
+      const Eigen::Vector2d p = box.min() + box.sizes().cwiseProduct(Eigen::Vector2d((i + 0.5) / kGrid, (j + 0.5) / kGrid));
+      if (!point_in_polygon(small, p)) continue;
+      ++inside;
+      both += point_in_polygon(large, p) ? 1 : 0;
+    }
+  }
+  return inside == 0 ? 0.0 : static_cast<double>(both) / static_cast<double>(inside);
+}
+
+// Per-slice in-plane offsets of the drift alignment (see DriftAlignment::Centroids).
+std::vector<Eigen::Vector2d> drift_offsets(const ContourStack& stack, double min_overlap, std::size_t& aligned) {
+  const auto& sl = stack.slices;
+  std::vector<Eigen::Vector2d> offset(sl.size(), Eigen::Vector2d::Zero());
+  for (std::size_t s = 1; s < sl.size(); ++s) {
+    offset[s] = offset[s - 1];
+    if (sl[s].contours.size() != 1 || sl[s - 1].contours.size() != 1) continue;
+    const Polygon& below = sl[s - 1].contours[0].points;
+    const Polygon& above = sl[s].contours[0].points;
+    if (overlap_fraction(below, above) <= std::min(1.0, 2.0 * min_overlap)) continue;
+    offset[s] += centroid(above) - centroid(below);
+    ++aligned;
+  }
+  return offset;
+}
+
+// Moves every vertex back by the offset of its position along the axis (linear between slice planes,
+// constant beyond the ends): affine within each gap, so triangles stay flat and the surface embedded.
+void shear_back(Mesh& mesh, const ContourStack& stack, const std::vector<Eigen::Vector2d>& offset) {
+  const auto& sl = stack.slices;
+  for (Index i = 0; i < mesh.num_vertices(); ++i) {
+    Eigen::Vector3d x = mesh.positions.col(i);
+    const double w = (x - stack.origin).dot(stack.axis_w);
+    Eigen::Vector2d o;
+    if (w <= sl.front().w) {
+      o = offset.front();
+    } else if (w >= sl.back().w) {
+      o = offset.back();
+    } else {
+      const auto it = std::upper_bound(sl.begin(), sl.end(), w, [](double v, const SliceContours& s) { return v < s.w; });
+      const std::size_t s = static_cast<std::size_t>(it - sl.begin()) - 1;
+      const double t = (w - sl[s].w) / (sl[s + 1].w - sl[s].w);
+      o = (1.0 - t) * offset[s] + t * offset[s + 1];
+    }
+    mesh.positions.col(i) = x + o.x() * stack.axis_u + o.y() * stack.axis_v;
+  }
+}
+
+// Appends `part` to `mesh`.
+void append(Mesh& mesh, const Mesh& part) {
+  const Index base = mesh.num_vertices();
+  mesh.positions.conservativeResize(3, base + part.num_vertices());
+  mesh.positions.rightCols(part.num_vertices()) = part.positions;
+  mesh.slice_ids.insert(mesh.slice_ids.end(), part.slice_ids.begin(), part.slice_ids.end());
+  mesh.contour_ids.insert(mesh.contour_ids.end(), part.contour_ids.begin(), part.contour_ids.end());
+  for (const Triangle& t : part.triangles) mesh.triangles.push_back({t[0] + base, t[1] + base, t[2] + base});
+}
+
+// A slab [w - below, w + above] around outer contour `c` of slice `s` and its holes: the contours
+// tiled between two copies capped in their planes; the drawn contour keeps its ids (s, c).
+Mesh slab(const ContourStack& stack, std::size_t s, std::size_t c, double below, double above,
+          const TilingOptions& tiling) {
+  const auto& cs = stack.slices[s].contours;
+  std::vector<Contour> group{cs[c]};
+  std::vector<std::int32_t> original{static_cast<std::int32_t>(c)};
+  group[0].parent = -1;
+  for (std::size_t h = 0; h < cs.size(); ++h) {
+    if (cs[h].is_hole && cs[h].parent == static_cast<int>(c)) {
+      group.push_back(cs[h]);
+      group.back().parent = 0;
+      original.push_back(static_cast<std::int32_t>(h));
+    }
+  }
+  ContourStack mini;
+  mini.origin = stack.origin;
+  mini.axis_u = stack.axis_u;
+  mini.axis_v = stack.axis_v;
+  mini.axis_w = stack.axis_w;
+  const double w = stack.slices[s].w;
+  mini.slices = {{w - below, group}, {w, group}, {w + above, group}};
+  TilingOptions o = tiling;
+  o.end_caps = EndCaps::AtEndSlice;
+  Mesh m = tile_contours(mini, o).mesh;
+  for (Index i = 0; i < m.num_vertices(); ++i) {
+    if (m.slice_ids[i] == 1 && m.contour_ids[i] >= 0) {
+      m.slice_ids[i] = static_cast<std::int32_t>(s);
+      m.contour_ids[i] = original[static_cast<std::size_t>(m.contour_ids[i])];
+    } else {
+      m.slice_ids[i] = kNoId;
+      m.contour_ids[i] = kNoId;
+    }
+  }
+  return m;
+}
+
+// A closed prism around hole `c` of slice `s`, oriented as a cavity (normals into the hole).
+Mesh cavity(const ContourStack& stack, std::size_t s, std::size_t c, double below, double above,
+            const TilingOptions& tiling) {
+  ContourStack one = stack;
+  for (std::size_t k = 0; k < one.slices.size(); ++k) one.slices[k].contours.clear();
+  Contour hole = stack.slices[s].contours[c];
+  hole.is_hole = false;
+  hole.parent = -1;
+  std::reverse(hole.points.begin(), hole.points.end());
+  one.slices[s].contours.push_back(hole);
+  Mesh m = slab(one, s, 0, below, above, tiling);
+  for (Index i = 0; i < m.num_vertices(); ++i) {
+    if (m.contour_ids[i] == 0) m.contour_ids[i] = static_cast<std::int32_t>(c);
+  }
+  for (Triangle& t : m.triangles) std::swap(t[1], t[2]);
+  return m;
+}
+
+double cross2(const Eigen::Vector2d& o, const Eigen::Vector2d& a, const Eigen::Vector2d& b) {
+  return (a.x() - o.x()) * (b.y() - o.y()) - (a.y() - o.y()) * (b.x() - o.x());
+}
+
+bool segments_touch(const Eigen::Vector2d& a, const Eigen::Vector2d& b, const Eigen::Vector2d& c, const Eigen::Vector2d& d) {
+  const double o1 = cross2(a, b, c), o2 = cross2(a, b, d), o3 = cross2(c, d, a), o4 = cross2(c, d, b);
+  return ((o1 >= 0.0) != (o2 >= 0.0) || o1 == 0.0 || o2 == 0.0) && ((o3 >= 0.0) != (o4 >= 0.0) || o3 == 0.0 || o4 == 0.0);
+}
+
+// Does the polygon lie strictly inside the region the section bounds (no segment meets it, and its
+// first point is inside by the even-odd rule)?
+bool inside_section(const Polygon& polygon, const std::vector<SectionSegment>& section) {
+  Eigen::AlignedBox2d box;
+  for (const auto& p : polygon) box.extend(p);
+  for (const auto& seg : section) {
+    Eigen::AlignedBox2d sb;
+    sb.extend(seg[0]);
+    sb.extend(seg[1]);
+    if (!sb.intersects(box)) continue;
+    for (std::size_t i = 0; i < polygon.size(); ++i) {
+      if (segments_touch(polygon[i], polygon[(i + 1) % polygon.size()], seg[0], seg[1])) return false;
+    }
+  }
+  const Eigen::Vector2d& p = polygon.front();
+  bool in = false;
+  for (const auto& seg : section) {
+    const Eigen::Vector2d& a = seg[0];
+    const Eigen::Vector2d& b = seg[1];
+    if ((a.y() > p.y()) != (b.y() > p.y()) && p.x() < a.x() + (p.y() - a.y()) * (b.x() - a.x()) / (b.y() - a.y())) in = !in;
+  }
+  return in;
+}
+
+}  // namespace
+
+namespace {
+
+// Half-gaps below and above slice s (an end slice reaches as far beyond as its one gap).
+std::pair<double, double> half_gaps(const ContourStack& stack, std::size_t s) {
+  const auto& sl = stack.slices;
+  const double below = s > 0 ? sl[s].w - sl[s - 1].w : sl[s + 1].w - sl[s].w;
+  const double above = s + 1 < sl.size() ? sl[s + 1].w - sl[s].w : below;
+  return {0.5 * below, 0.5 * above};
+}
+
+// Every contour in one plane: slabs of the given thickness, or an error.
+void one_slice(ContourReconstruction& out, std::size_t s, const std::string& what,
+               const ContourReconstructionOptions& options) {
+  const ContourStack& stack = out.contours;
+  if (!(options.slab_thickness > 0.0)) {
+    const std::string axis = stack.axis_w == Eigen::Vector3d::UnitZ() ? "z" : "w";
+    throw InvalidInputError(what + ": every contour lies in one slice (" + axis + " = " + mm(stack.slices[s].w) +
+                            " mm): a surface needs contours on two slices, or a slab thickness");
+  }
+  const double half = 0.5 * options.slab_thickness;
+  out.mesh = Mesh{};
+  out.mesh.positions.resize(3, 0);
+  for (std::size_t c = 0; c < stack.slices[s].contours.size(); ++c) {
+    if (stack.slices[s].contours[c].is_hole) continue;
+    append(out.mesh, slab(stack, s, c, half, half, options.tiling));
+    ++out.report.slabs;
+  }
+  out.report.warnings.push_back(what + ": every contour lies in one slice: made a slab " + mm(options.slab_thickness) +
+                                " mm thick");
+}
+
+// tile_contours, in drift-aligned coordinates when asked (see DriftAlignment::Centroids).
+void tile(ContourReconstruction& out, const ContourReconstructionOptions& options, const ProgressCallback& progress) {
+  const ContourStack& stack = out.contours;
+  std::vector<Eigen::Vector2d> offset;
+  ContourStack aligned;
+  const ContourStack* to_tile = &stack;
+  if (options.alignment == DriftAlignment::Centroids) {
+    offset = drift_offsets(stack, options.tiling.min_overlap_fraction, out.report.aligned_gaps);
+    if (out.report.aligned_gaps > 0) {
+      aligned = stack;
+      for (std::size_t s = 0; s < aligned.slices.size(); ++s) {
+        for (Contour& c : aligned.slices[s].contours) {
+          for (Eigen::Vector2d& p : c.points) p -= offset[s];
+        }
+      }
+      to_tile = &aligned;
+    }
+  }
+  TilingResult tiled = tile_contours(*to_tile, options.tiling, progress);
+  out.report.tiling = tiled.stats;
+  out.mesh = std::move(tiled.mesh);
+  if (out.report.aligned_gaps > 0) shear_back(out.mesh, stack, offset);
+}
+
+// A hollow slab for hole c of slice s, thinner (1/2, 1/4, 1/10) where the full one would cross the
+// surface around it (the material narrowing towards the next slice); nothing when none fits.
+std::optional<Mesh> fitting_cavity(const Mesh& surface, const ContourStack& stack, std::size_t s, std::size_t c,
+                                   const TilingOptions& tiling, bool& thinned) {
+  const auto [below, above] = half_gaps(stack, s);
+  const double w = stack.slices[s].w;
+  for (const double f : {1.0, 0.5, 0.25, 0.1}) {
+    bool fits = true;
+    for (const double at : {w - 0.998 * f * below, w - 0.5 * f * below, w + 0.5 * f * above, w + 0.998 * f * above}) {
+      fits = fits && inside_section(stack.slices[s].contours[c].points, cross_section(surface, stack, at));
+    }
+    if (!fits) continue;
+    thinned = f < 1.0;
+    return cavity(stack, s, c, f * below, f * above, tiling);
+  }
+  return std::nullopt;
+}
+
+// Contours the tiler dropped (no partner on either adjacent slice): slabs, hollow slabs for holes, or
+// a warning naming them.
+void single_slice_contours(ContourReconstruction& out, const std::string& what,
+                           const ContourReconstructionOptions& options) {
+  const ContourStack& stack = out.contours;
+  ContourReconstructionReport& report = out.report;
+  std::set<std::pair<std::int32_t, std::int32_t>> meshed;
+  for (Index i = 0; i < out.mesh.num_vertices(); ++i) meshed.insert({out.mesh.slice_ids[i], out.mesh.contour_ids[i]});
+  auto is_meshed = [&](std::size_t s, int c) { return meshed.count({static_cast<std::int32_t>(s), c}) != 0; };
+  const bool make_slabs =
+      options.single_slice == SingleSliceContours::Slab && options.tiling.end_caps == EndCaps::HalfSpacing;
+  std::size_t dropped = 0, cavities = 0, thinned = 0;
+  std::string names;
+  std::vector<Mesh> cavity_parts;  // appended after the checks, which cut the tiled surface
+  for (std::size_t s = 0; s < stack.slices.size(); ++s) {
+    const auto& cs = stack.slices[s].contours;
+    for (std::size_t c = 0; c < cs.size(); ++c) {
+      if (is_meshed(s, static_cast<int>(c))) continue;
+      if (make_slabs && !cs[c].is_hole) {
+        const auto [below, above] = half_gaps(stack, s);
+        append(out.mesh, slab(stack, s, c, below, above, options.tiling));
+        ++report.slabs;
+        continue;
+      }
+      if (make_slabs && !is_meshed(s, cs[c].parent)) continue;  // a hole of a slab: inside it
+      if (make_slabs) {
+        bool thin = false;
+        if (auto part = fitting_cavity(out.mesh, stack, s, c, options.tiling, thin)) {
+          cavity_parts.push_back(std::move(*part));
+          ++cavities;
+          thinned += thin ? 1 : 0;
+          continue;
+        }
+      }
+      ++dropped;
+      if (dropped <= 5) names += (names.empty() ? "" : ", ") + std::to_string(c) + " of slice " + std::to_string(s);
+    }
+  }
+  for (const Mesh& part : cavity_parts) append(out.mesh, part);
+  report.slabs += cavities;
+  if (report.slabs > 0) {
+    std::string text = what + ": " + std::to_string(report.slabs) + " contour" + (report.slabs == 1 ? "" : "s") +
+                       " drawn on one slice only (no partner on an adjacent slice): made " +
+                       (report.slabs == 1 ? "a slab" : "slabs") + " reaching half-way to the adjacent slices";
+    if (cavities > 0) {
+      text += "; " + std::to_string(cavities) + (cavities == report.slabs ? " (all holes)" : " of them holes") +
+              " made hollow";
+      if (thinned > 0) text += ", " + std::to_string(thinned) + " thinner to stay inside the surface around";
+    }
+    report.warnings.push_back(text);
+  }
+  if (dropped > 0) {
+    report.warnings.push_back(what + ": " + std::to_string(dropped) + " contour" + (dropped == 1 ? "" : "s") +
+                              " with no partner on an adjacent slice not meshed (contour " + names +
+                              (dropped > 5 ? ", ..." : "") + ")");
+  }
+}
+
+}  // namespace
+
+ContourReconstruction reconstruct_from_contours(const ContourStack& input, const std::string& what,
+                                                const ContourReconstructionOptions& options,
+                                                const ProgressCallback& progress) {
+  check_options(options, what);
+  ContourReconstruction out;
+  ContourReconstructionReport& report = out.report;
+  out.contours = input;
+  std::vector<std::size_t> occupied;
+  for (std::size_t s = 0; s < input.slices.size(); ++s) {
+    const auto& cs = input.slices[s].contours;
+    if (!cs.empty()) occupied.push_back(s);
+    report.contours += cs.size();
+    for (const Contour& c : cs) {
+      report.hole_contours += c.is_hole ? 1 : 0;
+      report.points_drawn += c.points.size();
+    }
+  }
+  report.slices = occupied.size();
+  if (report.contours == 0) throw InvalidInputError(what + ": no contours");
+  report.slicewise_volume = slicewise_volume(input);
+  const auto t0 = std::chrono::steady_clock::now();
+  if (options.sampling > 0.0) resample_drawn_stack(out.contours, options.sampling, options.sampling_tolerance);
+  for (const SliceContours& s : out.contours.slices) {
+    for (const Contour& c : s.contours) report.points_tiled += c.points.size();
+  }
+  if (occupied.size() == 1) {
+    one_slice(out, occupied[0], what, options);
+  } else {
+    tile(out, options, progress);
+    if (report.tiling.dropped_contours > 0) single_slice_contours(out, what, options);
+  }
+  report.seconds_tile = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+  if (out.mesh.num_faces() == 0) throw InvalidInputError(what + ": no contour continues into an adjacent slice: nothing to tile");
+  return out;
+}
+
+}  // namespace contourmesh

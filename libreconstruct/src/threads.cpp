@@ -1,0 +1,40 @@
+#include "reconstruct/threads.h"
+
+#include <smooth/errors.h>
+
+#include <itkMultiThreaderBase.h>
+#include <tbb/global_control.h>
+#include <tbb/task_arena.h>
+
+#include <algorithm>
+#include <optional>
+#include <string>
+
+namespace contourmesh {
+
+struct ThreadLimit::Impl {
+  std::optional<tbb::global_control> tbb_limit;
+  itk::ThreadIdType previous_itk = 0;
+};
+
+ThreadLimit::ThreadLimit(int threads) : threads_(threads) {
+  if (threads < 0) throw InvalidInputError("the thread count must be >= 0 (0: every core), got " + std::to_string(threads));
+  if (threads == 0) return;
+  impl_ = std::make_unique<Impl>();
+  impl_->tbb_limit.emplace(tbb::global_control::max_allowed_parallelism, static_cast<std::size_t>(threads));
+  impl_->previous_itk = itk::MultiThreaderBase::GetGlobalDefaultNumberOfThreads();
+  const auto itk_threads = std::min(static_cast<itk::ThreadIdType>(threads), impl_->previous_itk);
+  itk::MultiThreaderBase::SetGlobalDefaultNumberOfThreads(std::max<itk::ThreadIdType>(itk_threads, 1));
+}
+
+ThreadLimit::~ThreadLimit() {
+  if (impl_) itk::MultiThreaderBase::SetGlobalDefaultNumberOfThreads(impl_->previous_itk);
+}
+
+int available_threads() {
+  const auto cap = tbb::global_control::active_value(tbb::global_control::max_allowed_parallelism);
+  const auto cores = static_cast<std::size_t>(std::max(tbb::this_task_arena::max_concurrency(), 1));
+  return static_cast<int>(std::max<std::size_t>(std::min(cap, cores), 1));
+}
+
+}  // namespace contourmesh

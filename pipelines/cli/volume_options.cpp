@@ -1,0 +1,32 @@
+#include "volume_options.h"
+
+#include "cli_common.h"
+#include "progress_display.h"
+
+#include <CLI/CLI.hpp>
+
+#include <iostream>
+
+namespace contourmesh::cli {
+
+void add_volume_options(CLI::App* command, VolumeArgs& args) {
+  command->add_flag("--allow-uneven-slices", args.allow_uneven_slices,
+                    "DICOM: resample unevenly spaced slices (a missing slice) onto an even grid by linear "
+                    "interpolation, with a warning, instead of refusing the series");
+  command->add_flag("--non-finite-as-air", args.non_finite_as_air,
+                    "Read NaN and infinite voxels as air (the volume's lowest value), with a warning, instead of "
+                    "refusing the volume");
+}
+
+VolumeReadOptions volume_read_options(const VolumeArgs& args, const std::string& command) {
+  VolumeReadOptions o;
+  o.uneven_slices = args.allow_uneven_slices ? UnevenSlices::Resample : UnevenSlices::Refuse;
+  o.non_finite = args.non_finite_as_air ? NonFiniteVoxels::AsAir : NonFiniteVoxels::Refuse;
+  o.library_messages = verbose() ? LibraryMessages::PassThrough : LibraryMessages::Capture;
+  o.on_warning = [command](const std::string& line) {
+    std::cerr << "contourmesh " << command << ": warning: " << cli_wording(line) << "\n";
+  };
+  return o;
+}
+
+}  // namespace contourmesh::cli

@@ -1,0 +1,139 @@
+// ContourMeshSurface: a 3D Slicer command-line module (Slicer Execution Model). `--xml` prints the module
+// description; otherwise it is called as Slicer calls its CLI modules: flags from the description, then
+// the input volume and the output model as positional arguments. Progress goes to stdout as
+// <filter-progress> lines, errors to stderr as one line with exit code 2 (docs/slicer.md).
+#include "slicer_progress.h"
+
+#include <pipelines/mesh_io.h>
+#include <reconstruct/label_map.h>
+#include <reconstruct/reconstruction.h>
+#include <reconstruct/threads.h>
+#include <reconstruct/volume.h>
+#include <smooth/errors.h>
+#include <smooth/feature_smoothing.h>
+#include <smooth/cross_slice.h>
+#include <smooth/smoothing.h>
+
+#include <CLI/CLI.hpp>
+
+#include <iostream>
+#include <string>
+
+namespace contourmesh::slicer {
+namespace {
+
+// The module description, generated from ContourMeshSurface.xml.in at configure time.
+constexpr const char* kModuleXml =
+#include "ContourMeshSurface.xml.inc"
+    ;
+
+struct Args {
+  std::string input, output;
+  double threshold = 300.0;
+  std::string label;
+  bool keep_largest = false;
+  std::string method = CONTOURMESH_DEFAULT_METHOD;
+  int iterations = -1;
+  int threads = 0;
+};
+
+Mesh smooth_mesh(const Mesh& mesh, const Args& a, const ProgressCallback& progress) {
+  if (a.method == "paper") {
+    FeatureSmoothingOptions o;
+    if (a.iterations >= 0) o.iterations = a.iterations;
+    o.progress = progress;
+    return feature_preserving_smooth(mesh, o).mesh;
+  }
+  if (a.method == "cross-slice") {
+    CrossSliceOptions o;
+    o.progress = progress;
+    return cross_slice_smooth(mesh, o).mesh;
+  }
+  SmoothingOptions o;
+  o.method = parse_smoothing_method(a.method);  // taubin, laplacian, none
+  if (a.iterations >= 0) o.iterations = a.iterations;
+  o.progress = progress;
+  Mesh result = mesh;
+  result.positions = smooth(mesh, o);
+  return result;
+}
+
+int run(const Args& a) {
+  if (a.method != "paper" && a.method != "cross-slice" && a.method != "taubin" && a.method != "laplacian" &&
+      a.method != "none") {
+    throw InvalidInputError("--method must be paper, cross-slice, taubin, laplacian or none, got '" + a.method + "'");
+  }
+  MeshWriteOptions write_options;
+  (void)format_from_extension(a.output);  // fail before the work
+  const ThreadLimit limit(a.threads);
+  FilterProgress progress("ContourMesh Surface");
+  progress.stage("read");
+  ReconstructionOptions options;
+  options.segmentation.threshold = a.threshold;
+  options.segmentation.components = a.keep_largest ? ComponentSelection::KeepLargest : ComponentSelection::KeepAll;
+  Reconstruction r;
+  try {
+    if (a.label.empty()) {
+      const CtImage::Pointer image = read_volume(a.input);
+      r = reconstruct(*image, options, progress.callback());
+    } else {
+      const LabelMap map = read_label_map(a.input);
+      const std::vector<Label> labels = select_labels(map, a.label);
+      if (labels.size() != 1) throw InvalidInputError("--label takes one label");
+      r = reconstruct_label(map, labels.front(), options, progress.callback());
+    }
+  } catch (const LimitError& e) {
+    throw LimitError(a.input + ": " + e.what());
+  } catch (const InvalidInputError& e) {
+    throw InvalidInputError(a.input + ": " + e.what());
+  }
+  const Mesh smoothed = smooth_mesh(r.mesh, a, progress.callback());
+  progress.stage("write");
+  write_mesh(smoothed, a.output, write_options);
+  progress.finish();
+  return 0;
+}
+
+}  // namespace
+}  // namespace contourmesh::slicer
+
+int main(int argc, char** argv) {
+  using contourmesh::slicer::Args;
+  Args args;
+  bool xml = false;
+  CLI::App app{"ContourMesh Surface: a 3D Slicer CLI module (CT volume or label map -> smoothed surface model)"};
+  app.add_flag("--xml", xml, "Print the Slicer Execution Model description and exit");
+  app.add_option("inputVolume", args.input, "CT volume or label map (.nrrd, .nii, .mha, ...)");
+  app.add_option("outputModel", args.output, "Output model (.stl, .ply, .vtp, .obj); carries SPACE=LPS");
+  app.add_option("--threshold", args.threshold, "Threshold in HU")->capture_default_str();
+  app.add_option("--label", args.label, "A label value or segment name instead of the threshold");
+  app.add_flag("--keep-largest", args.keep_largest, "Keep the largest connected piece only");
+  app.add_option("--method", args.method, "paper | cross-slice | taubin | laplacian | none")->capture_default_str();
+  app.add_option("--iterations", args.iterations, "Smoothing iterations; -1: the method's default")->capture_default_str();
+  app.add_option("--threads", args.threads, "Threads; 0: every core")->capture_default_str();
+  try {
+    app.parse(argc, argv);
+  } catch (const CLI::ParseError& e) {
+    return app.exit(e) == 0 ? 0 : 1;
+  }
+  if (xml) {
+    std::cout << contourmesh::slicer::kModuleXml;
+    return 0;
+  }
+  if (args.input.empty() || args.output.empty()) {
+    std::cerr << "ContourMeshSurface: error: an input volume and an output model are required (or --xml)\n";
+    return 1;
+  }
+  try {
+    return contourmesh::slicer::run(args);
+  } catch (const contourmesh::InvalidInputError& e) {
+    std::cerr << "ContourMeshSurface: error: " << e.what() << "\n";
+    return 2;
+  } catch (const contourmesh::CancelledError& e) {
+    std::cerr << "ContourMeshSurface: " << e.what() << "\n";
+    return 2;
+  } catch (const std::exception& e) {
+    std::cerr << "ContourMeshSurface: internal error: " << e.what() << "\n";
+    return 3;
+  }
+}

@@ -1,0 +1,107 @@
+// The 3D Slicer CLI module run as Slicer runs it, and the LPS tag of written meshes.
+#include <pipelines/mesh_io.h>
+#include <reconstruct/phantom.h>
+#include <reconstruct/volume.h>
+#include <smooth/topology.h>
+
+#include "test_support.h"
+
+#include <gtest/gtest.h>
+
+#include <array>
+#include <cstdio>
+#include <fstream>
+#include <iterator>
+#include <regex>
+#include <string>
+#include <sys/wait.h>
+
+namespace contourmesh {
+namespace {
+
+namespace fs = std::filesystem;
+
+struct ModuleRun {
+  int code = -1;
+  std::string out;
+};
+
+ModuleRun run(const std::string& args, const fs::path& err_file) {
+  ModuleRun r;
+  FILE* pipe = popen((std::string(CONTOURMESH_SLICER_MODULE) + " " + args + " 2>" + err_file.string()).c_str(), "r");
+  if (!pipe) return r;
+  std::array<char, 4096> buf{};
+  std::size_t n = 0;
+  while ((n = fread(buf.data(), 1, buf.size(), pipe)) > 0) r.out.append(buf.data(), n);
+  const int status = pclose(pipe);
+  r.code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
+  return r;
+}
+
+std::string read_file(const fs::path& p) {
+  std::ifstream in(p, std::ios::binary);
+  return {std::istreambuf_iterator<char>(in), {}};
+}
+
+class SlicerModule : public ::testing::Test {
+ protected:
+  void SetUp() override {
+    PhantomVolumeOptions o;
+    o.spacing = {1.0, 1.0, 2.0};
+    write_volume(render_phantom(make_phantom(PhantomShape::RidgeBox), o), dir_ / "box.nrrd");
+  }
+  test::ScopedTempDir tmp_{"contourmesh_slicer"};
+  const fs::path& dir_ = tmp_.path();
+};
+
+// Slicer passes the flags of the description, then the input image and the output model by index.
+TEST_F(SlicerModule, RunsAsSlicerCallsItAndReportsProgress) {
+  const fs::path model = dir_ / "model.stl";
+  const ModuleRun r = run("--threshold 520 --method paper --iterations 10 --threads 1 " + (dir_ / "box.nrrd").string() +
+                        " " + model.string(),
+                    dir_ / "err.txt");
+  ASSERT_EQ(r.code, 0) << read_file(dir_ / "err.txt");
+  EXPECT_EQ(r.out.rfind("<filter-start><filter-name>ContourMesh Surface</filter-name>", 0), 0u) << r.out;
+  const std::regex progress("<filter-progress>([0-9.e-]+)</filter-progress>");
+  double last = -1.0;
+  int count = 0;
+  for (auto it = std::sregex_iterator(r.out.begin(), r.out.end(), progress); it != std::sregex_iterator(); ++it) {
+    const double f = std::stod((*it)[1]);
+    EXPECT_GE(f, last);
+    EXPECT_LE(f, 1.0);
+    last = f;
+    ++count;
+  }
+  EXPECT_GT(count, 5);
+  EXPECT_EQ(last, 1.0);
+  EXPECT_NE(r.out.find("<filter-end>"), std::string::npos);
+  EXPECT_NE(read_file(model).substr(0, 80).find("SPACE=LPS"), std::string::npos);
+  const Mesh mesh = read_mesh(model);
+  EXPECT_TRUE(summarize_topology(mesh).closed);
+}
+
+TEST_F(SlicerModule, BadInputIsOneLineAndExitTwoWithNothingWritten) {
+  const fs::path model = dir_ / "model.stl";
+  const ModuleRun r = run("--threshold 5000 " + (dir_ / "box.nrrd").string() + " " + model.string(), dir_ / "err.txt");
+  EXPECT_EQ(r.code, 2);
+  const std::string err = read_file(dir_ / "err.txt");
+  EXPECT_NE(err.find("box.nrrd: no region at or above the threshold 5000"), std::string::npos) << err;
+  EXPECT_FALSE(fs::exists(model));
+}
+
+TEST(MeshFiles, StlAndPlyCarryTheLpsTagAsSlicerReadsIt) {
+  test::ScopedTempDir tmp("contourmesh_lps");
+  Mesh mesh;
+  mesh.positions = Eigen::Matrix3Xd::Identity(3, 3);
+  mesh.triangles = {{0, 1, 2}};
+  for (const char* name : {"m.stl", "m.ply"}) write_mesh(mesh, tmp.path() / name);
+  write_mesh(mesh, tmp.path() / "a.stl", MeshWriteOptions{MeshFormat::StlAscii, {}, {}});
+  EXPECT_NE(read_file(tmp.path() / "m.stl").substr(0, 80).find("SPACE=LPS"), std::string::npos);
+  EXPECT_EQ(read_file(tmp.path() / "a.stl").rfind("solid ContourMesh output. SPACE=LPS", 0), 0u);
+  const std::string ply = read_file(tmp.path() / "m.ply");
+  EXPECT_NE(ply.substr(0, ply.find("end_header")).find("\ncomment SPACE=LPS\n"), std::string::npos);
+  EXPECT_EQ(read_mesh(tmp.path() / "m.stl").num_faces(), 1);  // still read back
+}
+
+}  // namespace
+}  // namespace contourmesh
