@@ -6,7 +6,7 @@
 
 #include <vtkPolyDataAlgorithm.h>
 
-/// Smooths a triangle mesh whose points carry contour ids (SPEC 2): the slice index c(i) in the point
+/// Smooths a triangle mesh whose points carry contour ids: the slice index c(i) in the point
 /// array ContourIdArrayName (default "ContourId") and the contour within that slice in
 /// ContourIndexArrayName (default "ContourIndex"; absent means one contour per slice), the arrays
 /// vtkCtImageToContourSurfaceFilter and the contourmesh CLI write.
@@ -31,10 +31,14 @@
 /// Contour ids are needed by cross-slice smoothing (always) and by the paper's detection (Method Paper,
 /// or GenerateLabels with a baseline). The detection options (Gamma, Window, ...) are the paper's;
 /// cross-slice smoothing labels the creases of its result with its own defaults.
-/// When ContourIdArrayName is missing: with SliceAxis set the ids are recovered by binning the vertices
-/// along that axis (libsmooth's assign_ids_by_slice_planes, an error when they do not lie on planes);
-/// otherwise DetectionMode decides: ContourContinuity (default) is an error, Automatic falls back to
-/// the curvature-only detection with a warning (what the CLI does), CurvatureOnly never needs ids.
+/// The input goes through libsmooth's prepare_input_mesh, the CLI's input policy (refusals, repairs
+/// with one vtkWarningMacro each, orientation, ids made usable), so that the filter and `contourmesh
+/// smooth` give the same result on the same dirty mesh. When the ids are missing or unusable: with
+/// SliceAxis set they are recovered by binning the vertices along that axis (an error when they do not
+/// lie on planes); otherwise cross-slice smoothing is an error, and for the paper's detection
+/// DetectionMode decides: ContourContinuity (default) is an error, Automatic falls back to the
+/// curvature-only detection with a warning (what the CLI does), CurvatureOnly never needs ids. A run
+/// that diverges (coordinates that turn non-finite or run away) is an error, as in the library.
 ///
 /// Progress: UpdateProgress with detection in [0, 0.3], subdivision in [0.3, 0.4] and smoothing in
 /// [0.4, 1] for the paper's method, smoothing in [0, 0.8] and its crease labels in [0.8, 1] for
