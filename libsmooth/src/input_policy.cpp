@@ -229,8 +229,8 @@ class IdPreparation {
 
   void no_usable_ids(const std::string& what) {
     if (options_.missing_ids == MissingIds::Refuse) {
-      throw InvalidInputError(what + ": give the slice axis to recover the ids of a contour-stack mesh, or use "
-                                     "curvature-only detection");
+      throw InvalidInputError(what + ": give the slice axis to recover the ids of a contour-stack mesh, or choose a "
+                                     "method or detection mode that does without them");
     }
     out_.warnings.push_back(what + ": using curvature-only feature detection (give the slice axis to recover the "
                                    "ids of a contour-stack mesh)");

@@ -14,6 +14,8 @@ std::string_view to_string(SmoothingMethod method) {
     case SmoothingMethod::Taubin: return "taubin";
     case SmoothingMethod::MeanCurvatureFlow: return "mcf";
     case SmoothingMethod::MinDistFlow: return "mindist";
+    case SmoothingMethod::FeaturePreserving: return "paper";
+    case SmoothingMethod::CrossSlice: return "cross-slice";
   }
   return "unknown";
 }
@@ -24,8 +26,22 @@ SmoothingMethod parse_smoothing_method(std::string_view name) {
   if (name == "taubin") return SmoothingMethod::Taubin;
   if (name == "mcf" || name == "mean-curvature-flow") return SmoothingMethod::MeanCurvatureFlow;
   if (name == "mindist" || name == "min-dist") return SmoothingMethod::MinDistFlow;
+  if (name == "paper" || name == "feature-preserving") return SmoothingMethod::FeaturePreserving;
+  if (name == "cross-slice") return SmoothingMethod::CrossSlice;
   throw InvalidInputError("unknown smoothing method '" + std::string(name) +
-                          "' (expected none, laplacian, taubin, mcf or mindist)");
+                          "' (expected none, laplacian, taubin, mcf, mindist, paper or cross-slice)");
+}
+
+std::span<const SmoothingMethod> all_smoothing_methods() {
+  static constexpr SmoothingMethod kAll[] = {
+      SmoothingMethod::None,        SmoothingMethod::Laplacian,         SmoothingMethod::Taubin,
+      SmoothingMethod::MeanCurvatureFlow, SmoothingMethod::MinDistFlow, SmoothingMethod::FeaturePreserving,
+      SmoothingMethod::CrossSlice};
+  return kAll;
+}
+
+bool is_baseline(SmoothingMethod method) {
+  return method != SmoothingMethod::FeaturePreserving && method != SmoothingMethod::CrossSlice;
 }
 
 double default_lambda(SmoothingMethod method) {
@@ -35,6 +51,8 @@ double default_lambda(SmoothingMethod method) {
     case SmoothingMethod::Taubin: return 0.6307;
     case SmoothingMethod::MeanCurvatureFlow: return 0.3;
     case SmoothingMethod::MinDistFlow: return 0.5;
+    case SmoothingMethod::FeaturePreserving:
+    case SmoothingMethod::CrossSlice: return 0.0;
   }
   return 0.0;
 }
@@ -60,6 +78,10 @@ Eigen::Matrix3Xd smooth(const Mesh& mesh, const MeshAdjacency& adjacency, const 
     case SmoothingMethod::Taubin: return taubin_smooth(mesh, adjacency, options);
     case SmoothingMethod::MeanCurvatureFlow: return mean_curvature_flow(mesh, adjacency, options);
     case SmoothingMethod::MinDistFlow: return min_dist_flow(mesh, adjacency, options);
+    case SmoothingMethod::FeaturePreserving:
+    case SmoothingMethod::CrossSlice:
+      throw InvalidInputError(std::string(to_string(options.method)) +
+                              " is not a baseline smoother: run it through smooth(mesh, method, SmoothOptions)");
   }
   throw InvalidInputError("unknown smoothing method");
 }

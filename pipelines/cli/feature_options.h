@@ -1,4 +1,4 @@
-// Options and helpers shared by `smooth --method paper` and `detect`.
+// Options and helpers shared by `smooth`, `run` and `detect` for the methods that detect features.
 #pragma once
 
 #include <pipelines/mesh_io.h>
@@ -17,14 +17,15 @@ class App;
 
 namespace contourmesh::cli {
 
+/// Detection options as given on the command line; unset ones keep the method's (or preset's) value.
 struct FeatureArgs {
   std::optional<double> gamma;
   std::optional<double> delta;
-  std::string measure = "length";
-  std::string in_slice = "noise";
-  int prefilter = 0;
-  int window = 7;
-  double corner_spread = 0.1;
+  std::optional<std::string> measure;
+  std::optional<std::string> in_slice;
+  std::optional<int> prefilter;
+  std::optional<int> window;
+  std::optional<double> corner_spread;
   std::string slice_axis;  ///< "", "x", "y" or "z"
 };
 
@@ -33,19 +34,21 @@ void add_detection_options(CLI::App* cmd, FeatureArgs& args);
 /// The detection options and --slice-axis.
 void add_feature_options(CLI::App* command, FeatureArgs& args);
 
-/// Detection options from the arguments (throws InvalidInputError for a bad --measure).
-[[nodiscard]] DetectionOptions detection_options(const FeatureArgs& args);
+/// Sets the detection options that were given on the command line, leaving the others as they are
+/// (throws InvalidInputError for a bad --measure or --in-slice).
+void apply_detection_args(const FeatureArgs& args, DetectionOptions& options);
 
 /// The slice axis of --slice-axis (x, y or z), unset when not given; InvalidInputError otherwise.
 [[nodiscard]] std::optional<Eigen::Vector3d> slice_axis_option(const FeatureArgs& args);
 
 /// Runs the one input policy (prepare_input_mesh, smooth/input_policy.h; the VTK filter runs the same)
 /// on a mesh read from `path`: each warning is one line "contourmesh COMMAND: warning: PATH: ...", and
-/// an error is rethrown naming `path` (exit 2). `use` says whether the contour ids feed the paper's
-/// detection (then they are made usable: see ContourIdUse::Detection; --slice-axis recovers missing or
-/// unusable ids, and without usable ids detection falls back to curvature-only with a warning).
+/// an error is rethrown naming `path` (exit 2). `use` says whether the contour ids are needed (then they
+/// are made usable: see ContourIdUse::Detection; --slice-axis recovers missing or unusable ids), and
+/// `missing` what happens without usable ids: curvature-only detection with a warning, or an error.
 [[nodiscard]] PreparedMesh prepare_input(Mesh mesh, const std::string& path, const std::string& command,
-                                         ContourIdUse use, const FeatureArgs& args);
+                                         ContourIdUse use, const FeatureArgs& args,
+                                         MissingIds missing = MissingIds::CurvatureOnly);
 
 /// The per-vertex arrays of a detection, for --labels-out: FeatureLabel (0 smooth, 1 edge, 2 corner,
 /// 3 noise), Umbrella, KappaMin, KappaMax, KBelow, K0, KAbove, Psi.

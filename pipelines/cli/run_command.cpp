@@ -5,6 +5,7 @@
 #include "contour_input.h"
 #include "feature_options.h"
 #include "input_selection.h"
+#include "method_options.h"
 #include "progress_display.h"
 #include "tiling_options.h"
 #include "volume_options.h"
@@ -20,10 +21,9 @@
 #include <reconstruct/volume.h>
 #include <smooth/adjacency.h>
 #include <smooth/errors.h>
-#include <smooth/feature_smoothing.h>
 #include <smooth/limits.h>
 #include <smooth/metrics.h>
-#include <smooth/smoothing.h>
+#include <smooth/smooth.h>
 #include <smooth/topology.h>
 
 #include <CLI/CLI.hpp>
@@ -55,8 +55,7 @@ struct RunArgs {
   double blur = 0.5;
   std::uint64_t seed = 1;
   std::optional<double> threshold;
-  std::string method = "paper";
-  std::optional<int> iterations;
+  MethodArgs smoothing;
   double feature_radius = 2.0;
   TilingArgs tiling;
   std::string format = "auto";
@@ -71,48 +70,65 @@ struct RunArgs {
   CommonArgs common;
 };
 
-// The smoothing stage, the same for every input: the paper's method (default) or a baseline.
-struct Smoothed {
-  Mesh mesh;
-  std::optional<FeatureSmoothingResult> paper;
-  double seconds = 0.0;
-};
-
-Smoothed smooth_reconstruction(const Mesh& mesh, const RunArgs& a, ProgressDisplay& progress, const std::string& source) {
-  const auto t = std::chrono::steady_clock::now();
-  Smoothed out;
-  out.mesh = mesh;
-  if (a.method == "paper") {
-    FeatureSmoothingOptions o;
-    o.detection = detection_options(a.detection);
-    o.progress = progress.callback();
-    if (a.iterations) o.iterations = *a.iterations;
-    o.limits.max_vertices = a.max_vertices;
-    try {
-      out.paper = feature_preserving_smooth(mesh, o);
-    } catch (const LimitError& e) {
-      throw LimitError(source + ": " + e.what());
-    }
-    out.mesh = out.paper->mesh;
-  } else {
-    SmoothingOptions o;
-    o.method = parse_smoothing_method(a.method);
-    o.progress = progress.callback();
-    if (a.iterations) o.iterations = *a.iterations;
-    out.mesh.positions = smooth(mesh, o);
+// The method `run` smooths with (--method / --preset, the detection options), checked before the work.
+MethodConfig run_method_config(const RunArgs& a, const std::string& labels_out) {
+  MethodConfig config = method_config(a.smoothing, StepArgs{}, a.detection);
+  if (!labels_out.empty() && !produces_labels(config.method)) {
+    throw InvalidInputError("--labels-out needs a method that labels features (paper or cross-slice), not " +
+                            std::string(to_string(config.method)));
   }
-  out.seconds = seconds_since(t);
-  return out;
+  config.options.limits.max_vertices = a.max_vertices;
+  return config;
 }
 
-void add_paper_json(nlohmann::json& j, const Smoothed& s) {
-  if (!s.paper) return;
-  j["edge_vertices"] = s.paper->detection.edges;
-  j["corner_vertices"] = s.paper->detection.corners;
-  j["noise_vertices"] = s.paper->detection.noise;
-  j["subdivided_vertices"] = s.paper->subdivided_vertices;
-  j["seconds_detect"] = s.paper->seconds.detect;
-  j["seconds_subdivide"] = s.paper->seconds.subdivide;
+// The smoothing stage, the same for every input: the selected method through libsmooth's one entry
+// point (cross-slice smoothing by default), which also guards against a diverging run.
+SmoothResult smooth_reconstruction(const Mesh& mesh, MethodConfig config, ProgressDisplay& progress,
+                                   const std::string& source) {
+  config.options.progress = progress.callback();
+  try {
+    return smooth(mesh, config.method, config.options);
+  } catch (const InvalidInputError&) {
+    rethrow_with_context(source);
+  }
+}
+
+// The labels of the reconstructed mesh from a method that has them (paper, cross-slice), for --labels-out.
+void write_labels(const Mesh& mesh, const SmoothResult& r, const std::string& path, ProgressDisplay& progress) {
+  if (r.labels.empty() || path.empty()) return;
+  MeshWriteOptions labels;
+  labels.point_scalars = label_arrays({r.labels, r.detection, r.creases, 0.0});
+  labels.progress = progress.callback();
+  write_mesh(mesh, path, labels);
+}
+
+// The JSON fields of the method: its name, preset, iterations, and what its stages found.
+void add_method_json(nlohmann::json& j, const RunArgs& a, const SmoothResult& r) {
+  j["method"] = std::string(to_string(r.method));
+  if (const std::string p = preset_name(a.smoothing); !p.empty()) j["preset"] = p;
+  j["iterations"] = r.iterations;
+  if (!r.labels.empty()) {
+    const LabelCounts counts = count_labels(r.labels);
+    j["edge_vertices"] = counts.edges;
+    j["corner_vertices"] = counts.corners;
+    j["noise_vertices"] = counts.noise;
+    j["seconds_detect"] = r.seconds.detect;
+  }
+  if (r.method == SmoothingMethod::FeaturePreserving) {
+    j["subdivided_vertices"] = r.subdivided_vertices;
+    j["seconds_subdivide"] = r.seconds.subdivide;
+  }
+  if (r.method == SmoothingMethod::CrossSlice) j["profiles"] = r.profiles;
+}
+
+// The summary line of the labels, when the method has them.
+void print_features(const SmoothResult& r) {
+  if (r.labels.empty()) return;
+  const LabelCounts counts = count_labels(r.labels);
+  std::cout << "  features    " << counts.edges << " edge, " << counts.corners << " corner, " << counts.noise
+            << " noise vertices";
+  if (r.method == SmoothingMethod::FeaturePreserving) std::cout << "; " << r.subdivided_vertices << " subdivided";
+  std::cout << "\n";
 }
 
 // The vertices with distance_to_features(phantom, p) < radius, in order. The feature points are binned
@@ -186,13 +202,12 @@ const std::vector<std::string> kContourOnly{"--roi", "--align", "--single-slice"
 int run_run(const RunArgs& a, const std::string& output, const std::string& labels_out, const LabelJob* job,
             nlohmann::json* collect) {
   const auto start = std::chrono::steady_clock::now();
-  if (a.method != "paper") (void)parse_smoothing_method(a.method);  // fail before the work
+  const MethodConfig config = run_method_config(a, labels_out);
   // Fail on bad options and output paths before the work.
   MeshWriteOptions write_options;
   write_options.format = parse_mesh_format(a.format);
   if (write_options.format == MeshFormat::Auto) (void)format_from_extension(output);
   if (!labels_out.empty()) {
-    if (a.method != "paper") throw InvalidInputError("--labels-out needs --method paper (the labels come from its detection)");
     if (!format_keeps_contour_ids(format_from_extension(labels_out))) {
       throw InvalidInputError(labels_out + ": labels need a .vtp or .ply file");
     }
@@ -268,10 +283,10 @@ int run_run(const RunArgs& a, const std::string& output, const std::string& labe
   const Mesh& mesh = rec.mesh;
 
   // 3. Smooth.
-  const Smoothed smoothed = smooth_reconstruction(mesh, a, progress, source);
+  t = std::chrono::steady_clock::now();
+  const SmoothResult smoothed = smooth_reconstruction(mesh, config, progress, source);
   const Mesh& result = smoothed.mesh;
-  const std::optional<FeatureSmoothingResult>& paper = smoothed.paper;
-  const double seconds_smooth = smoothed.seconds;
+  const double seconds_smooth = seconds_since(t);
 
   // 4. Export. The summary's topology is computed meanwhile when a second thread is allowed.
   std::future<TopologySummary> topology =
@@ -281,12 +296,7 @@ int run_run(const RunArgs& a, const std::string& output, const std::string& labe
   progress.stage("write");
   write_options.progress = progress.callback();
   write_mesh(result, out, write_options);
-  if (paper && !labels_out.empty()) {
-    MeshWriteOptions labels;
-    labels.point_scalars = detection_arrays(paper->detection);
-    labels.progress = progress.callback();
-    write_mesh(mesh, labels_out, labels);
-  }
+  write_labels(mesh, smoothed, labels_out, progress);
   progress.finish();
   const double seconds_write = seconds_since(t);
 
@@ -298,7 +308,7 @@ int run_run(const RunArgs& a, const std::string& output, const std::string& labe
   j["source"] = source;
   j["output"] = output;
   if (!labels_out.empty()) j["labels_out"] = labels_out;
-  j["method"] = a.method;
+  add_method_json(j, a, smoothed);
   j["slices"] = rec.report.slices;
   j["contours"] = rec.report.contours;
   j["vertices"] = result.num_vertices();
@@ -315,7 +325,6 @@ int run_run(const RunArgs& a, const std::string& output, const std::string& labe
   j["seconds_tile"] = rec.report.seconds_tile;
   j["seconds_smooth"] = seconds_smooth;
   j["seconds_write"] = seconds_write;
-  add_paper_json(j, smoothed);
   DistanceStats before, after, feature_before, feature_after;
   if (phantom) {
     const std::vector<Index> feature_vertices = vertices_near_features(*phantom, mesh.positions, a.feature_radius);
@@ -353,11 +362,8 @@ int run_run(const RunArgs& a, const std::string& output, const std::string& labe
             << "  mesh        " << result.num_vertices() << " vertices, " << result.num_faces() << " triangles, "
             << (topo.closed ? "closed" : "OPEN") << ", " << (topo.manifold ? "manifold" : "NOT manifold")
             << ", Euler characteristic " << topo.euler_characteristic << "\n";
-  if (paper) {
-    std::cout << "  features    " << paper->detection.edges << " edge, " << paper->detection.corners << " corner, "
-              << paper->detection.noise << " noise vertices; " << paper->subdivided_vertices << " subdivided\n";
-  }
-  std::cout << "  smoothing   " << a.method << ": volume " << std::setprecision(1) << v0 << " -> " << v1 << " mm^3 ("
+  print_features(smoothed);
+  std::cout << "  smoothing   " << describe_selection(a.smoothing, smoothed.method) << ": volume " << std::setprecision(1) << v0 << " -> " << v1 << " mm^3 ("
             << std::setprecision(2) << 100.0 * (v1 - v0) / v0 << " %)\n";
   if (phantom) {
     std::cout << std::setprecision(3) << "  accuracy    RMS distance to the true surface " << before.rms << " -> "
@@ -397,23 +403,21 @@ int run_volume(const RunArgs& a) {
 
 // One ROI (or contour file): tiled, smoothed by the same stage as a CT volume, written, and measured
 // against its drawn contours before and after smoothing; its JSON object.
-nlohmann::json run_one(const RunArgs& a, InputKind kind, const ContourInput& in, const std::filesystem::path& output,
-                       const std::filesystem::path& labels, const MeshWriteOptions& write_options,
-                       ProgressDisplay& progress) {
+nlohmann::json run_one(const RunArgs& a, const MethodConfig& config, InputKind kind, const ContourInput& in,
+                       const std::filesystem::path& output, const std::filesystem::path& labels,
+                       const MeshWriteOptions& write_options, ProgressDisplay& progress) {
   const auto t0 = std::chrono::steady_clock::now();
   const ContourReconstruction rec = reconstruct_from_contours(
       in.stack, in.what, contour_options(a.contour, in, a.sampling, tiling_options(a.tiling), a.max_vertices),
       progress.callback());
   print_warnings("run", rec.report.warnings);
-  const Smoothed smoothed = smooth_reconstruction(rec.mesh, a, progress, in.what);
-  const auto t = std::chrono::steady_clock::now();
+  auto t = std::chrono::steady_clock::now();
+  const SmoothResult smoothed = smooth_reconstruction(rec.mesh, config, progress, in.what);
+  const double seconds_smooth = seconds_since(t);
+  t = std::chrono::steady_clock::now();
   progress.stage("write");
   write_mesh(smoothed.mesh, output, write_options);
-  if (smoothed.paper && !labels.empty()) {
-    MeshWriteOptions label_options;
-    label_options.point_scalars = detection_arrays(smoothed.paper->detection);
-    write_mesh(rec.mesh, labels, label_options);
-  }
+  write_labels(rec.mesh, smoothed, labels.string(), progress);
   const double seconds_write = seconds_since(t);
   const TopologySummary topo = summarize_topology(smoothed.mesh);
   const double v0 = enclosed_volume(rec.mesh);
@@ -425,7 +429,7 @@ nlohmann::json run_one(const RunArgs& a, InputKind kind, const ContourInput& in,
   describe_input(j, in);
   j["output"] = output.string();
   if (!labels.empty()) j["labels_out"] = labels.string();
-  j["method"] = a.method;
+  add_method_json(j, a, smoothed);
   j["slices"] = rec.report.slices;
   j["contours"] = rec.report.contours;
   j["hole_contours"] = rec.report.hole_contours;
@@ -448,9 +452,8 @@ nlohmann::json run_one(const RunArgs& a, InputKind kind, const ContourInput& in,
   j["contour_deviation_after_max"] = after.max;
   j["slices_without_section_after"] = after.slices_without_section;
   j["seconds_tile"] = rec.report.seconds_tile;
-  j["seconds_smooth"] = smoothed.seconds;
+  j["seconds_smooth"] = seconds_smooth;
   j["seconds_write"] = seconds_write;
-  add_paper_json(j, smoothed);
   j["seconds"] = seconds_since(t0);
   if (a.json || a.common.quiet) return j;
   std::cout << std::fixed << std::setprecision(2) << "ContourMesh: " << in.what
@@ -461,17 +464,13 @@ nlohmann::json run_one(const RunArgs& a, InputKind kind, const ContourInput& in,
             << "  mesh        " << smoothed.mesh.num_vertices() << " vertices, " << smoothed.mesh.num_faces()
             << " triangles, " << (topo.closed ? "closed" : "OPEN") << ", " << (topo.manifold ? "manifold" : "NOT manifold")
             << ", Euler characteristic " << topo.euler_characteristic << "\n";
-  if (smoothed.paper) {
-    std::cout << "  features    " << smoothed.paper->detection.edges << " edge, " << smoothed.paper->detection.corners
-              << " corner, " << smoothed.paper->detection.noise << " noise vertices; "
-              << smoothed.paper->subdivided_vertices << " subdivided\n";
-  }
-  std::cout << "  smoothing   " << a.method << ": volume " << std::setprecision(1) << v0 << " -> " << v1 << " mm^3 ("
+  print_features(smoothed);
+  std::cout << "  smoothing   " << describe_selection(a.smoothing, smoothed.method) << ": volume " << std::setprecision(1) << v0 << " -> " << v1 << " mm^3 ("
             << std::setprecision(2) << 100.0 * (v1 - v0) / v0 << " %; slice-wise " << std::setprecision(1)
             << rec.report.slicewise_volume << ")\n"
             << std::setprecision(3) << "  contours    in-plane distance to the drawn contours: mean " << before.mean
             << " -> " << after.mean << " mm, largest " << before.max << " -> " << after.max << " mm\n"
-            << std::setprecision(2) << "  seconds     tile " << rec.report.seconds_tile << ", smooth " << smoothed.seconds
+            << std::setprecision(2) << "  seconds     tile " << rec.report.seconds_tile << ", smooth " << seconds_smooth
             << ", write " << seconds_write << ", total " << seconds_since(t0) << "\n"
             << "  wrote       " << output.string() << (labels.empty() ? "" : " and " + labels.string()) << "\n";
   return j;
@@ -481,12 +480,8 @@ nlohmann::json run_one(const RunArgs& a, InputKind kind, const ContourInput& in,
 // tiling -> the same smoothing -> export.
 int run_contours(const RunArgs& a, InputKind kind, bool output_given) {
   const auto start = std::chrono::steady_clock::now();
-  if (a.method != "paper") (void)parse_smoothing_method(a.method);
-  if (!a.labels_out.empty() && a.method != "paper") {
-    throw InvalidInputError("--labels-out needs --method paper (the labels come from its detection)");
-  }
+  const MethodConfig config = run_method_config(a, a.labels_out);
   (void)tiling_options(a.tiling);
-  (void)detection_options(a.detection);
   MeshWriteOptions write_options;
   write_options.format = parse_mesh_format(a.format);
   apply_common_options(a.common);
@@ -514,7 +509,7 @@ int run_contours(const RunArgs& a, InputKind kind, bool output_given) {
   nlohmann::json rois = for_each_roi(
       "run", a.input, loaded,
       [&](const ContourInput& in, std::size_t i) {
-        return run_one(a, kind, in, outputs[i], labels[i], write_options, progress);
+        return run_one(a, config, kind, in, outputs[i], labels[i], write_options, progress);
       },
       failed);
   progress.finish();
@@ -547,7 +542,7 @@ void add_run_command(CLI::App& app) {
   cmd->add_option("--format", args->format, "Output format: auto | stl | stl-ascii | ply | vtp | obj")
       ->capture_default_str();
   cmd->add_option("--labels-out", args->labels_out,
-                  "paper: also write the reconstructed mesh with per-vertex labels and curvatures (.vtp or .ply)");
+                  "paper, cross-slice: also write the reconstructed mesh with per-vertex labels and curvatures (.vtp or .ply)");
   cmd->add_option("--shape", args->shape, "Phantom when no input: " + phantom_shape_names(" | "))
       ->capture_default_str();
   cmd->add_option("--spacing", args->spacing, "Phantom voxel size, mm: sx,sy,sz")->capture_default_str();
@@ -559,8 +554,7 @@ void add_run_command(CLI::App& app) {
                   "Bone threshold, HU (default: 300 for an input volume; 520 for a phantom, halfway between its "
                   "soft tissue and bone)");
   add_tiling_options(cmd, args->tiling);
-  cmd->add_option("--method", args->method, "paper | none | laplacian | taubin | mcf | mindist")->capture_default_str();
-  cmd->add_option("--iterations", args->iterations, "Smoothing iterations (default 40 for paper, 20 otherwise)");
+  add_method_options(cmd, args->smoothing);
   cmd->add_option("--feature-radius", args->feature_radius,
                   "Phantom: vertices this close to a sharp edge form the feature region, mm")
       ->capture_default_str();

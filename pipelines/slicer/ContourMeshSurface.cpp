@@ -10,9 +10,7 @@
 #include <reconstruct/threads.h>
 #include <reconstruct/volume.h>
 #include <smooth/errors.h>
-#include <smooth/feature_smoothing.h>
-#include <smooth/cross_slice.h>
-#include <smooth/smoothing.h>
+#include <smooth/smooth.h>
 
 #include <CLI/CLI.hpp>
 
@@ -37,32 +35,28 @@ struct Args {
   int threads = 0;
 };
 
-Mesh smooth_mesh(const Mesh& mesh, const Args& a, const ProgressCallback& progress) {
-  if (a.method == "paper") {
-    FeatureSmoothingOptions o;
-    if (a.iterations >= 0) o.iterations = a.iterations;
-    o.progress = progress;
-    return feature_preserving_smooth(mesh, o).mesh;
+// The module's methods: the ones of the command line, less those only worth comparing against.
+constexpr SmoothingMethod kMethods[] = {SmoothingMethod::CrossSlice, SmoothingMethod::FeaturePreserving,
+                                        SmoothingMethod::Taubin, SmoothingMethod::Laplacian, SmoothingMethod::None};
+
+SmoothingMethod module_method(const std::string& name) {
+  for (SmoothingMethod m : kMethods) {
+    if (name == to_string(m)) return m;
   }
-  if (a.method == "cross-slice") {
-    CrossSliceOptions o;
-    o.progress = progress;
-    return cross_slice_smooth(mesh, o).mesh;
-  }
-  SmoothingOptions o;
-  o.method = parse_smoothing_method(a.method);  // taubin, laplacian, none
-  if (a.iterations >= 0) o.iterations = a.iterations;
+  throw InvalidInputError("--method must be cross-slice, paper, taubin, laplacian or none, got '" + name + "'");
+}
+
+// libsmooth's one entry point, as `contourmesh run --method M [--iterations N]` calls it; --iterations
+// is ignored by the methods without an iteration count (cross-slice, none).
+Mesh smooth_mesh(const Mesh& mesh, SmoothingMethod method, const Args& a, const ProgressCallback& progress) {
+  SmoothOptions o;
+  if (a.iterations >= 0 && default_iterations(method) > 0) o.iterations = a.iterations;
   o.progress = progress;
-  Mesh result = mesh;
-  result.positions = smooth(mesh, o);
-  return result;
+  return smooth(mesh, method, o).mesh;
 }
 
 int run(const Args& a) {
-  if (a.method != "paper" && a.method != "cross-slice" && a.method != "taubin" && a.method != "laplacian" &&
-      a.method != "none") {
-    throw InvalidInputError("--method must be paper, cross-slice, taubin, laplacian or none, got '" + a.method + "'");
-  }
+  const SmoothingMethod method = module_method(a.method);
   MeshWriteOptions write_options;
   (void)format_from_extension(a.output);  // fail before the work
   const ThreadLimit limit(a.threads);
@@ -87,7 +81,12 @@ int run(const Args& a) {
   } catch (const InvalidInputError& e) {
     throw InvalidInputError(a.input + ": " + e.what());
   }
-  const Mesh smoothed = smooth_mesh(r.mesh, a, progress.callback());
+  Mesh smoothed;
+  try {
+    smoothed = smooth_mesh(r.mesh, method, a, progress.callback());
+  } catch (const InvalidInputError&) {
+    rethrow_with_context(a.input);
+  }
   progress.stage("write");
   write_mesh(smoothed, a.output, write_options);
   progress.finish();
@@ -108,7 +107,7 @@ int main(int argc, char** argv) {
   app.add_option("--threshold", args.threshold, "Threshold in HU")->capture_default_str();
   app.add_option("--label", args.label, "A label value or segment name instead of the threshold");
   app.add_flag("--keep-largest", args.keep_largest, "Keep the largest connected piece only");
-  app.add_option("--method", args.method, "paper | cross-slice | taubin | laplacian | none")->capture_default_str();
+  app.add_option("--method", args.method, "cross-slice | paper | taubin | laplacian | none")->capture_default_str();
   app.add_option("--iterations", args.iterations, "Smoothing iterations; -1: the method's default")->capture_default_str();
   app.add_option("--threads", args.threads, "Threads; 0: every core")->capture_default_str();
   try {

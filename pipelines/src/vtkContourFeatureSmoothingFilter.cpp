@@ -4,12 +4,10 @@
 #include "vtk_progress.h"
 
 #include <smooth/adjacency.h>
-#include <smooth/divergence.h>
 #include <smooth/errors.h>
 #include <smooth/feature_detection.h>
-#include <smooth/feature_smoothing.h>
 #include <smooth/input_policy.h>
-#include <smooth/smoothing.h>
+#include <smooth/smooth.h>
 
 #include <vtkAbstractArray.h>
 #include <vtkDataArray.h>
@@ -30,6 +28,7 @@ vtkStandardNewMacro(vtkContourFeatureSmoothingFilter);
 vtkContourFeatureSmoothingFilter::vtkContourFeatureSmoothingFilter() {
   this->SetContourIdArrayName("ContourId");
   this->SetContourIndexArrayName("ContourIndex");
+  this->SetPreset(PRESET_DEFAULT);
 }
 
 vtkContourFeatureSmoothingFilter::~vtkContourFeatureSmoothingFilter() {
@@ -42,15 +41,72 @@ namespace {
 
 using contourmesh::InvalidInputError;
 
-contourmesh::SmoothingMethod to_library(int method) {
+using Filter = vtkContourFeatureSmoothingFilter;
+using contourmesh::SmoothingMethod;
+
+SmoothingMethod to_library(int method) {
   switch (method) {
-    case vtkContourFeatureSmoothingFilter::METHOD_LAPLACIAN: return contourmesh::SmoothingMethod::Laplacian;
-    case vtkContourFeatureSmoothingFilter::METHOD_TAUBIN: return contourmesh::SmoothingMethod::Taubin;
-    case vtkContourFeatureSmoothingFilter::METHOD_MEAN_CURVATURE_FLOW:
-      return contourmesh::SmoothingMethod::MeanCurvatureFlow;
-    case vtkContourFeatureSmoothingFilter::METHOD_MIN_DIST_FLOW: return contourmesh::SmoothingMethod::MinDistFlow;
-    default: return contourmesh::SmoothingMethod::None;
+    case Filter::METHOD_LAPLACIAN: return SmoothingMethod::Laplacian;
+    case Filter::METHOD_TAUBIN: return SmoothingMethod::Taubin;
+    case Filter::METHOD_MEAN_CURVATURE_FLOW: return SmoothingMethod::MeanCurvatureFlow;
+    case Filter::METHOD_MIN_DIST_FLOW: return SmoothingMethod::MinDistFlow;
+    case Filter::METHOD_PAPER: return SmoothingMethod::FeaturePreserving;
+    case Filter::METHOD_CROSS_SLICE: return SmoothingMethod::CrossSlice;
+    default: return SmoothingMethod::None;
   }
+}
+
+int from_library(SmoothingMethod method) {
+  switch (method) {
+    case SmoothingMethod::None: return Filter::METHOD_NONE;
+    case SmoothingMethod::Laplacian: return Filter::METHOD_LAPLACIAN;
+    case SmoothingMethod::Taubin: return Filter::METHOD_TAUBIN;
+    case SmoothingMethod::MeanCurvatureFlow: return Filter::METHOD_MEAN_CURVATURE_FLOW;
+    case SmoothingMethod::MinDistFlow: return Filter::METHOD_MIN_DIST_FLOW;
+    case SmoothingMethod::FeaturePreserving: return Filter::METHOD_PAPER;
+    case SmoothingMethod::CrossSlice: return Filter::METHOD_CROSS_SLICE;
+  }
+  return Filter::METHOD_NONE;
+}
+
+// The filter's properties for a method and its options (a preset). Options the filter has no property
+// for (cross-slice's own) keep the library's defaults when the filter runs.
+void set_properties(Filter* f, const contourmesh::MethodConfig& config) {
+  using namespace contourmesh;
+  SmoothOptions o = config.options;
+  const SmoothingMethod m = config.method;
+  const bool paper = m == SmoothingMethod::FeaturePreserving;
+  f->SetMethod(from_library(m));
+  f->SetNumberOfIterations(default_iterations(m) > 0 ? iterations_of(m, o) : -1);
+  const std::optional<double> lambda = paper ? o.paper.lambda : o.baseline.lambda;
+  f->SetLambda(lambda.value_or(0.0));
+  f->SetMu(paper ? o.paper.mu : o.baseline.mu);
+  f->SetBeta(o.baseline.beta);
+  f->SetBoundarySmoothing((paper ? o.paper.boundary : o.baseline.boundary) == BoundaryPolicy::Free);
+  f->SetTimeStepMode(o.baseline.time_step == TimeStep::Absolute ? Filter::TIME_STEP_ABSOLUTE
+                                                                 : Filter::TIME_STEP_RELATIVE_TO_MEAN_EDGE);
+  const DetectionOptions* chosen = detection_options_of(m, o);
+  const DetectionOptions d = chosen != nullptr ? *chosen : DetectionOptions{};
+  f->SetDetectionMode(d.mode == DetectionMode::CurvatureOnly ? Filter::DETECTION_CURVATURE_ONLY
+                                                             : Filter::DETECTION_CONTOUR_CONTINUITY);
+  f->SetAnisotropy(d.anisotropy);
+  f->SetGamma(d.gamma.value_or(-1.0));
+  f->SetGammaFactor(d.gamma_factor);
+  f->SetUmbrellaMeasure(d.measure == UmbrellaMeasure::NormalComponent ? Filter::UMBRELLA_NORMAL_COMPONENT
+                                                                      : Filter::UMBRELLA_LENGTH);
+  f->SetDelta(d.delta.value_or(-1.0));
+  f->SetDeltaFactor(d.delta_factor);
+  f->SetWindow(d.window);
+  f->SetCornerSpread(d.corner_spread);
+  f->SetInSliceFeatures(d.in_slice == InSliceFeatures::AlongFeatureLine ? Filter::IN_SLICE_ALONG_LINE
+                                                                        : Filter::IN_SLICE_NOISE);
+  f->SetPrefilterIterations(d.prefilter_iterations);
+  f->SetUmbilicTolerance(d.curvature.umbilic_tolerance);
+  f->SetMinReciprocalCondition(d.curvature.min_reciprocal_condition);
+  f->SetMaxLevels(o.paper.max_levels);
+  f->SetDiffusionMethod(o.paper.diffusion == SmoothingMethod::Laplacian ? Filter::METHOD_LAPLACIAN
+                                                                        : Filter::METHOD_TAUBIN);
+  f->SetKeepAdaptiveMesh(o.paper.output == OutputResolution::Adaptive);
 }
 
 // The input's point arrays for the prepared mesh's vertices: the first input point merged into each.
@@ -62,6 +118,20 @@ std::vector<vtkIdType> representatives(const std::vector<contourmesh::Index>& ve
 
 }  // namespace
 
+void vtkContourFeatureSmoothingFilter::SetPreset(int preset) {
+  const int clamped = preset < PRESET_DEFAULT ? PRESET_DEFAULT : (preset > PRESET_XU2006 ? PRESET_XU2006 : preset);
+  set_properties(this, contourmesh::preset(clamped == PRESET_XU2006 ? contourmesh::Preset::Xu2006
+                                                                    : contourmesh::Preset::Default));
+  if (this->Preset != clamped) {
+    this->Preset = clamped;
+    this->Modified();
+  }
+}
+
+const char* vtkContourFeatureSmoothingFilter::GetPresetAsString() {
+  return this->Preset == PRESET_XU2006 ? "Xu2006" : "Default";
+}
+
 const char* vtkContourFeatureSmoothingFilter::GetMethodAsString() {
   switch (this->Method) {
     case METHOD_NONE: return "None";
@@ -69,7 +139,8 @@ const char* vtkContourFeatureSmoothingFilter::GetMethodAsString() {
     case METHOD_TAUBIN: return "Taubin";
     case METHOD_MEAN_CURVATURE_FLOW: return "MeanCurvatureFlow";
     case METHOD_MIN_DIST_FLOW: return "MinDistFlow";
-    default: return "Paper";
+    case METHOD_PAPER: return "Paper";
+    default: return "CrossSlice";
   }
 }
 
@@ -128,19 +199,28 @@ int vtkContourFeatureSmoothingFilter::Execute(vtkPolyData* input, vtkPolyData* o
   if (mesh.triangles.empty()) throw InvalidInputError("input has no triangles");
   const Index n_input = mesh.num_vertices();
 
-  const bool paper = this->Method == METHOD_PAPER;
-  const bool detect = paper || this->GenerateLabels;
+  const SmoothingMethod method = to_library(this->Method);
+  const bool cross_slice = method == SmoothingMethod::CrossSlice;
+  // The paper's detection runs for its method, and for labels of a method that has none of its own.
+  const bool detect = method == SmoothingMethod::FeaturePreserving || (this->GenerateLabels && !produces_labels(method));
 
   // The one input policy, as `contourmesh smooth` runs it (smooth/input_policy.h): refusals, repairs,
-  // orientation, and contour ids made usable for the detection.
+  // orientation, and contour ids made usable for the detection or for cross-slice smoothing, which
+  // cannot do without them.
   InputPolicyOptions policy;
-  policy.ids = detect && this->DetectionMode != DETECTION_CURVATURE_ONLY ? ContourIdUse::Detection
-                                                                         : ContourIdUse::PassThrough;
+  policy.ids = cross_slice || (detect && this->DetectionMode != DETECTION_CURVATURE_ONLY) ? ContourIdUse::Detection
+                                                                                         : ContourIdUse::PassThrough;
   if (this->SliceAxis != SLICE_AXIS_NONE) policy.slice_axis = Eigen::Vector3d::Unit(this->SliceAxis);
   policy.slice_tolerance = this->SliceTolerance;
-  policy.missing_ids = this->DetectionMode == DETECTION_AUTOMATIC ? MissingIds::CurvatureOnly : MissingIds::Refuse;
+  policy.missing_ids =
+      this->DetectionMode == DETECTION_AUTOMATIC && !cross_slice ? MissingIds::CurvatureOnly : MissingIds::Refuse;
   if (policy.ids == ContourIdUse::Detection && !mesh.has_contour_ids() && !policy.slice_axis &&
       policy.missing_ids == MissingIds::Refuse) {
+    if (cross_slice) {
+      throw InvalidInputError(std::string("input has no contour-id point array '") + this->ContourIdArrayName +
+                              "', which cross-slice smoothing needs: set SliceAxis to recover the ids by binning "
+                              "the vertices along the slice axis, or choose another Method");
+    }
     throw InvalidInputError(std::string("input has no contour-id point array '") + this->ContourIdArrayName +
                             "': set SliceAxis to recover the ids by binning the vertices along the slice axis, "
                             "or SetDetectionModeToCurvatureOnly()");
@@ -158,6 +238,9 @@ int vtkContourFeatureSmoothingFilter::Execute(vtkPolyData* input, vtkPolyData* o
 
   std::vector<std::uint8_t> locked;
   if (this->LockedArrayName != nullptr && this->LockedArrayName[0] != '\0') {
+    if (cross_slice) {
+      throw InvalidInputError("cross-slice smoothing cannot lock vertices: unset LockedArrayName or choose another Method");
+    }
     vtkDataArray* array = input->GetPointData()->GetArray(this->LockedArrayName);
     if (array == nullptr) {
       throw InvalidInputError(std::string("input has no point array '") + this->LockedArrayName +
@@ -171,8 +254,6 @@ int vtkContourFeatureSmoothingFilter::Execute(vtkPolyData* input, vtkPolyData* o
       if (array->GetComponent(i, 0) != 0.0) locked[vertex_map.empty() ? i : vertex_map[i]] = 1;
     }
   }
-
-  const MeshAdjacency adjacency = build_adjacency(mesh);
 
   // Detection options.
   DetectionOptions detection;
@@ -190,57 +271,56 @@ int vtkContourFeatureSmoothingFilter::Execute(vtkPolyData* input, vtkPolyData* o
   detection.prefilter_iterations = this->PrefilterIterations;
   detection.curvature.umbilic_tolerance = this->UmbilicTolerance;
   detection.curvature.min_reciprocal_condition = this->MinReciprocalCondition;
-  if (this->DetectionMode == DETECTION_CURVATURE_ONLY || prepared.detection_mode == contourmesh::DetectionMode::CurvatureOnly) {
+  if (this->DetectionMode == DETECTION_CURVATURE_ONLY ||
+      prepared.detection_mode == contourmesh::DetectionMode::CurvatureOnly) {
     detection.mode = contourmesh::DetectionMode::CurvatureOnly;
   }
 
+  // The library's options from the properties (as `contourmesh smooth` builds them from its flags).
+  SmoothOptions o;
+  if (this->NumberOfIterations >= 0 && default_iterations(method) > 0) o.iterations = this->NumberOfIterations;
+  const std::optional<double> lambda = this->Lambda > 0.0 ? std::optional<double>(this->Lambda) : std::nullopt;
+  const BoundaryPolicy boundary = this->BoundarySmoothing ? BoundaryPolicy::Free : BoundaryPolicy::Fixed;
+  o.baseline.lambda = lambda;
+  o.baseline.mu = this->Mu;
+  o.baseline.beta = this->Beta;
+  o.baseline.time_step = this->TimeStepMode == TIME_STEP_ABSOLUTE ? TimeStep::Absolute : TimeStep::RelativeToMeanEdge;
+  o.baseline.boundary = boundary;
+  o.baseline.locked = locked;
+  o.paper.detection = detection;
+  o.paper.max_levels = this->MaxLevels;
+  o.paper.diffusion = this->DiffusionMethod == METHOD_LAPLACIAN ? SmoothingMethod::Laplacian : SmoothingMethod::Taubin;
+  o.paper.lambda = lambda;
+  o.paper.mu = this->Mu;
+  o.paper.boundary = boundary;
+  o.paper.output = this->KeepAdaptiveMesh ? OutputResolution::Adaptive : OutputResolution::Original;
+  o.paper.locked = locked;
+
   filter_detail::StageProgress stages(
       this, [](vtkAlgorithm* a) { return static_cast<vtkContourFeatureSmoothingFilter*>(a)->AbortRequested(); });
-  Mesh result;
   std::vector<VertexLabel> labels;
-  if (paper) {
+  if (method == SmoothingMethod::FeaturePreserving) {
     stages.add("detect", 0.0, 0.3);
     stages.add("subdivide", 0.3, 0.1);
     stages.add("smooth", 0.4, 0.6);
-    FeatureSmoothingOptions o;
-    o.detection = detection;
-    o.max_levels = this->MaxLevels;
-    o.diffusion = this->DiffusionMethod == METHOD_LAPLACIAN ? SmoothingMethod::Laplacian : SmoothingMethod::Taubin;
-    o.iterations = this->NumberOfIterations >= 0 ? this->NumberOfIterations : 40;
-    if (this->Lambda > 0.0) o.lambda = this->Lambda;
-    o.mu = this->Mu;
-    o.boundary = this->BoundarySmoothing ? BoundaryPolicy::Free : BoundaryPolicy::Fixed;
-    o.output = this->KeepAdaptiveMesh ? OutputResolution::Adaptive : OutputResolution::Original;
-    o.locked = locked;
-    o.progress = stages.callback();
-    o.on_iteration = divergence_guard(mesh.positions, "smoothing");
-    FeatureSmoothingResult r = feature_preserving_smooth(mesh, o);
-    result = std::move(r.mesh);
-    labels = std::move(r.detection.labels);
+  } else if (cross_slice) {
+    stages.add("smooth", 0.0, 0.8);
+    stages.add("detect", 0.8, 0.2);
+  } else if (detect) {
+    stages.add("detect", 0.0, 0.3);
+    stages.add("smooth", 0.3, 0.7);
   } else {
-    if (this->GenerateLabels) {
-      stages.add("detect", 0.0, 0.3);
-      stages.add("smooth", 0.3, 0.7);
-      detection.progress = stages.callback();
-      labels = detect_features(mesh, adjacency, detection).labels;
-    } else {
-      stages.add("smooth", 0.0, 1.0);
-    }
-    SmoothingOptions o;
-    o.method = to_library(this->Method);
-    o.iterations = this->NumberOfIterations >= 0 ? this->NumberOfIterations : 20;
-    if (this->Lambda > 0.0) o.lambda = this->Lambda;
-    o.mu = this->Mu;
-    o.beta = this->Beta;
-    o.time_step = this->TimeStepMode == TIME_STEP_ABSOLUTE ? TimeStep::Absolute : TimeStep::RelativeToMeanEdge;
-    o.boundary = this->BoundarySmoothing ? BoundaryPolicy::Free : BoundaryPolicy::Fixed;
-    o.locked = locked;
-    o.progress = stages.callback();
-    o.on_iteration = divergence_guard(mesh.positions, "smoothing");
-    result = mesh;
-    result.positions = smooth(mesh, adjacency, o);
+    stages.add("smooth", 0.0, 1.0);
   }
-  check_not_diverged(result.positions, DivergenceBounds::of(mesh.positions), "smoothing");
+  o.progress = stages.callback();
+  if (this->GenerateLabels && !produces_labels(method)) {
+    detection.progress = o.progress;
+    labels = detect_features(mesh, build_adjacency(mesh), detection).labels;
+  }
+  // smooth() also stops a diverging run (DivergenceError), as `contourmesh smooth` does.
+  SmoothResult smoothed = smooth(mesh, method, o);
+  if (produces_labels(method)) labels = std::move(smoothed.labels);
+  const Mesh& result = smoothed.mesh;
   if (this->AbortRequested()) throw CancelledError("output");
 
   std::vector<PointScalars> extra;
@@ -284,6 +364,7 @@ int vtkContourFeatureSmoothingFilter::Execute(vtkPolyData* input, vtkPolyData* o
 void vtkContourFeatureSmoothingFilter::PrintSelf(ostream& os, vtkIndent indent) {
   this->Superclass::PrintSelf(os, indent);
   auto str = [](const char* s) { return s != nullptr ? s : "(none)"; };
+  os << indent << "Preset: " << this->GetPresetAsString() << " (last applied)\n";
   os << indent << "Method: " << this->GetMethodAsString() << "\n";
   os << indent << "NumberOfIterations: " << this->NumberOfIterations << (this->NumberOfIterations < 0 ? " (automatic)" : "")
      << "\n";

@@ -457,9 +457,10 @@ TEST_F(BadInput, OpenMeshesAreSmoothedWithTheirBoundaryFixed) {
   }
 }
 
+// (The paper's detection: it has a fallback without ids; cross-slice smoothing, the default, needs them.)
 TEST_F(BadInput, MissingContourIdsFallBackWithAWarning) {
   write_mesh(stack_, dir_ / "plain.stl");
-  CliRun r = run("detect " + (dir_ / "plain.stl").string() + " -o " + (dir_ / "l.vtp").string() + " --json");
+  CliRun r = run("detect " + (dir_ / "plain.stl").string() + " -o " + (dir_ / "l.vtp").string() + " --method paper --json");
   ASSERT_EQ(r.code, 0) << r.err;
   EXPECT_EQ(json_of(r)["mode"], "curvature-only");
   EXPECT_NE(r.err.find("has no contour ids"), std::string::npos) << r.err;
@@ -468,12 +469,17 @@ TEST_F(BadInput, MissingContourIdsFallBackWithAWarning) {
   EXPECT_EQ(json_of(r)["id_source"], "slice-planes");
   r = run("detect " + (dir_ / "plain.stl").string() + " -o " + (dir_ / "l.vtp").string() + " --slice-axis x");
   expect_rejected(r, {"plain.stl", "do not lie on planes normal to the slice axis x"});
+  // The default, cross-slice smoothing, refuses a mesh without ids, naming the way out.
+  r = run("smooth " + (dir_ / "plain.stl").string() + " -o " + (dir_ / "o.stl").string());
+  expect_rejected(r, {"plain.stl", "cross-slice smoothing needs contour ids", "--slice-axis"});
+  r = run("smooth " + (dir_ / "plain.stl").string() + " -o " + (dir_ / "o.stl").string() + " --slice-axis z");
+  EXPECT_EQ(r.code, 0) << r.err;
 }
 
 TEST_F(BadInput, InconsistentContourIdsAreCorrected) {
   auto detect = [&](const Mesh& m, const std::string& name) {
     write_mesh(m, dir_ / name);
-    return run("detect " + (dir_ / name).string() + " -o " + (dir_ / "labels.ply").string() + " --json");
+    return run("detect " + (dir_ / name).string() + " -o " + (dir_ / "labels.ply").string() + " --method paper --json");
   };
   const CliRun clean = detect(stack_, "clean.ply");
   ASSERT_EQ(clean.code, 0) << clean.err;
@@ -660,9 +666,9 @@ TEST_F(BadInput, AFailedRunLeavesAnExistingOutputUntouched) {
   const fs::path labels = write_text("precious_labels.vtp", "precious labels");
   const fs::path nan = write_text("nan.obj", tetra_obj("v nan 0 0"));
   expect_rejected(run("smooth " + nan.string() + " -o " + out.string()), {"non-finite"});
-  // Failing after the input was read, during the work.
+  // Failing after the input was read, during the work (the paper's method: its adaptive mesh grows).
   const std::string in = (dir_ / "stack.ply").string();
-  expect_rejected(run("smooth " + in + " -o " + out.string() + " --labels-out " + labels.string() +
+  expect_rejected(run("smooth " + in + " -o " + out.string() + " --method paper --labels-out " + labels.string() +
                       " --max-vertices " + std::to_string(stack_.num_vertices())),
                   {"adaptive subdivision"});
   const fs::path air = write_volume_file("air.mha", {8, 8, 3}, {1, 1, 1}, [](int, int, int) { return -1000.0f; });
@@ -689,10 +695,12 @@ TEST_F(BadInput, MaxVerticesRefusesOversizedMeshesBeforeAllocating) {
   expect_rejected(run("smooth " + (dir_ / "stack.stl").string() + " -o " + out.string() + " --max-vertices 100"),
                   {"more than the limit of 100 vertices", "raise it with --max-vertices"});
   // Producing: the adaptive mesh of the paper's method, then tiling.
-  expect_rejected(run("smooth " + in + " -o " + out.string() + " --max-vertices " + n),
+  expect_rejected(run("smooth " + in + " -o " + out.string() + " --method paper --max-vertices " + n),
                   {in + ": adaptive subdivision level 1", "exceed the limit of " + n + " vertices"});
   EXPECT_EQ(run("smooth " + in + " -o " + out.string() + " --method taubin --max-vertices " + n).code, 0)
       << "the baselines produce no vertices";
+  EXPECT_EQ(run("smooth " + in + " -o " + out.string() + " --max-vertices " + n).code, 0)
+      << "neither does the default, cross-slice smoothing";
   fs::remove(out);
   const fs::path volume = write_volume_file("v.mha", {24, 24, 5}, {1, 1, 1}, [](int i, int j, int k) {
     return k > 0 && k < 4 && (i - 12) * (i - 12) + (j - 12) * (j - 12) < 64 ? 1000.0f : -1000.0f;

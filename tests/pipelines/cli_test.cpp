@@ -6,6 +6,12 @@
 #include <gtest/gtest.h>
 #include <nlohmann/json.hpp>
 
+#include <vtkDataArray.h>
+#include <vtkNew.h>
+#include <vtkPointData.h>
+#include <vtkPolyData.h>
+#include <vtkXMLPolyDataReader.h>
+
 #include <sys/wait.h>
 
 #include <array>
@@ -59,7 +65,7 @@ class Cli : public ::testing::Test {
 };
 
 TEST_F(Cli, SmoothEveryMethodWithJson) {
-  for (const std::string method : {"none", "laplacian", "taubin", "mcf", "mindist", "paper"}) {
+  for (const std::string method : {"none", "laplacian", "taubin", "mcf", "mindist", "paper", "cross-slice"}) {
     const fs::path out = dir_ / ("out_" + method + ".ply");
     const CliRun r = run_cli("smooth " + input_.string() + " -o " + out.string() + " --method " + method + " --json", dir_);
     ASSERT_EQ(r.code, 0) << method << ": " << r.err;
@@ -68,13 +74,21 @@ TEST_F(Cli, SmoothEveryMethodWithJson) {
       EXPECT_TRUE(j.contains(key)) << key;
     }
     EXPECT_EQ(j["method"], method);
-    EXPECT_EQ(j["iterations"], method == "paper" ? 40 : 20);
+    EXPECT_FALSE(j.contains("preset")) << "--method names no preset";
+    // The library's default counts; none and cross-slice run no iterations.
+    EXPECT_EQ(j["iterations"], method == "paper" ? 40 : (method == "none" || method == "cross-slice" ? 0 : 20));
     if (method == "paper") {
       for (const char* key : {"edge_vertices", "corner_vertices", "noise_vertices", "subdivided_vertices",
                               "adaptive_vertices", "seconds_detect", "seconds_subdivide", "seconds_smooth"}) {
         EXPECT_TRUE(j.contains(key)) << key;
       }
       EXPECT_EQ(j["id_source"], "file");
+    }
+    if (method == "cross-slice") {
+      for (const char* key : {"edge_vertices", "corner_vertices", "noise_vertices", "profiles", "seconds_detect"}) {
+        EXPECT_TRUE(j.contains(key)) << key;
+      }
+      EXPECT_GT(j["profiles"].get<int>(), 0);
     }
     EXPECT_EQ(j["vertices"], 600 + 120);  // 10 contours of 60, and two end-cap copies
     const Mesh result = read_mesh(out);
@@ -100,7 +114,7 @@ TEST_F(Cli, PaperMethodWritesLabelsAndTheAdaptiveMesh) {
   EXPECT_EQ(read_mesh(labels).num_vertices(), j["vertices"].get<int>());
   // detect gives the same labels as the paper method's detection.
   const fs::path detected = dir_ / "detected.ply";
-  r = run_cli("detect " + input_.string() + " -o " + detected.string() + " --json", dir_);
+  r = run_cli("detect " + input_.string() + " -o " + detected.string() + " --method paper --json", dir_);
   ASSERT_EQ(r.code, 0) << r.err;
   const auto d = nlohmann::json::parse(r.out);
   EXPECT_EQ(d["edge_vertices"], j["edge_vertices"]);
@@ -110,7 +124,7 @@ TEST_F(Cli, PaperMethodWritesLabelsAndTheAdaptiveMesh) {
   EXPECT_EQ(run_cli("detect " + input_.string() + " -o " + (dir_ / "l.stl").string(), dir_).code, 2);
   const fs::path stl = dir_ / "plain.stl";
   ASSERT_EQ(run_cli("smooth " + input_.string() + " -o " + stl.string() + " --method none", dir_).code, 0);
-  r = run_cli("detect " + stl.string() + " -o " + (dir_ / "l.vtp").string() + " --json", dir_);
+  r = run_cli("detect " + stl.string() + " -o " + (dir_ / "l.vtp").string() + " --method paper --json", dir_);
   ASSERT_EQ(r.code, 0) << r.err;
   EXPECT_EQ(nlohmann::json::parse(r.out)["mode"], "curvature-only");
   EXPECT_NE(r.err.find("no contour ids"), std::string::npos) << r.err;
@@ -118,6 +132,103 @@ TEST_F(Cli, PaperMethodWritesLabelsAndTheAdaptiveMesh) {
   r = run_cli("detect " + stl.string() + " -o " + (dir_ / "l.vtp").string() + " --slice-axis z --json", dir_);
   ASSERT_EQ(r.code, 0) << r.err;
   EXPECT_EQ(nlohmann::json::parse(r.out)["id_source"], "slice-planes");
+  EXPECT_EQ(nlohmann::json::parse(r.out)["mode"], "creases") << "the default's labels: creases of its result";
+  // detect's labels are those smooth writes with --labels-out, for the default too.
+  const fs::path smoothed_labels = dir_ / "smoothed_labels.ply";
+  r = run_cli("smooth " + input_.string() + " -o " + (dir_ / "s.ply").string() + " --labels-out " +
+                  smoothed_labels.string() + " --json",
+              dir_);
+  ASSERT_EQ(r.code, 0) << r.err;
+  const auto sj = nlohmann::json::parse(r.out);
+  r = run_cli("detect " + input_.string() + " -o " + detected.string() + " --json", dir_);
+  ASSERT_EQ(r.code, 0) << r.err;
+  const auto dj = nlohmann::json::parse(r.out);
+  EXPECT_EQ(dj["edge_vertices"], sj["edge_vertices"]);
+  EXPECT_EQ(dj["corner_vertices"], sj["corner_vertices"]);
+}
+
+// Without --method the default preset runs (cross-slice smoothing); --preset xu2006 is the paper's method
+// with its literal settings; --method and --preset exclude each other; options that the selected method
+// has no use for are errors.
+TEST_F(Cli, SmoothPresetsAndTheDefault) {
+  const fs::path out = dir_ / "out.ply";
+  CliRun r = run_cli("smooth " + input_.string() + " -o " + out.string() + " --json", dir_);
+  ASSERT_EQ(r.code, 0) << r.err;
+  auto j = nlohmann::json::parse(r.out);
+  EXPECT_EQ(j["method"], "cross-slice");
+  EXPECT_EQ(j["preset"], "default");
+  const Mesh by_default = read_mesh(out);
+  r = run_cli("smooth " + input_.string() + " -o " + out.string() + " --method cross-slice --json", dir_);
+  ASSERT_EQ(r.code, 0) << r.err;
+  EXPECT_EQ(read_mesh(out).positions, by_default.positions);
+
+  r = run_cli("smooth " + input_.string() + " -o " + out.string() + " --preset xu2006 --json", dir_);
+  ASSERT_EQ(r.code, 0) << r.err;
+  j = nlohmann::json::parse(r.out);
+  EXPECT_EQ(j["method"], "paper");
+  EXPECT_EQ(j["preset"], "xu2006");
+  EXPECT_EQ(j["iterations"], 40);
+  EXPECT_EQ(j["lambda"], 0.6307);
+
+  EXPECT_EQ(run_cli("smooth " + input_.string() + " -o " + out.string() + " --preset xu2006 --method taubin", dir_).code,
+            1);
+  for (const std::string& bad : {std::string("--preset slicer"), std::string("--method bilateral"),
+                                 std::string("--lambda 0.5"), std::string("--max-levels 2"), std::string("--gamma 0.3"),
+                                 std::string("--iterations 5"), std::string("--method taubin --max-levels 2")}) {
+    r = run_cli("smooth " + input_.string() + " -o " + (dir_ / "never.ply").string() + " " + bad, dir_);
+    EXPECT_EQ(r.code, 2) << bad << ": " << r.err;
+    EXPECT_FALSE(fs::exists(dir_ / "never.ply")) << bad;
+  }
+  // Labels from cross-slice smoothing; none from a baseline.
+  const fs::path labels = dir_ / "labels.vtp";
+  r = run_cli("smooth " + input_.string() + " -o " + out.string() + " --labels-out " + labels.string(), dir_);
+  ASSERT_EQ(r.code, 0) << r.err;
+  EXPECT_EQ(read_mesh(labels).num_vertices(), by_default.num_vertices());
+  r = run_cli("smooth " + input_.string() + " -o " + out.string() + " --method mcf --labels-out " + labels.string(), dir_);
+  EXPECT_EQ(r.code, 2);
+  EXPECT_NE(r.err.find("--labels-out needs a method that labels features"), std::string::npos) << r.err;
+}
+
+// `smooth --preset xu2006` on the golden mesh gives the golden labels and positions
+// (tests/data/xu2006/README.md), through the file formats and the CLI.
+TEST_F(Cli, PresetXu2006MatchesTheGolden) {
+  const fs::path data = fs::path(CONTOURMESH_TEST_DATA) / "xu2006";
+  const fs::path out = dir_ / "xu2006.ply", labels = dir_ / "xu2006_labels.vtp";
+  const CliRun r = run_cli("smooth " + (data / "input.ply").string() + " -o " + out.string() + " --preset xu2006" +
+                               " --labels-out " + labels.string() + " --json",
+                           dir_);
+  ASSERT_EQ(r.code, 0) << r.err;
+  std::ifstream expected(data / "expected.txt");
+  std::string header;
+  std::getline(expected, header);
+  std::vector<int> want_labels;
+  std::vector<double> want;
+  int label = 0;
+  double x = 0, y = 0, z = 0;
+  while (expected >> label >> x >> y >> z) {
+    want_labels.push_back(label);
+    want.insert(want.end(), {x, y, z});
+  }
+  const Mesh result = read_mesh(out);
+  ASSERT_EQ(static_cast<std::size_t>(result.num_vertices()), want_labels.size());
+  double worst = 0.0;
+  for (Index i = 0; i < result.num_vertices(); ++i) {
+    for (int c = 0; c < 3; ++c) worst = std::max(worst, std::abs(result.positions(c, i) - want[3 * i + c]));
+  }
+  EXPECT_LE(worst, 1e-9);
+  vtkNew<vtkXMLPolyDataReader> reader;
+  reader->SetFileName(labels.c_str());
+  reader->Update();
+  vtkDataArray* array = reader->GetOutput()->GetPointData()->GetArray("FeatureLabel");
+  ASSERT_NE(array, nullptr);
+  ASSERT_EQ(static_cast<std::size_t>(array->GetNumberOfTuples()), want_labels.size());
+  for (vtkIdType i = 0; i < array->GetNumberOfTuples(); ++i) {
+    ASSERT_EQ(static_cast<int>(array->GetComponent(i, 0)), want_labels[static_cast<std::size_t>(i)]) << "vertex " << i;
+  }
+  const auto j = nlohmann::json::parse(r.out);
+  EXPECT_EQ(j["edge_vertices"], 26);
+  EXPECT_EQ(j["noise_vertices"], 103);
+  EXPECT_EQ(j["iterations"], 40);
 }
 
 TEST_F(Cli, SmoothHonoursParameters) {
@@ -152,7 +263,8 @@ TEST_F(Cli, BadInputExitsTwoNamingTheFileAndWritesNothing) {
   EXPECT_EQ(r.code, 2);
   EXPECT_NE(r.err.find("does not exist"), std::string::npos) << r.err;
 
-  r = run_cli("smooth " + input_.string() + " -o " + out.string() + " --lambda 3", dir_);
+  // (--method taubin: the default, cross-slice smoothing, has no step factor.)
+  r = run_cli("smooth " + input_.string() + " -o " + out.string() + " --method taubin --lambda 3", dir_);
   EXPECT_EQ(r.code, 2);
   EXPECT_NE(r.err.find("lambda"), std::string::npos) << r.err;
   EXPECT_FALSE(fs::exists(out));
@@ -164,7 +276,7 @@ TEST_F(Cli, UsageErrorsExitOne) {
   EXPECT_EQ(run_cli("smooth " + input_.string() + " -o x.stl --iterations many", dir_).code, 1);
   const CliRun help = run_cli("smooth --help", dir_);
   EXPECT_EQ(help.code, 0);
-  for (const char* option : {"--method", "--iterations", "--lambda", "--mu", "--beta", "--json", "--output", "--gamma",
+  for (const char* option : {"--method", "--preset", "--iterations", "--lambda", "--mu", "--beta", "--json", "--output", "--gamma",
                              "--delta", "--max-levels", "--keep-adaptive", "--labels-out", "--slice-axis"}) {
     EXPECT_NE(help.out.find(option), std::string::npos) << option;
   }
@@ -272,11 +384,13 @@ TEST_F(Cli, RunWithNoInputIsTheWholePipelineOnAPhantom) {
   EXPECT_TRUE(j["is_closed"].get<bool>());
   EXPECT_TRUE(j["is_manifold"].get<bool>());
   EXPECT_EQ(j["components"], 1);
-  EXPECT_EQ(j["method"], "paper");
+  // The default preset: cross-slice smoothing (it detects, but does not subdivide).
+  EXPECT_EQ(j["method"], "cross-slice");
+  EXPECT_EQ(j["preset"], "default");
   EXPECT_GT(j["edge_vertices"].get<int>(), 0);
   EXPECT_LT(std::abs(j["volume_change_percent"].get<double>()), 3.0);
   EXPECT_LT(j["rms_distance_after"].get<double>(), 0.5) << "mm from the analytic femur";
-  for (const char* key : {"seconds_segment", "seconds_tile", "seconds_detect", "seconds_subdivide", "seconds_smooth"}) {
+  for (const char* key : {"seconds_segment", "seconds_tile", "seconds_detect", "seconds_smooth"}) {
     EXPECT_TRUE(j.contains(key)) << key;
   }
   const Mesh m = read_mesh(out);
@@ -325,7 +439,7 @@ TEST_F(Cli, RunFormatOverrideAndLabelsOut) {
   const fs::path out2 = dir_ / "taubin.stl";
   const CliRun bad = run_cli("run --method taubin -o " + out2.string() + " --labels-out " + labels.string(), dir_);
   EXPECT_EQ(bad.code, 2) << bad.err;
-  EXPECT_NE(bad.err.find("--labels-out needs --method paper"), std::string::npos) << bad.err;
+  EXPECT_NE(bad.err.find("--labels-out needs a method that labels features"), std::string::npos) << bad.err;
   EXPECT_FALSE(fs::exists(out2));
 }
 
@@ -336,7 +450,8 @@ TEST_F(Cli, ProgressIsOneLinePerStageOffATerminalAndQuietSilencesIt) {
   const std::string coarse = " --spacing 1.4,1.4,3 -o " + out.string();
   const CliRun r = run_cli("run" + coarse, dir_);
   ASSERT_EQ(r.code, 0) << r.err;
-  for (const char* stage : {"phantom", "segment", "tile", "detect", "subdivide", "smooth", "write"}) {
+  // The default method, cross-slice smoothing, has no subdivision stage.
+  for (const char* stage : {"phantom", "segment", "tile", "detect", "smooth", "write"}) {
     EXPECT_NE(r.err.find(std::string("contourmesh run: ") + stage), std::string::npos) << stage << " in\n" << r.err;
   }
   EXPECT_EQ(r.err.find('\r'), std::string::npos) << "no bar redraws off a terminal";
@@ -361,11 +476,11 @@ TEST_F(Cli, HelpListsEveryOptionOfEverySubcommand) {
                        "--min-overlap-of-larger", "--keep", "--fill-holes", "--json", "--quiet", "--threads",
                        "--roi", "--contours-out", "--sampling", "--slab-thickness", "--align", "--single-slice"}},
       {"contours", {"--list", "--roi", "--output", "--json", "--planarity-tolerance"}},
-      {"detect", {"--gamma", "--delta", "--measure", "--in-slice", "--prefilter", "--window", "--corner-spread", "--slice-axis",
+      {"detect", {"--method", "--preset", "--gamma", "--delta", "--measure", "--in-slice", "--prefilter", "--window", "--corner-spread", "--slice-axis",
                   "--json"}},
-      {"smooth", {"--method", "--iterations", "--gamma", "--delta", "--max-levels", "--keep-adaptive", "--labels-out",
+      {"smooth", {"--method", "--preset", "--iterations", "--gamma", "--delta", "--max-levels", "--keep-adaptive", "--labels-out",
                   "--in-slice", "--json", "--quiet", "--threads"}},
-      {"run", {"--shape", "--noise", "--method", "--iterations", "--threshold", "--end-caps", "--branching",
+      {"run", {"--shape", "--noise", "--method", "--preset", "--iterations", "--threshold", "--end-caps", "--branching",
                "--max-band-aspect", "--interpolation-grid", "--in-slice", "--measure",
                "--json", "--quiet", "--threads", "--roi", "--sampling", "--slab-thickness"}},
   };

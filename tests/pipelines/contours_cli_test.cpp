@@ -173,7 +173,8 @@ TEST_F(ContoursCli, RunSmoothsAnRoiAndReportsTheInPlaneDeviation) {
   const CliRun r = run_cli("run " + q(set) + " --roi 'GTV 1' -o " + q(out) + " --json", dir_);
   ASSERT_EQ(r.code, 0) << r.err;
   const auto j = nlohmann::json::parse(r.out);
-  EXPECT_EQ(j["method"], "paper");
+  EXPECT_EQ(j["method"], "cross-slice");  // the default preset, as for a CT volume
+  EXPECT_EQ(j["preset"], "default");
   EXPECT_TRUE(j["is_closed"].get<bool>());
   for (const char* key : {"contour_deviation_before_mean", "contour_deviation_before_max", "contour_deviation_after_mean",
                           "contour_deviation_after_max", "slicewise_volume", "volume_before", "volume_after",

@@ -149,11 +149,15 @@ TEST_F(DamagedOutput, IdsOfMinusOneAndBelowAreNamedWithTheFile) {
   std::fill(none.slice_ids.begin(), none.slice_ids.end(), kNoId);
   std::fill(none.contour_ids.begin(), none.contour_ids.end(), kNoId);
   write_mesh(none, dir_ / "none.ply");
-  const test::CliRun r =
-      run("smooth " + (dir_ / "none.ply").string() + " -o " + (dir_ / "out.ply").string() + " --json");
+  // The paper's method falls back to curvature-only detection; the default, cross-slice smoothing,
+  // cannot do without ids and says how to recover them.
+  const test::CliRun r = run("smooth " + (dir_ / "none.ply").string() + " -o " + (dir_ / "out.ply").string() +
+                             " --method paper --json");
   ASSERT_EQ(r.code, 0) << r.err;
   EXPECT_NE(r.err.find("none.ply: every slice id is -1"), std::string::npos) << r.err;
   EXPECT_EQ(json_of(r)["id_source"], "none");
+  test::expect_rejected(run("smooth " + (dir_ / "none.ply").string() + " -o " + (dir_ / "out.ply").string()),
+                        {"none.ply: the mesh has no contour ids", "give --slice-axis"});
   Mesh below = stack_;
   below.slice_ids[9] = -2;
   write_mesh(below, dir_ / "below.ply");

@@ -10,10 +10,12 @@
 #include <reconstruct/reconstruction.h>
 #include <reconstruct/volume.h>
 #include <smooth/adjacency.h>
+#include <smooth/cross_slice.h>
 #include <smooth/errors.h>
 #include <smooth/feature_detection.h>
 #include <smooth/feature_smoothing.h>
 #include <smooth/shapes.h>
+#include <smooth/smooth.h>
 #include <smooth/smoothing.h>
 #include <smooth/topology.h>
 
@@ -138,8 +140,9 @@ class VtkFilters : public ::testing::Test {
   test::ScopedTempDir tmp_{"contourmesh_vtk_filters"};
 };
 
-// (a) reader -> smoothing filter -> writer -> read back: bitwise the libsmooth result, for the paper's
-// method with every option at its default (so the filter's defaults are the library's) and for Taubin.
+// (a) reader -> smoothing filter -> writer -> read back: bitwise the libsmooth result, for the default
+// (cross-slice smoothing) and the paper's method with every option at its default (so the filter's
+// defaults are the library's), and for Taubin.
 TEST_F(VtkFilters, SmoothingFilterMatchesTheLibraryForPaperAndTaubin) {
   const fs::path input = write_stack(ridge_stack());
   const Mesh mesh = read_mesh(input);
@@ -151,14 +154,17 @@ TEST_F(VtkFilters, SmoothingFilterMatchesTheLibraryForPaperAndTaubin) {
   taubin.method = SmoothingMethod::Taubin;
   taubin.iterations = 7;
   const Eigen::Matrix3Xd taubin_positions = smooth(mesh, taubin);
+  const CrossSliceResult cross_slice = cross_slice_smooth(mesh);
 
-  for (const bool use_paper : {true, false}) {
-    SCOPED_TRACE(use_paper ? "paper" : "taubin");
+  for (const std::string which : {"default", "paper", "taubin"}) {
+    SCOPED_TRACE(which);
+    const bool use_paper = which == "paper", use_default = which == "default";
     vtkNew<vtkXMLPolyDataReader> reader;
     reader->SetFileName(input.c_str());
     vtkNew<vtkContourFeatureSmoothingFilter> filter;
     filter->SetInputConnection(reader->GetOutputPort());
-    if (!use_paper) {
+    if (use_paper) filter->SetMethodToPaper();
+    if (which == "taubin") {
       filter->SetMethodToTaubin();
       filter->SetNumberOfIterations(7);
     }
@@ -174,7 +180,8 @@ TEST_F(VtkFilters, SmoothingFilterMatchesTheLibraryForPaperAndTaubin) {
 
     const Mesh smoothed = read_mesh(output);
     const Mesh& expected = use_paper ? paper.mesh : mesh;
-    const Eigen::Matrix3Xd& expected_positions = use_paper ? paper.mesh.positions : taubin_positions;
+    const Eigen::Matrix3Xd& expected_positions =
+        use_paper ? paper.mesh.positions : (use_default ? cross_slice.mesh.positions : taubin_positions);
     EXPECT_EQ(max_difference(smoothed.positions, expected_positions), 0.0);
     EXPECT_EQ(smoothed.triangles, expected.triangles);
     EXPECT_EQ(smoothed.slice_ids, expected.slice_ids);
@@ -206,6 +213,7 @@ TEST_F(VtkFilters, TwoSmoothingFiltersChainLikeTwoLibraryCalls) {
   a->SetNumberOfIterations(3);
   vtkSmartPointer<vtkContourFeatureSmoothingFilter> b = vtkSmartPointer<vtkContourFeatureSmoothingFilter>::New();
   b->SetInputConnection(a->GetOutputPort());
+  b->SetMethodToPaper();
   b->KeepAdaptiveMeshOn();
   b->SetMaxLevels(2);
   b->SetNumberOfIterations(10);
@@ -253,7 +261,12 @@ TEST_F(VtkFilters, NonDefaultSmoothingOptionsReachTheLibrary) {
                    const std::function<void(Filter*)>& configure) {
     FeatureSmoothingOptions o;
     library(o);
-    check(name, feature_preserving_smooth(mesh, o).mesh.positions, paper_default, configure, mesh);
+    check(name, feature_preserving_smooth(mesh, o).mesh.positions, paper_default,
+          [&](Filter* f) {
+            f->SetMethodToPaper();
+            configure(f);
+          },
+          mesh);
   };
   paper("gamma", [](auto& o) { o.detection.gamma = 0.3; }, [](Filter* f) { f->SetGamma(0.3); });
   paper("gamma factor", [](auto& o) { o.detection.gamma_factor = 1.5; }, [](Filter* f) { f->SetGammaFactor(1.5); });
@@ -286,6 +299,7 @@ TEST_F(VtkFilters, NonDefaultSmoothingOptionsReachTheLibrary) {
     check("anisotropy", feature_preserving_smooth(mesh, o).mesh.positions,
           feature_preserving_smooth(mesh, base).mesh.positions,
           [](Filter* f) {
+            f->SetMethodToPaper();
             f->SetDetectionModeToCurvatureOnly();
             f->SetAnisotropy(1.5);
           },
@@ -354,17 +368,22 @@ TEST_F(VtkFilters, LabelArrayMatchesDetection) {
   ASSERT_GT(d.noise + d.corners, 0u) << "labels of one kind only would prove little";
 
   vtkSmartPointer<vtkPolyData> poly = to_polydata(mesh, {}, {PointScalars{"Extra", std::vector<double>(mesh.num_vertices(), 7.0)}});
-  for (const bool paper : {true, false}) {
-    SCOPED_TRACE(paper ? "paper" : "none");
+  for (const int method : {vtkContourFeatureSmoothingFilter::METHOD_PAPER, vtkContourFeatureSmoothingFilter::METHOD_CROSS_SLICE,
+                           vtkContourFeatureSmoothingFilter::METHOD_NONE}) {
+    const bool paper = method != vtkContourFeatureSmoothingFilter::METHOD_NONE;  // a method with its own labels
     vtkNew<vtkContourFeatureSmoothingFilter> filter;
     filter->SetInputData(poly);
     filter->GenerateLabelsOn();
-    if (!paper) filter->SetMethodToNone();
+    filter->SetMethod(method);
+    SCOPED_TRACE(filter->GetMethodAsString());
     filter->Update();
     vtkPolyData* out = filter->GetOutput();
     const std::vector<int> labels = int_array(out, "FeatureLabel");
-    ASSERT_EQ(labels.size(), d.labels.size());
-    for (std::size_t i = 0; i < labels.size(); ++i) ASSERT_EQ(labels[i], static_cast<int>(d.labels[i])) << "vertex " << i;
+    // Cross-slice smoothing labels the creases of its result; the others the paper's detection.
+    const std::vector<VertexLabel> want =
+        method == vtkContourFeatureSmoothingFilter::METHOD_CROSS_SLICE ? cross_slice_smooth(mesh).labels : d.labels;
+    ASSERT_EQ(labels.size(), want.size());
+    for (std::size_t i = 0; i < labels.size(); ++i) ASSERT_EQ(labels[i], static_cast<int>(want[i])) << "vertex " << i;
     EXPECT_EQ(int_array(out, "Extra"), std::vector<int>(mesh.num_vertices(), 7));
     if (!paper) {
       EXPECT_EQ(max_difference(from_polydata(out).positions, mesh.positions), 0.0);
@@ -380,6 +399,7 @@ TEST_F(VtkFilters, AbortFromProgressObserverStopsEarlyWithEmptyOutput) {
   source->SetOutput(to_polydata(mesh));
   vtkNew<vtkContourFeatureSmoothingFilter> filter;
   filter->SetInputConnection(source->GetOutputPort());
+  filter->SetMethodToPaper();  // one report per iteration, 40 iterations
   vtkNew<MessageObserver> messages;
   observe_messages(filter, messages);
   vtkNew<ProgressObserver> progress;
@@ -433,6 +453,16 @@ TEST_F(VtkFilters, MissingIdsIsAnErrorUnlessSliceAxisRecoversThem) {
   filter->SetInputConnection(reader->GetOutputPort());
   vtkNew<MessageObserver> messages;
   observe_messages(filter, messages);
+  // The default, cross-slice smoothing, needs the ids whatever the detection mode.
+  filter->SetDetectionModeToAutomatic();
+  filter->Update();
+  EXPECT_NE(messages->errors.find("which cross-slice smoothing needs"), std::string::npos) << messages->errors;
+  EXPECT_EQ(filter->GetOutput()->GetNumberOfPoints(), 0);
+
+  // The paper's method: an error too, unless the ids are recovered or the detection falls back.
+  messages->errors.clear();
+  filter->SetMethodToPaper();
+  filter->SetDetectionModeToContourContinuity();
   filter->Update();
   EXPECT_NE(messages->errors.find("no contour-id point array 'ContourId'"), std::string::npos) << messages->errors;
   EXPECT_EQ(filter->GetOutput()->GetNumberOfPoints(), 0);
@@ -726,7 +756,7 @@ TEST_F(VtkFilters, ImageToSurfaceToSmoothingToStlChain) {
   const CtImage::Pointer image = femur();
   ReconstructionOptions ro;
   ro.segmentation.threshold = kIsoLevel;
-  const Mesh expected = feature_preserving_smooth(reconstruct(*image, ro).mesh).mesh;
+  const Mesh expected = cross_slice_smooth(reconstruct(*image, ro).mesh).mesh;  // the default preset
 
   vtkNew<vtkTrivialProducer> source;
   source->SetOutput(to_image_data(image.GetPointer()));
@@ -762,13 +792,15 @@ TEST_F(VtkFilters, SameResultAsTheCli) {
   const fs::path input = write_stack(ridge_stack());
   const std::string quiet = " > " + (dir / "out.txt").string() + " 2>&1";
   const std::string smooth_cmd = std::string(CONTOURMESH_CLI) + " smooth " + input.string() + " -o " +
-                                 (dir / "cli.vtp").string() + " --gamma 0.3 --window 9 --max-levels 2 --iterations 25" +
+                                 (dir / "cli.vtp").string() +
+                                 " --method paper --gamma 0.3 --window 9 --max-levels 2 --iterations 25" +
                                  " --labels-out " + (dir / "labels.vtp").string() + quiet;
   ASSERT_EQ(std::system(smooth_cmd.c_str()), 0) << smooth_cmd;
   vtkNew<vtkXMLPolyDataReader> reader;
   reader->SetFileName(input.c_str());
   vtkNew<vtkContourFeatureSmoothingFilter> filter;
   filter->SetInputConnection(reader->GetOutputPort());
+  filter->SetMethodToPaper();
   filter->SetGamma(0.3);
   filter->SetWindow(9);
   filter->SetMaxLevels(2);
@@ -780,6 +812,30 @@ TEST_F(VtkFilters, SameResultAsTheCli) {
   labels->SetFileName((dir / "labels.vtp").c_str());
   labels->Update();
   EXPECT_EQ(int_array(filter->GetOutput(), "FeatureLabel"), int_array(labels->GetOutput(), "FeatureLabel"));
+
+  // The defaults agree (cross-slice smoothing), and so do the presets with an option on top.
+  for (const std::string preset : {"default", "xu2006"}) {
+    SCOPED_TRACE(preset);
+    const bool xu = preset == "xu2006";
+    const std::string cmd = std::string(CONTOURMESH_CLI) + " smooth " + input.string() + " -o " +
+                            (dir / "cli_preset.vtp").string() + " --preset " + preset +
+                            (xu ? " --in-slice along-line" : "") + " --labels-out " +
+                            (dir / "labels_preset.vtp").string() + quiet;
+    ASSERT_EQ(std::system(cmd.c_str()), 0) << cmd;
+    vtkNew<vtkContourFeatureSmoothingFilter> f;
+    f->SetInputConnection(reader->GetOutputPort());
+    if (xu) {
+      f->SetPresetToXu2006();
+      f->SetInSliceFeaturesToAlongLine();
+    }
+    f->GenerateLabelsOn();
+    f->Update();
+    EXPECT_EQ(max_difference(from_polydata(f->GetOutput()).positions, read_mesh(dir / "cli_preset.vtp").positions), 0.0);
+    vtkNew<vtkXMLPolyDataReader> l;
+    l->SetFileName((dir / "labels_preset.vtp").c_str());
+    l->Update();
+    EXPECT_EQ(int_array(f->GetOutput(), "FeatureLabel"), int_array(l->GetOutput(), "FeatureLabel"));
+  }
 
   const fs::path volume = dir / "femur.mha";
   write_volume(femur().GetPointer(), volume);
@@ -811,8 +867,10 @@ TEST_F(VtkFilters, OptionsClampAndPrintSelfListsThem) {
   EXPECT_EQ(f->GetMu(), 0.0);
   f->SetBeta(5.0);
   EXPECT_EQ(f->GetBeta(), 2.0);
+  EXPECT_EQ(f->GetMethod(), vtkContourFeatureSmoothingFilter::METHOD_CROSS_SLICE) << "the default preset";
+  EXPECT_EQ(f->GetPreset(), vtkContourFeatureSmoothingFilter::PRESET_DEFAULT);
   f->SetMethod(99);
-  EXPECT_EQ(f->GetMethod(), vtkContourFeatureSmoothingFilter::METHOD_PAPER);
+  EXPECT_EQ(f->GetMethod(), vtkContourFeatureSmoothingFilter::METHOD_CROSS_SLICE);
   f->SetMethod(-4);
   EXPECT_EQ(f->GetMethod(), vtkContourFeatureSmoothingFilter::METHOD_NONE);
   f->SetNumberOfIterations(-7);
@@ -880,7 +938,7 @@ TEST_F(VtkFilters, OptionsClampAndPrintSelfListsThem) {
   std::ostringstream printed;
   f->Print(printed);
   for (const char* option :
-       {"Method: None", "NumberOfIterations: -1 (automatic)", "Lambda", "Mu", "Beta", "BoundarySmoothing",
+       {"Preset: Default", "Method: None", "NumberOfIterations: -1 (automatic)", "Lambda", "Mu", "Beta", "BoundarySmoothing",
         "TimeStepMode", "DetectionMode", "Anisotropy", "Gamma: -1 (automatic)", "GammaFactor", "UmbrellaMeasure",
         "Delta", "DeltaFactor", "Window: 5", "CornerSpread", "InSliceFeatures: Noise", "PrefilterIterations", "UmbilicTolerance", "MinReciprocalCondition",
         "MaxLevels", "DiffusionMethod: Laplacian", "KeepAdaptiveMesh", "GenerateLabels", "SliceAxis: Z",
@@ -912,10 +970,67 @@ TEST_F(VtkFilters, LockedArrayKeepsVerticesInPlace) {
   vtkNew<vtkContourFeatureSmoothingFilter> filter;
   filter->SetInputData(to_polydata(mesh, {}, {lock}));
   filter->SetLockedArrayName("Lock");
+  vtkNew<MessageObserver> messages;
+  observe_messages(filter, messages);
+  filter->Update();  // the default, cross-slice smoothing, cannot lock: an error, not a silent ignore
+  EXPECT_NE(messages->errors.find("cross-slice smoothing cannot lock"), std::string::npos) << messages->errors;
+  EXPECT_EQ(filter->GetOutput()->GetNumberOfPoints(), 0);
+  messages->errors.clear();
+  filter->SetMethodToPaper();
   filter->Update();
+  EXPECT_EQ(messages->errors, "");
   const Mesh out = from_polydata(filter->GetOutput());
+  ASSERT_EQ(out.num_vertices(), mesh.num_vertices());
   EXPECT_EQ(max_difference(out.positions, expected.positions), 0.0);
   for (std::size_t i = 0; i < mask.size(); i += 3) EXPECT_EQ(out.positions.col(i), mesh.positions.col(i));
+}
+
+// A run that diverges (a million Taubin iterations) is an error and an empty output, as in the CLI.
+TEST_F(VtkFilters, ADivergingRunIsAnErrorNotAnOverflowingMesh) {
+  vtkNew<vtkContourFeatureSmoothingFilter> filter;
+  filter->SetInputData(to_polydata(ridge_stack()));
+  filter->SetMethodToTaubin();
+  filter->SetNumberOfIterations(1000000);
+  vtkNew<MessageObserver> messages;
+  observe_messages(filter, messages);
+  filter->Update();
+  EXPECT_NE(messages->errors.find("smoothing diverged at iteration"), std::string::npos) << messages->errors;
+  EXPECT_EQ(filter->GetOutput()->GetNumberOfPoints(), 0);
+}
+
+// Presets set the method and the options they fix; the xu2006 preset is the library's, on the golden mesh
+// (tests/data/xu2006); options set after a preset override it.
+TEST_F(VtkFilters, PresetsAreTheLibrarys) {
+  using Filter = vtkContourFeatureSmoothingFilter;
+  const Mesh mesh = read_mesh(fs::path(CONTOURMESH_TEST_DATA) / "xu2006" / "input.ply");
+  const MethodConfig xu = preset(Preset::Xu2006);
+  const SmoothResult expected = smooth(mesh, xu.method, xu.options);
+  vtkNew<Filter> f;
+  f->SetInputData(to_polydata(mesh));
+  f->SetPresetToXu2006();
+  EXPECT_EQ(f->GetPreset(), Filter::PRESET_XU2006);
+  EXPECT_EQ(f->GetMethod(), Filter::METHOD_PAPER);
+  EXPECT_EQ(f->GetNumberOfIterations(), 40);
+  EXPECT_EQ(f->GetLambda(), 0.6307);
+  EXPECT_GT(f->GetCornerSpread(), 1.0 / 3.0);
+  f->GenerateLabelsOn();
+  f->Update();
+  EXPECT_EQ(max_difference(from_polydata(f->GetOutput()).positions, expected.mesh.positions), 0.0);
+  std::vector<int> want;
+  for (VertexLabel l : expected.labels) want.push_back(static_cast<int>(l));
+  EXPECT_EQ(int_array(f->GetOutput(), "FeatureLabel"), want);
+  // An option after the preset overrides it.
+  f->SetNumberOfIterations(39);
+  f->Update();
+  EXPECT_GT(max_difference(from_polydata(f->GetOutput()).positions, expected.mesh.positions), 1e-6);
+  EXPECT_EQ(f->GetPreset(), Filter::PRESET_XU2006) << "the preset last applied";
+  // Back to the default preset: cross-slice smoothing, every option at its default.
+  f->SetPresetToDefault();
+  EXPECT_EQ(f->GetMethod(), Filter::METHOD_CROSS_SLICE);
+  EXPECT_EQ(f->GetNumberOfIterations(), -1);
+  EXPECT_EQ(f->GetCornerSpread(), DetectionOptions{}.corner_spread);
+  f->Update();
+  EXPECT_EQ(max_difference(from_polydata(f->GetOutput()).positions, cross_slice_smooth(mesh).mesh.positions), 0.0);
 }
 
 }  // namespace

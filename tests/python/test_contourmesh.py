@@ -89,6 +89,25 @@ def test_every_method_and_the_labels(box_mesh):
     assert d["labels"].shape == (len(box_mesh.points),) and d["edges"] > 0
 
 
+def test_default_method_and_presets_are_the_librarys(box_mesh):
+    """smooth() goes through the library's one entry point: the default preset is cross-slice smoothing,
+    preset="xu2006" the paper's method as the paper configures it, and a method excludes a preset."""
+    assert cm.DEFAULT_METHOD == "cross-slice"
+    default = cm.smooth(*box_mesh[:4])
+    explicit = cm.smooth(*box_mesh[:4], method="cross-slice")
+    np.testing.assert_array_equal(default.points, explicit.points)
+    assert default.report["profiles"] > 0 and "iterations" not in default.report
+    xu = cm.smooth(*box_mesh[:4], preset="xu2006")
+    assert xu.report["method"] == "paper" and xu.report["iterations"] == 40
+    assert not np.array_equal(xu.points, cm.smooth(*box_mesh[:4], method="paper").points)  # corner spread off
+    with pytest.raises(cm.InvalidInputError, match="not both"):
+        cm.smooth(*box_mesh[:4], method="paper", preset="xu2006")
+    with pytest.raises(cm.InvalidInputError, match="unknown preset"):
+        cm.smooth(*box_mesh[:4], preset="fast")
+    with pytest.raises(cm.InvalidInputError, match="not known to method 'cross-slice'"):
+        cm.smooth(*box_mesh[:4], iterations=3)
+
+
 def test_errors_are_typed():
     with pytest.raises(cm.InvalidInputError) as e:
         cm.smooth(np.zeros((3, 3)), [[0, 1, 5]])

@@ -2,6 +2,7 @@
 #include <pipelines/mesh_io.h>
 #include <reconstruct/phantom.h>
 #include <reconstruct/volume.h>
+#include <smooth/smooth.h>
 #include <smooth/topology.h>
 
 #include "test_support.h"
@@ -78,6 +79,22 @@ TEST_F(SlicerModule, RunsAsSlicerCallsItAndReportsProgress) {
   EXPECT_NE(read_file(model).substr(0, 80).find("SPACE=LPS"), std::string::npos);
   const Mesh mesh = read_mesh(model);
   EXPECT_TRUE(summarize_topology(mesh).closed);
+}
+
+// The module's default method, as Slicer shows it, is the library's default preset's (the command line's).
+TEST_F(SlicerModule, DefaultMethodIsTheLibrarysDefault) {
+  const ModuleRun r = run("--xml", dir_ / "err.txt");
+  ASSERT_EQ(r.code, 0) << read_file(dir_ / "err.txt");
+  std::smatch m;
+  ASSERT_TRUE(std::regex_search(r.out, m, std::regex("<name>method</name>[\\s\\S]*?<default>([^<]*)</default>")))
+      << r.out;
+  EXPECT_EQ(m[1].str(), to_string(preset(Preset::Default).method));
+  // And it runs: the iteration count Slicer always passes is ignored by a method that has none.
+  const fs::path model = dir_ / "default.ply";
+  const ModuleRun d =
+      run("--threshold 520 --iterations 10 " + (dir_ / "box.nrrd").string() + " " + model.string(), dir_ / "err.txt");
+  ASSERT_EQ(d.code, 0) << read_file(dir_ / "err.txt");
+  EXPECT_TRUE(summarize_topology(read_mesh(model)).closed);
 }
 
 TEST_F(SlicerModule, BadInputIsOneLineAndExitTwoWithNothingWritten) {

@@ -63,6 +63,21 @@ TEST(CrossSlice, KeepsContourVerticesInTheirSlicePlanes) {
   }
 }
 
+// A vertex without ids inside a contour (as a repaired file may hold) breaks that contour open: its ends
+// have one contour neighbour each. Profiles that reach such an end stop there instead of walking off it.
+TEST(CrossSlice, ContoursBrokenOpenByAVertexWithoutIdsAreSmoothedToo) {
+  Mesh mesh = make_contour_stack(cylinder(10.0, 20));
+  add_noise(mesh, {.sigma = 0.2, .seed = 3, .direction = NoiseDirection::InPlane});
+  for (Index i = 0; i < mesh.num_vertices(); ++i) {
+    if (mesh.slice_ids[i] >= 0 && i % 97 == 0) mesh.slice_ids[i] = mesh.contour_ids[i] = kNoId;
+  }
+  const CrossSliceResult r = cross_slice_smooth(mesh);
+  ASSERT_EQ(r.mesh.num_vertices(), mesh.num_vertices());
+  EXPECT_TRUE(r.mesh.positions.allFinite());
+  EXPECT_GT(r.profiles, 0u);
+  EXPECT_LT(radial_error(r.mesh, 10, 10.0), radial_error(mesh, 10, 10.0));
+}
+
 TEST(CrossSlice, NeedsContourIds) {
   EXPECT_THROW((void)cross_slice_smooth(make_icosphere(2)), InvalidInputError);
 }

@@ -35,11 +35,19 @@ TEST(Smoothing, DefaultsAreThePaperSettings) {
 }
 
 TEST(Smoothing, MethodNamesRoundTrip) {
-  for (auto m : {SmoothingMethod::None, SmoothingMethod::Laplacian, SmoothingMethod::Taubin,
-                 SmoothingMethod::MeanCurvatureFlow, SmoothingMethod::MinDistFlow}) {
-    EXPECT_EQ(parse_smoothing_method(to_string(m)), m);
-  }
+  for (SmoothingMethod m : all_smoothing_methods()) EXPECT_EQ(parse_smoothing_method(to_string(m)), m);
+  EXPECT_EQ(all_smoothing_methods().size(), 7u);
+  EXPECT_EQ(to_string(SmoothingMethod::FeaturePreserving), "paper");
+  EXPECT_EQ(to_string(SmoothingMethod::CrossSlice), "cross-slice");
   EXPECT_THROW((void)parse_smoothing_method("bilateral"), InvalidInputError);
+}
+
+TEST(Smoothing, TheBaselineEntryPointRefusesTheOtherMethods) {
+  const Mesh s = make_icosphere(1);
+  for (SmoothingMethod m : {SmoothingMethod::FeaturePreserving, SmoothingMethod::CrossSlice}) {
+    EXPECT_FALSE(is_baseline(m));
+    EXPECT_THROW((void)smooth(s, options_for(m)), InvalidInputError) << to_string(m);
+  }
 }
 
 TEST(Smoothing, LaplacianShrinksAnIcosphereMonotonically) {

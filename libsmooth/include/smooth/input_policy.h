@@ -32,19 +32,22 @@ enum class OrientationPolicy {
   Refuse,
 };
 
-/// How the contour ids (SPEC 2: slice id c(i) and contour id per vertex) will be used.
+/// How the contour ids (the slice id c(i) and contour id of every vertex) will be used.
 enum class ContourIdUse {
   /// Passed through unused (the baseline smoothers): only the id contract is checked.
   PassThrough,
-  /// Needed by the paper's feature detection: gaps closed, inconsistent ids corrected from the slice
-  /// planes, missing or unusable ids recovered along `slice_axis`, else MissingIds decides.
+  /// Needed by the paper's feature detection or by cross-slice smoothing: gaps closed, inconsistent ids
+  /// corrected from the slice planes, missing or unusable ids recovered along `slice_axis`, else
+  /// MissingIds decides.
   Detection,
 };
 
 /// What detection does when a mesh has no usable contour ids and `slice_axis` cannot recover them.
 enum class MissingIds {
-  CurvatureOnly,  ///< fall back to curvature-only detection, with a warning (the CLI)
-  Refuse,         ///< InvalidInputError (the VTK filter's ContourContinuity mode)
+  CurvatureOnly,  ///< fall back to curvature-only detection, with a warning (the paper's method in the CLI)
+  /// InvalidInputError (cross-slice smoothing, which cannot do without ids; the VTK filter's
+  /// ContourContinuity mode)
+  Refuse,
 };
 
 /// Where the contour ids of a prepared mesh come from.

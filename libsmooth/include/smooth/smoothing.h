@@ -18,18 +18,29 @@
 
 namespace contourmesh {
 
+/// Every smoothing method of the library. The first five are the baselines of this header; the last
+/// two have their own headers and options (feature_smoothing.h, cross_slice.h). smooth.h runs any of
+/// them through one entry point.
 enum class SmoothingMethod {
   None,               ///< positions returned unchanged
   Laplacian,          ///< v += lambda * U(v), paper eq. 5 with the umbrella operator (eq. 7)
   Taubin,             ///< one iteration = a lambda step then a mu step of the umbrella (eq. 6)
   MeanCurvatureFlow,  ///< explicit cotangent Laplace-Beltrami flow (Desbrun et al. 1999)
   MinDistFlow,        ///< vertex-to-plane distance minimisation (Zhang & Fiume 2002), see below
+  FeaturePreserving,  ///< the paper's Algorithm 1 (Xu et al. 2006): feature_preserving_smooth
+  CrossSlice,         ///< the project's default for contour meshes: cross_slice_smooth
 };
 
-/// "none", "laplacian", "taubin", "mcf", "mindist".
+/// "none", "laplacian", "taubin", "mcf", "mindist", "paper", "cross-slice".
 [[nodiscard]] std::string_view to_string(SmoothingMethod method);
-/// Inverse of to_string (also accepts "mean-curvature-flow", "min-dist"); throws InvalidInputError.
+/// Inverse of to_string (also accepts "mean-curvature-flow", "min-dist", "feature-preserving");
+/// throws InvalidInputError listing the valid names.
 [[nodiscard]] SmoothingMethod parse_smoothing_method(std::string_view name);
+/// Every method, in declaration order.
+[[nodiscard]] std::span<const SmoothingMethod> all_smoothing_methods();
+/// True for the umbrella-type baselines this header runs (Laplacian, Taubin, mean curvature flow,
+/// MIN-DIST flow) and None.
+[[nodiscard]] bool is_baseline(SmoothingMethod method);
 
 /// What happens to vertices on the boundary of an open mesh.
 enum class BoundaryPolicy {
@@ -52,6 +63,7 @@ using IterationObserver = std::function<void(int iteration, const Eigen::Matrix3
 
 /// Options shared by the baseline smoothers. Defaults are the paper's settings (section 6).
 struct SmoothingOptions {
+  /// A baseline (is_baseline). smooth.h's entry point sets it from its method argument.
   SmoothingMethod method = SmoothingMethod::Taubin;
   /// Number of iterations, >= 0. Paper: 20 for every baseline.
   int iterations = 20;
@@ -74,7 +86,8 @@ struct SmoothingOptions {
   IterationObserver on_iteration;
 };
 
-/// The paper's lambda for a method (0 for None).
+/// The paper's lambda of a baseline (0 for None, FeaturePreserving and CrossSlice: their steps are in
+/// their own options).
 [[nodiscard]] double default_lambda(SmoothingMethod method);
 
 /// Checks the options against a mesh of `num_vertices` vertices; throws InvalidInputError naming the
@@ -117,7 +130,8 @@ void check_smoothing_options(const SmoothingOptions& options, Index num_vertices
 [[nodiscard]] Eigen::Matrix3Xd min_dist_flow(const Mesh& mesh, const MeshAdjacency& adjacency,
                                              const SmoothingOptions& options);
 
-/// Runs the method named by `options.method` and returns the smoothed positions (3 x n).
+/// Runs the baseline named by `options.method` and returns the smoothed positions (3 x n). Throws
+/// InvalidInputError for FeaturePreserving and CrossSlice: run those through smooth.h.
 [[nodiscard]] Eigen::Matrix3Xd smooth(const Mesh& mesh, const MeshAdjacency& adjacency, const SmoothingOptions& options);
 /// Same, building the adjacency first.
 [[nodiscard]] Eigen::Matrix3Xd smooth(const Mesh& mesh, const SmoothingOptions& options);

@@ -90,7 +90,8 @@ namespace {
 
 // Where the plane (through `origin`, normal `plane_normal`) crosses the contour of the start vertices:
 // from the start vertex nearest to the plane, along the contour towards the plane, at most `max_steps`
-// edges. Returns false when it does not cross there.
+// edges. Start vertices that are not contour vertices (an end of a contour broken by a vertex without
+// ids) are passed over. Returns false when it does not cross there.
 bool cut_contour(const ContourFrame& f, const Eigen::Matrix3Xd& x, const Index* start, int starts,
                  const Eigen::Vector3d& origin, const Eigen::Vector3d& plane_normal, Eigen::Vector3d& cut,
                  Index& edge_a, Index& edge_b) {
@@ -98,6 +99,7 @@ bool cut_contour(const ContourFrame& f, const Eigen::Matrix3Xd& x, const Index* 
   Index j = -1;
   double sj = std::numeric_limits<double>::infinity();
   for (int k = 0; k < starts; ++k) {
+    if (!f.is_contour_vertex(start[k])) continue;  // it has no two contour neighbours to walk to
     const double s = (x.col(start[k]) - origin).dot(plane_normal);
     if (std::abs(s) < std::abs(sj)) {
       sj = s;

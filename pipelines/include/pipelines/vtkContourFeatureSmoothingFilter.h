@@ -1,12 +1,12 @@
-// vtkContourFeatureSmoothingFilter: the paper's feature-preserving smoothing (Xu et al. 2006,
-// libsmooth's feature_preserving_smooth) and the baseline smoothers (libsmooth's smooth) as a VTK filter,
-// for use inside larger VTK applications. Gives the same result as the library call and as
-// `contourmesh smooth` with the same options.
+// vtkContourFeatureSmoothingFilter: every smoothing method of libsmooth as a VTK filter (cross-slice
+// smoothing, the paper's feature-preserving smoothing of Xu et al. 2006, the baselines), through the
+// library's one entry point smooth(mesh, method, options), for use inside larger VTK applications. Gives
+// the same result as the library call and as `contourmesh smooth` with the same method and options.
 #pragma once
 
 #include <vtkPolyDataAlgorithm.h>
 
-/// Smooths a triangle mesh whose points carry contour ids (SPEC 2): the slice index c(i) in the point
+/// Smooths a triangle mesh whose points carry contour ids: the slice index c(i) in the point
 /// array ContourIdArrayName (default "ContourId") and the contour within that slice in
 /// ContourIndexArrayName (default "ContourIndex"; absent means one contour per slice), the arrays
 /// vtkCtImageToContourSurfaceFilter and the contourmesh CLI write.
@@ -18,21 +18,31 @@
 /// original resolution the other point arrays of the input are passed through, except the normals
 /// attribute (stale after smoothing); cell data is not passed (triangulation may renumber cells).
 ///
+/// Presets: SetPreset (SetPresetToDefault, SetPresetToXu2006) sets Method and every option the preset
+/// fixes, as `contourmesh smooth --preset` does; options set afterwards override it. A new filter holds
+/// the default preset: cross-slice smoothing with its defaults.
+///
 /// Option values that "mean automatic" (NumberOfIterations -1, Lambda 0, Gamma and Delta < 0) take the
-/// paper's value, as the library's unset std::optional does. Setters clamp to the valid closed range;
+/// method's default, as the library's unset std::optional does. Setters clamp to the valid closed range;
 /// values at an open end of a range (Mu 0, GammaFactor 0, DeltaFactor 0, Anisotropy 1, Delta 0, an even
 /// Window) are rejected when the filter runs, like every other error: vtkErrorMacro naming the problem,
 /// an empty output, RequestData returns 0.
 ///
-/// Contour ids are needed by the paper's detection (Method Paper, or GenerateLabels with any method).
-/// When ContourIdArrayName is missing: with SliceAxis set the ids are recovered by binning the vertices
-/// along that axis (libsmooth's assign_ids_by_slice_planes, an error when they do not lie on planes);
-/// otherwise DetectionMode decides: ContourContinuity (default) is an error, Automatic falls back to
-/// the curvature-only detection with a warning (what the CLI does), CurvatureOnly never needs ids.
+/// Contour ids are needed by cross-slice smoothing (always) and by the paper's detection (Method Paper,
+/// or GenerateLabels with a baseline). The detection options (Gamma, Window, ...) are the paper's;
+/// cross-slice smoothing labels the creases of its result with its own defaults.
+/// The input goes through libsmooth's prepare_input_mesh, the CLI's input policy (refusals, repairs
+/// with one vtkWarningMacro each, orientation, ids made usable), so that the filter and `contourmesh
+/// smooth` give the same result on the same dirty mesh. When the ids are missing or unusable: with
+/// SliceAxis set they are recovered by binning the vertices along that axis (an error when they do not
+/// lie on planes); otherwise cross-slice smoothing is an error, and for the paper's detection
+/// DetectionMode decides: ContourContinuity (default) is an error, Automatic falls back to the
+/// curvature-only detection with a warning (what the CLI does), CurvatureOnly never needs ids. A run
+/// that diverges (coordinates that turn non-finite or run away) is an error, as in the library.
 ///
 /// Progress: UpdateProgress with detection in [0, 0.3], subdivision in [0.3, 0.4] and smoothing in
-/// [0.4, 1] for the paper's method (smoothing alone spans [0, 1] for a baseline), at most once per
-/// iteration. Cancellation: setting AbortExecute (for example from a vtkCommand::ProgressEvent observer)
+/// [0.4, 1] for the paper's method, smoothing in [0, 0.8] and its crease labels in [0.8, 1] for
+/// cross-slice smoothing (smoothing alone spans [0, 1] for a baseline), at most once per iteration. Cancellation: setting AbortExecute (for example from a vtkCommand::ProgressEvent observer)
 /// makes the library stop at its next progress report (vtkAlgorithm::CheckAbort on VTK >= 9.3). An
 /// aborted run is not an error: the output is left empty and RequestData returns 1, as VTK filters do
 /// when they abort. The pipeline then considers the (empty) output up to date: call Modified() before
@@ -49,7 +59,12 @@ class vtkContourFeatureSmoothingFilter : public vtkPolyDataAlgorithm {
     METHOD_TAUBIN = 2,               ///< Taubin lambda|mu, paper eq. 6
     METHOD_MEAN_CURVATURE_FLOW = 3,  ///< explicit cotangent flow (Desbrun et al. 1999)
     METHOD_MIN_DIST_FLOW = 4,        ///< Zhang & Fiume 2002
-    METHOD_PAPER = 5,                ///< Xu et al. 2006, Algorithm 1 (default)
+    METHOD_PAPER = 5,                ///< Xu et al. 2006, Algorithm 1
+    METHOD_CROSS_SLICE = 6,          ///< cross-slice smoothing, the project's default (the default preset)
+  };
+  enum PresetType {
+    PRESET_DEFAULT = 0,  ///< cross-slice smoothing with its defaults
+    PRESET_XU2006 = 1,   ///< the paper's literal configuration (libsmooth's Preset::Xu2006)
   };
   enum DetectionModeType {
     DETECTION_CONTOUR_CONTINUITY = 0,  ///< the paper's Algorithm 2; needs contour ids (default)
@@ -76,8 +91,20 @@ class vtkContourFeatureSmoothingFilter : public vtkPolyDataAlgorithm {
   };
 
   ///@{
-  /// The smoother. Default METHOD_PAPER.
-  vtkSetClampMacro(Method, int, METHOD_NONE, METHOD_PAPER);
+  /// Applies a preset: Method and the options the preset fixes (the paper's method, its iterations,
+  /// steps and detection rules for PRESET_XU2006); the other options return to their defaults. Values
+  /// outside the enum are clamped. GetPreset gives the preset last applied (PRESET_DEFAULT for a new
+  /// filter), whatever was set afterwards.
+  void SetPreset(int preset);
+  vtkGetMacro(Preset, int);
+  void SetPresetToDefault() { this->SetPreset(PRESET_DEFAULT); }
+  void SetPresetToXu2006() { this->SetPreset(PRESET_XU2006); }
+  const char* GetPresetAsString();
+  ///@}
+
+  ///@{
+  /// The smoother. Default METHOD_CROSS_SLICE (the default preset).
+  vtkSetClampMacro(Method, int, METHOD_NONE, METHOD_CROSS_SLICE);
   vtkGetMacro(Method, int);
   void SetMethodToNone() { this->SetMethod(METHOD_NONE); }
   void SetMethodToLaplacian() { this->SetMethod(METHOD_LAPLACIAN); }
@@ -85,11 +112,13 @@ class vtkContourFeatureSmoothingFilter : public vtkPolyDataAlgorithm {
   void SetMethodToMeanCurvatureFlow() { this->SetMethod(METHOD_MEAN_CURVATURE_FLOW); }
   void SetMethodToMinDistFlow() { this->SetMethod(METHOD_MIN_DIST_FLOW); }
   void SetMethodToPaper() { this->SetMethod(METHOD_PAPER); }
+  void SetMethodToCrossSlice() { this->SetMethod(METHOD_CROSS_SLICE); }
   const char* GetMethodAsString();
   ///@}
 
   ///@{
-  /// Iterations, >= 0; -1 (default) = automatic: 40 for the paper's method, 20 for a baseline.
+  /// Iterations, >= 0; -1 (default) = automatic: the method's own count (libsmooth's default_iterations:
+  /// 40 for the paper's method, 20 for a baseline). Cross-slice smoothing has no iteration count.
   vtkSetClampMacro(NumberOfIterations, int, -1, VTK_INT_MAX);
   vtkGetMacro(NumberOfIterations, int);
   ///@}
@@ -236,8 +265,8 @@ class vtkContourFeatureSmoothingFilter : public vtkPolyDataAlgorithm {
   ///@}
 
   ///@{
-  /// Add the per-vertex "FeatureLabel" array (default Off). With a baseline method the detection is
-  /// run on the input just for the labels.
+  /// Add the per-vertex "FeatureLabel" array (default Off): the labels of the paper's method or of
+  /// cross-slice smoothing; with a baseline method the paper's detection runs on the input just for them.
   vtkSetMacro(GenerateLabels, vtkTypeBool);
   vtkGetMacro(GenerateLabels, vtkTypeBool);
   vtkBooleanMacro(GenerateLabels, vtkTypeBool);
@@ -266,6 +295,7 @@ class vtkContourFeatureSmoothingFilter : public vtkPolyDataAlgorithm {
 
   ///@{
   /// Optional point array (one component) whose non-zero values lock vertices in place. Default none.
+  /// The baselines and the paper's method honour it; cross-slice smoothing cannot lock (an error).
   vtkSetStringMacro(LockedArrayName);
   vtkGetStringMacro(LockedArrayName);
   ///@}
@@ -277,7 +307,8 @@ class vtkContourFeatureSmoothingFilter : public vtkPolyDataAlgorithm {
   int RequestData(vtkInformation* request, vtkInformationVector** inputVector,
                   vtkInformationVector* outputVector) override;
 
-  int Method = METHOD_PAPER;
+  int Preset = PRESET_DEFAULT;
+  int Method = METHOD_CROSS_SLICE;
   int NumberOfIterations = -1;
   double Lambda = 0.0;
   double Mu = -0.6732;

@@ -64,15 +64,17 @@ def reconstruct(volume, spacing=(1.0, 1.0, 1.0), origin=(0.0, 0.0, 0.0), directi
 
 def smooth(points, triangles, slice_ids=None, contour_ids=None, method=None, *, progress=None, threads=0,
            max_vertices=_MAX_VERTICES, **options):
-    """Smooths a mesh with ``method`` (default: the command line's default, ``DEFAULT_METHOD``).
+    """Smooths a mesh with ``method``, or without one with the preset ``options["preset"]``: "default"
+    (the default: cross-slice smoothing, ``DEFAULT_METHOD``) or "xu2006" (the paper's method as the
+    paper configures it). The library's one entry point, as on the command line.
 
-    Methods: "paper" (Xu et al. 2006, needs contour ids), "cross-slice" (needs contour ids), "none",
+    Methods: "cross-slice" (needs contour ids), "paper" (Xu et al. 2006, needs contour ids), "none",
     "laplacian", "taubin", "mcf", "mindist". ``options`` are the command line's options of the method
     with ``_`` for ``-``: iterations, lambda (or lambda_), mu, beta, boundary; for "paper" also max_levels,
     diffusion, keep_adaptive, gamma, delta, measure, in_slice, prefilter, window, corner_spread,
     slice_axis; for "cross-slice" reach, along_reach, gamma, noise_across, noise_along, stages,
-    extension_iterations, slice_axis. An option the method does not know is an InvalidInputError.
-    Returns a ``Smoothed``.
+    extension_iterations, slice_axis (and no iterations). An option the method does not know is an
+    InvalidInputError, as is a diverging run. Returns a ``Smoothed``.
     """
     return Smoothed(*_core._smooth(points, triangles, slice_ids, contour_ids, method, progress, int(threads),
                                    int(max_vertices), options))

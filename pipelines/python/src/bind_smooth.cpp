@@ -1,46 +1,26 @@
-// Python bindings: smoothing (every method) and the paper's feature detection.
+// Python bindings: smoothing (every method, through libsmooth's one entry point smooth()) and the paper's
+// feature detection.
 #include "bindings.h"
 #include "bridge.h"
 
 #include <reconstruct/threads.h>
 #include <smooth/adjacency.h>
 #include <smooth/contour_structure.h>
-#include <smooth/cross_slice.h>
 #include <smooth/errors.h>
 #include <smooth/feature_detection.h>
-#include <smooth/feature_smoothing.h>
 #include <smooth/limits.h>
-#include <smooth/smoothing.h>
+#include <smooth/smooth.h>
 
 #include <pybind11/stl.h>
 
-#include <chrono>
-#include <functional>
 #include <map>
-#include <set>
-#include <type_traits>
-#include <variant>
 
 namespace contourmesh::python {
 
 namespace {
 
-// The methods by their command-line names. kDefaultMethod is the command line's default.
-enum class Method { Paper, CrossSlice, None, Laplacian, Taubin, Mcf, MinDist };
-constexpr const char* kDefaultMethod = "paper";
-
-Method parse_method(const std::string& name) {
-  static const std::map<std::string, Method> names{
-      {"paper", Method::Paper},     {"cross-slice", Method::CrossSlice}, {"none", Method::None},
-      {"laplacian", Method::Laplacian}, {"taubin", Method::Taubin},      {"mcf", Method::Mcf},
-      {"mindist", Method::MinDist}};
-  const auto it = names.find(name);
-  if (it == names.end()) {
-    throw InvalidInputError("method must be paper, cross-slice, none, laplacian, taubin, mcf or mindist, got '" + name +
-                            "'");
-  }
-  return it->second;
-}
+// The default method: the default preset's, as on the command line.
+std::string default_method() { return std::string(to_string(preset(Preset::Default).method)); }
 
 // Keyword options, consumed one by one; what is left at the end is an error naming it.
 class Options {
@@ -68,6 +48,11 @@ class Options {
   void take_int(const std::string& name, int& target) {
     take(name, [&](const py::object& v) { target = as_int(v, name); });
   }
+  void take_int(const std::string& name, std::optional<int>& target) {
+    take(name, [&](const py::object& v) { target = as_int(v, name); });
+  }
+  /// The method named in the error of finish(), once it is known.
+  void set_method(std::string method) { method_ = std::move(method); }
   void finish() const {
     if (values_.empty()) return;
     std::string names;
@@ -154,142 +139,124 @@ py::dict detection_dict(const FeatureDetection& d) {
   return out;
 }
 
-double seconds_since(std::chrono::steady_clock::time_point t) {
-  return std::chrono::duration<double>(std::chrono::steady_clock::now() - t).count();
+// The method and its options: `method`, else the preset given as the option `preset` (default: the
+// default preset), then the options the method knows; an option it does not know is an error.
+MethodConfig method_config(const py::object& method_arg, Options& o, Mesh& mesh) {
+  std::optional<std::string> preset_name;
+  o.take("preset", [&](const py::object& v) { preset_name = as_string(v, "preset"); });
+  MethodConfig c;
+  if (!method_arg.is_none()) {
+    if (preset_name) throw InvalidInputError("give a method or a preset, not both");
+    c.method = parse_smoothing_method(as_string(method_arg, "method"));
+  } else {
+    c = preset(preset_name ? parse_preset(*preset_name) : Preset::Default);
+  }
+  SmoothOptions& so = c.options;
+  const SmoothingMethod m = c.method;
+  o.set_method(std::string(to_string(m)));
+  if (m == SmoothingMethod::FeaturePreserving || m == SmoothingMethod::CrossSlice) take_slice_axis(o, mesh);
+  if (m != SmoothingMethod::None && m != SmoothingMethod::CrossSlice) {
+    o.take_int("iterations", so.iterations);
+  }
+  if (m == SmoothingMethod::FeaturePreserving) {
+    FeatureSmoothingOptions& fo = so.paper;
+    take_detection(o, fo.detection);
+    o.take_double("lambda", fo.lambda);
+    o.take_double("mu", fo.mu);
+    o.take_int("max_levels", fo.max_levels);
+    o.take("diffusion", [&](const py::object& v) {
+      const std::string s = as_string(v, "diffusion");
+      if (s != "taubin" && s != "laplacian") throw InvalidInputError("diffusion must be 'taubin' or 'laplacian', got '" + s + "'");
+      fo.diffusion = parse_smoothing_method(s);
+    });
+    o.take("keep_adaptive", [&](const py::object& v) {
+      fo.output = v.cast<bool>() ? OutputResolution::Adaptive : OutputResolution::Original;
+    });
+    o.take("boundary", [&](const py::object& v) { fo.boundary = parse_boundary(as_string(v, "boundary")); });
+  } else if (m == SmoothingMethod::CrossSlice) {
+    CrossSliceOptions& co = so.cross_slice;
+    o.take_int("reach", co.reach);
+    o.take_int("along_reach", co.along_reach);
+    o.take_double("gamma", co.gamma);
+    o.take_double("noise_across", co.noise_across);
+    o.take_double("noise_along", co.noise_along);
+    o.take_int("extension_iterations", co.extension_iterations);
+    o.take("stages", [&](const py::object& v) {
+      const std::string s = as_string(v, "stages");
+      if (s == "across-then-along") co.stages = CrossSliceStages::AcrossThenAlong;
+      else if (s == "across-only") co.stages = CrossSliceStages::AcrossOnly;
+      else throw InvalidInputError("stages must be 'across-then-along' or 'across-only', got '" + s + "'");
+    });
+  } else if (m != SmoothingMethod::None) {
+    SmoothingOptions& bo = so.baseline;
+    o.take_double("lambda", bo.lambda);
+    o.take("boundary", [&](const py::object& v) { bo.boundary = parse_boundary(as_string(v, "boundary")); });
+    if (m == SmoothingMethod::Taubin) o.take_double("mu", bo.mu);
+    if (m == SmoothingMethod::MinDistFlow) o.take_double("beta", bo.beta);
+  }
+  o.finish();
+  return c;
+}
+
+// What the method did, by name (the keys docs/python.md lists for each method).
+py::dict smooth_report(const SmoothResult& r, const MethodConfig& c) {
+  py::dict d;
+  d["method"] = std::string(to_string(r.method));
+  if (default_iterations(r.method) > 0) d["iterations"] = r.iterations;
+  if (is_baseline(r.method) && r.method != SmoothingMethod::None) {
+    d["lambda"] = c.options.baseline.lambda.value_or(default_lambda(r.method));
+  }
+  if (!r.labels.empty()) {
+    std::size_t edges = 0, corners = 0, noise = 0;
+    for (VertexLabel l : r.labels) {
+      edges += l == VertexLabel::Edge;
+      corners += l == VertexLabel::Corner;
+      noise += l == VertexLabel::Noise;
+    }
+    d["edges"] = edges;
+    d["corners"] = corners;
+    d["noise"] = noise;
+    d["seconds_detect"] = r.seconds.detect;
+    d["seconds_smooth"] = r.seconds.smooth;
+  }
+  if (r.detection) d["gamma"] = r.detection->gamma;
+  if (r.method == SmoothingMethod::FeaturePreserving) {
+    d["subdivided_vertices"] = r.subdivided_vertices;
+    d["adaptive_vertices"] = r.adaptive_vertices;
+    d["seconds_subdivide"] = r.seconds.subdivide;
+  }
+  if (r.method == SmoothingMethod::CrossSlice) {
+    d["noise_across"] = r.noise_across;
+    d["noise_along"] = r.noise_along;
+    d["profiles"] = r.profiles;
+  }
+  d["seconds"] = r.seconds.total;
+  return d;
 }
 
 py::tuple smooth_py(const py::object& points, const py::object& triangles, const py::object& slice_ids,
                     const py::object& contour_ids, const py::object& method_arg, const py::object& progress,
                     int threads, Index max_vertices, const py::dict& kwargs) {
-  const std::string method_name = method_arg.is_none() ? kDefaultMethod : as_string(method_arg, "method");
-  const Method method = parse_method(method_name);
   Mesh mesh = mesh_from_arrays(points, triangles, slice_ids, contour_ids);
   if (max_vertices < 1) throw InvalidInputError("max_vertices must be >= 1");
+  Options o(kwargs, "");
+  MethodConfig config = method_config(method_arg, o, mesh);
+  config.options.limits.max_vertices = max_vertices;
   if (mesh.num_vertices() > max_vertices) {
     throw LimitError("the mesh has " + std::to_string(mesh.num_vertices()) + " vertices, over the limit of " +
                      std::to_string(max_vertices) + " (max_vertices)");
   }
-  Options o(kwargs, method_name);
-  // What the method did, filled while the GIL is released and turned into a dict afterwards.
-  std::vector<std::pair<std::string, std::variant<double, long long>>> facts;
-  const auto fact = [&facts](const char* name, auto value) {
-    if constexpr (std::is_floating_point_v<decltype(value)>) facts.emplace_back(name, static_cast<double>(value));
-    else facts.emplace_back(name, static_cast<long long>(value));
-  };
   ProgressBridge bridge(progress);
-  std::function<void()> work;
-  Mesh result;
-  std::optional<std::vector<VertexLabel>> labels;
-  switch (method) {
-    case Method::Paper: {
-      auto fo = std::make_shared<FeatureSmoothingOptions>();
-      take_slice_axis(o, mesh);
-      take_detection(o, fo->detection);
-      o.take_int("iterations", fo->iterations);
-      o.take_double("lambda", fo->lambda);
-      o.take_double("mu", fo->mu);
-      o.take_int("max_levels", fo->max_levels);
-      o.take("diffusion", [&](const py::object& v) {
-        const std::string s = as_string(v, "diffusion");
-        if (s != "taubin" && s != "laplacian") throw InvalidInputError("diffusion must be 'taubin' or 'laplacian', got '" + s + "'");
-        fo->diffusion = parse_smoothing_method(s);
-      });
-      o.take("keep_adaptive", [&](const py::object& v) {
-        fo->output = v.cast<bool>() ? OutputResolution::Adaptive : OutputResolution::Original;
-      });
-      o.take("boundary", [&](const py::object& v) { fo->boundary = parse_boundary(as_string(v, "boundary")); });
-      o.finish();
-      fo->progress = bridge.callback();
-      fo->limits.max_vertices = max_vertices;
-      work = [&, fo] {
-        FeatureSmoothingResult r = feature_preserving_smooth(mesh, *fo);
-        result = std::move(r.mesh);
-        labels = r.detection.labels;
-        fact("iterations", fo->iterations);
-        fact("edges", r.detection.edges);
-        fact("corners", r.detection.corners);
-        fact("noise", r.detection.noise);
-        fact("gamma", r.detection.gamma);
-        fact("subdivided_vertices", r.subdivided_vertices);
-        fact("adaptive_vertices", r.adaptive_vertices);
-        fact("seconds_detect", r.seconds.detect);
-        fact("seconds_subdivide", r.seconds.subdivide);
-        fact("seconds_smooth", r.seconds.smooth);
-        fact("seconds", r.seconds.total);
-      };
-      break;
-    }
-    case Method::CrossSlice: {
-      auto co = std::make_shared<CrossSliceOptions>();
-      take_slice_axis(o, mesh);
-      o.take_int("reach", co->reach);
-      o.take_int("along_reach", co->along_reach);
-      o.take_double("gamma", co->gamma);
-      o.take_double("noise_across", co->noise_across);
-      o.take_double("noise_along", co->noise_along);
-      o.take_int("extension_iterations", co->extension_iterations);
-      o.take("stages", [&](const py::object& v) {
-        const std::string s = as_string(v, "stages");
-        if (s == "across-then-along") co->stages = CrossSliceStages::AcrossThenAlong;
-        else if (s == "across-only") co->stages = CrossSliceStages::AcrossOnly;
-        else throw InvalidInputError("stages must be 'across-then-along' or 'across-only', got '" + s + "'");
-      });
-      o.finish();
-      co->progress = bridge.callback();
-      work = [&, co] {
-        CrossSliceResult r = cross_slice_smooth(mesh, *co);
-        result = std::move(r.mesh);
-        labels = std::move(r.labels);
-        fact("noise_across", r.noise_across);
-        fact("noise_along", r.noise_along);
-        fact("profiles", r.profiles);
-        fact("seconds_detect", r.seconds_detect);
-        fact("seconds_smooth", r.seconds_smooth);
-        fact("seconds", r.seconds_total);
-      };
-      break;
-    }
-    default: {
-      auto so = std::make_shared<SmoothingOptions>();
-      switch (method) {
-        case Method::None: so->method = SmoothingMethod::None; break;
-        case Method::Laplacian: so->method = SmoothingMethod::Laplacian; break;
-        case Method::Taubin: so->method = SmoothingMethod::Taubin; break;
-        case Method::Mcf: so->method = SmoothingMethod::MeanCurvatureFlow; break;
-        default: so->method = SmoothingMethod::MinDistFlow; break;
-      }
-      if (method != Method::None) {
-        o.take_int("iterations", so->iterations);
-        o.take_double("lambda", so->lambda);
-        o.take("boundary", [&](const py::object& v) { so->boundary = parse_boundary(as_string(v, "boundary")); });
-      }
-      if (method == Method::Taubin) o.take_double("mu", so->mu);
-      if (method == Method::MinDist) o.take_double("beta", so->beta);
-      o.finish();
-      so->progress = bridge.callback();
-      work = [&, so] {
-        const auto t = std::chrono::steady_clock::now();
-        result = mesh;
-        result.positions = smooth(mesh, *so);
-        fact("iterations", so->method == SmoothingMethod::None ? 0 : so->iterations);
-        fact("lambda", so->lambda.value_or(default_lambda(so->method)));
-        fact("seconds", seconds_since(t));
-      };
-      break;
-    }
-  }
+  config.options.progress = bridge.callback();
+  SmoothResult result;
   {
     const ThreadLimit limit(threads);
-    bridge.run([&] { work(); });
+    bridge.run([&] { result = smooth(mesh, config.method, config.options); });
   }
-  py::dict report;
-  report["method"] = method_name;
-  for (const auto& [name, value] : facts) {
-    std::visit([&, &key = name](auto v) { report[py::str(key)] = v; }, value);
-  }
-  py::tuple arrays = mesh_to_arrays(result);
+  py::tuple arrays = mesh_to_arrays(result.mesh);
   return py::make_tuple(arrays[0], arrays[1], arrays[2], arrays[3],
-                        labels ? py::object(labels_array(*labels)) : py::object(py::none()), report);
+                        result.labels.empty() ? py::object(py::none()) : py::object(labels_array(result.labels)),
+                        smooth_report(result, config));
 }
 
 py::dict detect_py(const py::object& points, const py::object& triangles, const py::object& slice_ids,
@@ -321,7 +288,7 @@ py::dict detect_py(const py::object& points, const py::object& triangles, const 
 }  // namespace
 
 void bind_smooth(py::module_& m) {
-  m.attr("DEFAULT_METHOD") = kDefaultMethod;
+  m.attr("DEFAULT_METHOD") = default_method();
   m.def("_smooth", &smooth_py, py::arg("points"), py::arg("triangles"), py::arg("slice_ids"), py::arg("contour_ids"),
         py::arg("method"), py::arg("progress"), py::arg("threads"), py::arg("max_vertices"), py::arg("options"));
   m.def("_detect", &detect_py, py::arg("points"), py::arg("triangles"), py::arg("slice_ids"), py::arg("contour_ids"),

@@ -19,7 +19,7 @@ def main():
     p.add_argument("--summary", required=True)
     p.add_argument("--threshold")
     p.add_argument("--label")
-    p.add_argument("--method", default="paper")
+    p.add_argument("--method", default="cross-slice")
     p.add_argument("--threads", default="1")
     a = p.parse_args()
 
