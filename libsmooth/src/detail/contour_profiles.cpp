@@ -5,6 +5,8 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <map>
+#include <utility>
 
 namespace contourmesh::detail {
 
@@ -21,6 +23,7 @@ ContourFrame make_contour_frame(const Mesh& mesh) {
   const Index n = mesh.num_vertices();
   f.on_contour.assign(static_cast<std::size_t>(n), 0);
   std::vector<double> heights;
+  std::map<std::int32_t, std::pair<double, double>> levels;  // slice id -> (sum of heights, count)
   double edge_sum = 0.0;
   std::size_t edges = 0;
   for (Index i = 0; i < n; ++i) {
@@ -29,12 +32,22 @@ ContourFrame make_contour_frame(const Mesh& mesh) {
     f.on_contour[static_cast<std::size_t>(i)] = 1;
     edge_sum += (mesh.positions.col(nb[0]) - mesh.positions.col(i)).norm();
     ++edges;
-    if (heights.size() < 8192) {
-      for (Index j : f.rings.above(i)) heights.push_back(std::abs((mesh.positions.col(j) - mesh.positions.col(i)).dot(f.axis)));
-    }
+    auto& level = levels[mesh.slice_ids[static_cast<std::size_t>(i)]];
+    level.first += mesh.positions.col(i).dot(f.axis);
+    level.second += 1.0;
+  }
+  // The spacing from the slices' own heights, not from edges between them: a tiler that inserts
+  // intermediate contours joins no contour vertex to the next slice directly.
+  std::int32_t previous_id = -1;
+  double previous_height = 0.0;
+  for (const auto& [id, level] : levels) {
+    const double height = level.first / level.second;
+    if (previous_id >= 0) heights.push_back(std::abs(height - previous_height));
+    previous_id = id;
+    previous_height = height;
   }
   if (heights.empty() || edges == 0) {
-    throw InvalidInputError("cross-slice smoothing: no contour continues into an adjacent slice");
+    throw InvalidInputError("cross-slice smoothing: the mesh has contour vertices on fewer than two slices");
   }
   f.above.assign(static_cast<std::size_t>(n), -1);
   f.below.assign(static_cast<std::size_t>(n), -1);
