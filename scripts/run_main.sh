@@ -1,6 +1,6 @@
 #!/usr/bin/env bash
 # The main job: set up a fresh machine, build the release preset, and run the whole pipeline on the
-# built-in femur phantom (CT volume with noise -> contours -> mesh -> the paper's smoothing).
+# built-in femur phantom (CT volume with noise -> contours -> mesh -> the default smoothing).
 # Writes out/femur.stl and prints a short summary.
 set -euo pipefail
 cd "$(dirname "$0")/.."
