@@ -18,7 +18,8 @@ struct ThreadLimit::Impl {
 };
 
 ThreadLimit::ThreadLimit(int threads) : threads_(threads) {
-  if (threads < 0) throw InvalidInputError("the thread count must be >= 0 (0: every core), got " + std::to_string(threads));
+  if (threads < 0)
+    throw InvalidInputError("the thread count must be >= 0 (0: every core), got " + std::to_string(threads));
   if (threads == 0) return;
   impl_ = std::make_unique<Impl>();
   impl_->tbb_limit.emplace(tbb::global_control::max_allowed_parallelism, static_cast<std::size_t>(threads));

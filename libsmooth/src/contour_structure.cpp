@@ -183,7 +183,8 @@ std::size_t compact_slice_ids(Mesh& mesh) {
   const auto span = static_cast<std::size_t>(used.back() - used.front()) + 1;
   if (span == used.size()) return 0;
   for (std::int32_t& s : mesh.slice_ids) {
-    if (s >= 0) s = used.front() + static_cast<std::int32_t>(std::lower_bound(used.begin(), used.end(), s) - used.begin());
+    if (s >= 0)
+      s = used.front() + static_cast<std::int32_t>(std::lower_bound(used.begin(), used.end(), s) - used.begin());
   }
   return span - used.size();
 }

@@ -105,7 +105,8 @@ std::vector<ContourGroup> contour_groups(const Level& lower, const Level& upper,
   UnionFind uf(na + nb);
   for (std::size_t i = 0; i < na; ++i) {
     for (int j : links.up[i]) uf.unite(i, na + static_cast<std::size_t>(j));
-    if (lower.contours[i].is_hole && lower.contours[i].parent >= 0) uf.unite(i, static_cast<std::size_t>(lower.contours[i].parent));
+    if (lower.contours[i].is_hole && lower.contours[i].parent >= 0)
+      uf.unite(i, static_cast<std::size_t>(lower.contours[i].parent));
   }
   for (std::size_t j = 0; j < nb; ++j) {
     if (upper.contours[j].is_hole && upper.contours[j].parent >= 0) {

@@ -111,7 +111,8 @@ ShapeBuild build_end_face_on_slice() {
     const double box = sd_extrude(sd_polygon(p.head<2>(), rectangle), p.z(), kBoxHalf);
     return std::min(cylinder, box);  // disjoint solids: exact
   };
-  s.bounds = box_of(Vec3(cylinder_centre.x() - kRadius, -kRadius, kBottom), Vec3(cylinder_centre.x() + kRadius, kRadius, kTop));
+  s.bounds = box_of(Vec3(cylinder_centre.x() - kRadius, -kRadius, kBottom),
+                    Vec3(cylinder_centre.x() + kRadius, kRadius, kTop));
   for (const Vec2& c : rectangle) {
     for (double z : {-kBoxHalf, kBoxHalf}) s.bounds.extend(Vec3(c.x(), c.y(), z));
   }

@@ -108,7 +108,8 @@ double cross(const Eigen::Vector2d& a, const Eigen::Vector2d& b, const Eigen::Ve
   return (b.x() - a.x()) * (c.y() - a.y()) - (b.y() - a.y()) * (c.x() - a.x());
 }
 
-bool in_triangle(const Eigen::Vector2d& a, const Eigen::Vector2d& b, const Eigen::Vector2d& c, const Eigen::Vector2d& p) {
+bool in_triangle(const Eigen::Vector2d& a, const Eigen::Vector2d& b, const Eigen::Vector2d& c,
+                 const Eigen::Vector2d& p) {
   return cross(a, b, p) >= 0.0 && cross(b, c, p) >= 0.0 && cross(c, a, p) >= 0.0;
 }
 
@@ -263,7 +264,8 @@ class Ring {
 
 }  // namespace
 
-std::vector<std::array<PolygonVertex, 3>> triangulate_with_holes(const Polygon& outer, const std::vector<Polygon>& holes) {
+std::vector<std::array<PolygonVertex, 3>> triangulate_with_holes(const Polygon& outer,
+                                                                 const std::vector<Polygon>& holes) {
   Ring ring;
   const int start = ring.add_loop(outer, 0);
   // Eberly: holes in order of decreasing rightmost x.

@@ -17,7 +17,8 @@ namespace contourmesh {
 
 /// Unit vertex normals (3 x n): the area-weighted mean of incident face normals (SPEC 3.2).
 /// An isolated vertex or one whose faces cancel gets the zero vector.
-[[nodiscard]] Eigen::Matrix3Xd vertex_normals(const Eigen::Matrix3Xd& positions, const std::vector<Triangle>& triangles);
+[[nodiscard]] Eigen::Matrix3Xd vertex_normals(const Eigen::Matrix3Xd& positions,
+                                              const std::vector<Triangle>& triangles);
 
 /// Mean length of the mesh's undirected edges (0 for a mesh without edges).
 [[nodiscard]] double mean_edge_length(const Eigen::Matrix3Xd& positions, const MeshAdjacency& adjacency);

@@ -25,7 +25,9 @@ struct SliceRings {
   [[nodiscard]] std::span<const Index> other(Index i) const { return span(other_begin[i], offsets[i + 1]); }
 
  private:
-  [[nodiscard]] std::span<const Index> span(Index b, Index e) const { return {neighbors.data() + b, neighbors.data() + e}; }
+  [[nodiscard]] std::span<const Index> span(Index b, Index e) const {
+    return {neighbors.data() + b, neighbors.data() + e};
+  }
 };
 
 /// Splits every 1-ring by the slice ids of the mesh. Throws InvalidInputError if the mesh has no
