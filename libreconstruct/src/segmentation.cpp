@@ -21,6 +21,7 @@
 #include <cmath>
 #include <cstdint>
 #include <limits>
+#include <numeric>
 #include <optional>
 #include <utility>
 #include <string>
@@ -117,12 +118,10 @@ std::optional<std::pair<std::size_t, std::size_t>> first_crossing(const std::vec
     }
   }
   // Groups of touching boxes (union-find, sweep along x).
-  std::vector<std::size_t> group(n), by_x(n);
-  for (std::size_t k = 0; k < n; ++k) group[k] = by_x[k] = k;
-  const auto root = [&](std::size_t k) {
-    while (group[k] != k) k = group[k] = group[group[k]];
-    return k;
-  };
+  detail::UnionFind<> groups(n);
+  std::vector<std::size_t> by_x(n);
+  std::iota(by_x.begin(), by_x.end(), std::size_t{0});
+  const auto root = [&](std::size_t k) { return groups.find(k); };
   std::sort(by_x.begin(), by_x.end(),
             [&](std::size_t a, std::size_t b) { return boxes[a].min().x() < boxes[b].min().x(); });
   for (std::size_t i = 0; i < n; ++i) {
@@ -130,8 +129,7 @@ std::optional<std::pair<std::size_t, std::size_t>> first_crossing(const std::vec
     for (std::size_t j = i + 1; j < n && boxes[by_x[j]].min().x() <= a.max().x(); ++j) {
       const Eigen::AlignedBox2d& b = boxes[by_x[j]];
       if (b.min().y() <= a.max().y() && a.min().y() <= b.max().y()) {
-        const std::size_t ra = root(by_x[i]), rb = root(by_x[j]);
-        group[std::max(ra, rb)] = std::min(ra, rb);
+        groups.unite(by_x[i], by_x[j]);
       }
     }
   }
@@ -208,7 +206,7 @@ struct SliceRegions {
   std::vector<std::uint8_t> mask;  // at or above the threshold (after 3-D component selection)
   std::vector<std::uint8_t> kept;  // mask without the dropped small regions
   std::vector<detail::PixelRun> fg, kept_fg, bg, owned;
-  std::vector<int> union_find;
+  detail::UnionFind<int> union_find;
   detail::RegionImage owner;       // the region of each pixel: its own, or the one whose hole it fills
   std::vector<Box> boxes;          // per fg label: box of its own pixels (x1 < 0: dropped)
   std::vector<std::size_t> area;

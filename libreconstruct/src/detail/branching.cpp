@@ -5,6 +5,8 @@
 #include "detail/correspondence.h"
 #include "reconstruct/contours.h"
 
+#include "contourmesh/internal/union_find.h"
+
 #include <algorithm>
 #include <array>
 #include <limits>
@@ -121,22 +123,6 @@ void close_quad(std::array<VertexRef, 4> c, std::array<Eigen::Vector2d, 4> p, bo
   }
 }
 
-class UnionFind {
- public:
-  explicit UnionFind(std::size_t n) : parent_(n) { std::iota(parent_.begin(), parent_.end(), 0); }
-  std::size_t find(std::size_t x) {
-    while (parent_[x] != x) x = parent_[x] = parent_[parent_[x]];
-    return x;
-  }
-  void unite(std::size_t a, std::size_t b) {
-    a = find(a);
-    b = find(b);
-    if (a != b) parent_[std::max(a, b)] = std::min(a, b);
-  }
-
- private:
-  std::vector<std::size_t> parent_;
-};
 
 // The contours `members` of `level` copied onto plane w and joined into one composite contour; `below`
 // says whether the originals lie below the plane.
@@ -255,7 +241,7 @@ void tile_composite(const Level& lower, const Level& upper, const TilingOptions&
   const std::size_t na = lower.contours.size(), nb = upper.contours.size();
   const double w0 = lower.w, w1 = upper.w;
   const double extension = options.end_caps == EndCaps::HalfSpacing ? 0.5 * (w1 - w0) : 0.0;
-  UnionFind groups(na + nb);
+  UnionFind<> groups(na + nb);
   for (std::size_t i = 0; i < na; ++i) {
     for (int j : links.up[i]) groups.unite(i, na + static_cast<std::size_t>(j));
   }
