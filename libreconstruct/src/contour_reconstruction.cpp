@@ -6,6 +6,8 @@
 
 #include <smooth/errors.h>
 
+#include "contourmesh/internal/polygon2d.h"
+
 #include <Eigen/Geometry>
 
 #include <algorithm>
@@ -208,10 +210,7 @@ bool inside_section(const Polygon& polygon, const std::vector<SectionSegment>& s
   const Eigen::Vector2d& p = polygon.front();
   bool in = false;
   for (const auto& seg : section) {
-    const Eigen::Vector2d& a = seg[0];
-    const Eigen::Vector2d& b = seg[1];
-    if ((a.y() > p.y()) != (b.y() > p.y()) && p.x() < a.x() + (p.y() - a.y()) * (b.x() - a.x()) / (b.y() - a.y()))
-      in = !in;
+    if (detail::crosses_ray(seg[0], seg[1], p)) in = !in;
   }
   return in;
 }

@@ -4,7 +4,7 @@
 // the set where (1 - t) d_lower + t d_upper < 0, and its boundary is extracted with marching squares.
 #pragma once
 
-#include "detail/polygon.h"
+#include "contourmesh/internal/polygon2d.h"
 
 #include <cstddef>
 #include <optional>
