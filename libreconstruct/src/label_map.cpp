@@ -108,8 +108,8 @@ LabelMap read_segmentation(const fs::path& path, itk::ImageIOBase* io) {
     try {
       check_allocation("segmentation of " + std::to_string(layers) + " layer(s)", 0.0, voxels * kVolumeBytesPerVoxel,
                        ResourceLimits{});
-    } catch (const LimitError& e) {
-      throw LimitError(name + ": " + e.what());
+    } catch (const LimitError&) {
+      rethrow_with_context(name);
     }
   }
   auto reader = itk::ImageFileReader<LayeredImage>::New();
@@ -360,12 +360,8 @@ Reconstruction reconstruct_label(const LabelMap& map, const Label& label, Recons
   try {
     const CtImage::Pointer mask = label_mask(map, label);
     return reconstruct(*mask, options, progress);
-  } catch (const LimitError& e) {
-    throw LimitError(what + ": " + e.what());
-  } catch (const TopologyError& e) {
-    throw TopologyError(what + ": " + e.what());
-  } catch (const InvalidInputError& e) {
-    throw InvalidInputError(what + ": " + e.what());
+  } catch (const InvalidInputError&) {
+    rethrow_with_context(what);  // keeps the type: DivergenceError, TopologyError, LimitError, ...
   }
 }
 
