@@ -27,7 +27,7 @@ struct SliceContours {
 
 /// A stack of slices with the frame that maps slice coordinates to physical space:
 /// physical = origin + u * axis_u + v * axis_v + w * axis_w (orthonormal, right-handed axes).
-/// Slices are ordered by increasing w; their index in `slices` is the slice id c(i) of SPEC 2.
+/// Slices are ordered by increasing w; their index in `slices` is the slice id c(i) of mesh.h.
 struct ContourStack {
   std::vector<SliceContours> slices;
   Eigen::Vector3d origin = Eigen::Vector3d::Zero();

@@ -1,5 +1,5 @@
-// Tiling (SPEC 4): stitching the contours of adjacent slices into a closed triangle mesh that keeps,
-// for every vertex, the slice and contour it came from.
+// Tiling (docs/reconstruction.md, "Tiling"): stitching the contours of adjacent slices into a closed triangle mesh that
+// keeps, for every vertex, the slice and contour it came from.
 #pragma once
 
 #include "reconstruct/contours.h"

@@ -1,4 +1,5 @@
-// The split of each 1-ring by slice (SPEC 2): N1^c(i), N1^{c-1}(i), N1^{c+1}(i).
+// The split of each 1-ring by slice (the paper's notation, section 3; ids as in mesh.h): N1^c(i), N1^{c-1}(i),
+// N1^{c+1}(i).
 #pragma once
 
 #include "smooth/adjacency.h"
