@@ -1,4 +1,4 @@
-// Accuracy measured over surfaces, not at vertices (docs/smoothing.md, "How accuracy is measured"):
+// Accuracy measured over surfaces, not at vertices (docs/reconstruction.md, "Judging a tiling"):
 // uniform samples on a mesh (their distance to the true surface) and on the true surface (their
 // distance to the mesh), two-sided RMS and Hausdorff distance, area-weighted normal error, each split
 // into a feature region (near the truth's sharp edges and corners) and the smooth rest.
