@@ -49,3 +49,6 @@ if("reconstruct" IN_LIST CONTOURMESH_INSTALLED_COMPONENTS)
   install(FILES "${CMAKE_CURRENT_LIST_DIR}/ContourMeshITKTarget.cmake"
     DESTINATION "${CONTOURMESH_INSTALL_CMAKEDIR}")
 endif()
+
+# BSD-3-Clause asks binary redistributions to carry the notice.
+install(FILES "${PROJECT_SOURCE_DIR}/LICENSE" DESTINATION "${CMAKE_INSTALL_DOCDIR}")

@@ -155,7 +155,8 @@ ContourDeviation contour_deviation(const Mesh& mesh, const ContourStack& contour
     const SliceContours& slice = contours.slices[s];
     std::vector<SectionSegment> drawn;
     for (const Contour& c : slice.contours) {
-      for (std::size_t i = 0; i < c.points.size(); ++i) drawn.push_back({c.points[i], c.points[(i + 1) % c.points.size()]});
+      for (std::size_t i = 0; i < c.points.size(); ++i)
+        drawn.push_back({c.points[i], c.points[(i + 1) % c.points.size()]});
     }
     if (drawn.empty()) continue;
     std::vector<SectionSegment> section = cross_section(mesh, contours, slice.w);

@@ -6,6 +6,8 @@
 
 #include <smooth/errors.h>
 
+#include "contourmesh/internal/polygon2d.h"
+
 #include <Eigen/Geometry>
 
 #include <algorithm>
@@ -66,7 +68,8 @@ double overlap_fraction(const Polygon& a, const Polygon& b) {
   std::size_t inside = 0, both = 0;
   for (int i = 0; i < kGrid; ++i) {
     for (int j = 0; j < kGrid; ++j) {
-      const Eigen::Vector2d p = box.min() + box.sizes().cwiseProduct(Eigen::Vector2d((i + 0.5) / kGrid, (j + 0.5) / kGrid));
+      const Eigen::Vector2d p =
+          box.min() + box.sizes().cwiseProduct(Eigen::Vector2d((i + 0.5) / kGrid, (j + 0.5) / kGrid));
       if (!point_in_polygon(small, p)) continue;
       ++inside;
       both += point_in_polygon(large, p) ? 1 : 0;
@@ -104,7 +107,8 @@ void shear_back(Mesh& mesh, const ContourStack& stack, const std::vector<Eigen::
     } else if (w >= sl.back().w) {
       o = offset.back();
     } else {
-      const auto it = std::upper_bound(sl.begin(), sl.end(), w, [](double v, const SliceContours& s) { return v < s.w; });
+      const auto it =
+          std::upper_bound(sl.begin(), sl.end(), w, [](double v, const SliceContours& s) { return v < s.w; });
       const std::size_t s = static_cast<std::size_t>(it - sl.begin()) - 1;
       const double t = (w - sl[s].w) / (sl[s + 1].w - sl[s].w);
       o = (1.0 - t) * offset[s] + t * offset[s + 1];
@@ -182,9 +186,11 @@ double cross2(const Eigen::Vector2d& o, const Eigen::Vector2d& a, const Eigen::V
   return (a.x() - o.x()) * (b.y() - o.y()) - (a.y() - o.y()) * (b.x() - o.x());
 }
 
-bool segments_touch(const Eigen::Vector2d& a, const Eigen::Vector2d& b, const Eigen::Vector2d& c, const Eigen::Vector2d& d) {
+bool segments_touch(const Eigen::Vector2d& a, const Eigen::Vector2d& b, const Eigen::Vector2d& c,
+                    const Eigen::Vector2d& d) {
   const double o1 = cross2(a, b, c), o2 = cross2(a, b, d), o3 = cross2(c, d, a), o4 = cross2(c, d, b);
-  return ((o1 >= 0.0) != (o2 >= 0.0) || o1 == 0.0 || o2 == 0.0) && ((o3 >= 0.0) != (o4 >= 0.0) || o3 == 0.0 || o4 == 0.0);
+  return ((o1 >= 0.0) != (o2 >= 0.0) || o1 == 0.0 || o2 == 0.0) &&
+         ((o3 >= 0.0) != (o4 >= 0.0) || o3 == 0.0 || o4 == 0.0);
 }
 
 // Does the polygon lie strictly inside the region the section bounds (no segment meets it, and its
@@ -204,9 +210,7 @@ bool inside_section(const Polygon& polygon, const std::vector<SectionSegment>& s
   const Eigen::Vector2d& p = polygon.front();
   bool in = false;
   for (const auto& seg : section) {
-    const Eigen::Vector2d& a = seg[0];
-    const Eigen::Vector2d& b = seg[1];
-    if ((a.y() > p.y()) != (b.y() > p.y()) && p.x() < a.x() + (p.y() - a.y()) * (b.x() - a.x()) / (b.y() - a.y())) in = !in;
+    if (detail::crosses_ray(seg[0], seg[1], p)) in = !in;
   }
   return in;
 }
@@ -378,7 +382,8 @@ ContourReconstruction reconstruct_from_contours(const ContourStack& input, const
     if (report.tiling.dropped_contours > 0) single_slice_contours(out, what, options);
   }
   report.seconds_tile = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
-  if (out.mesh.num_faces() == 0) throw InvalidInputError(what + ": no contour continues into an adjacent slice: nothing to tile");
+  if (out.mesh.num_faces() == 0)
+    throw InvalidInputError(what + ": no contour continues into an adjacent slice: nothing to tile");
   return out;
 }
 

@@ -16,7 +16,8 @@ using Polygon = std::vector<Eigen::Vector2d>;
 std::vector<Eigen::Vector2d> resample_drawn(const std::vector<Eigen::Vector2d>& polygon, double spacing,
                                            double tolerance) {
   if (!(spacing > 0.0) || !std::isfinite(spacing)) throw InvalidInputError("resampling: the spacing must be > 0 mm");
-  if (!(tolerance >= 0.0) || !std::isfinite(tolerance)) throw InvalidInputError("resampling: the tolerance must be >= 0 mm");
+  if (!(tolerance >= 0.0) || !std::isfinite(tolerance))
+    throw InvalidInputError("resampling: the tolerance must be >= 0 mm");
   const std::size_t n = polygon.size();
   if (n < 3) throw InvalidInputError("resampling: a polygon needs at least 3 points");
   // Start at the sharpest corner, which any simplification keeps.
@@ -65,7 +66,8 @@ std::vector<Eigen::Vector2d> resample_drawn(const std::vector<Eigen::Vector2d>& 
     const Eigen::Vector2d& a = at(kept[i]);
     const Eigen::Vector2d& b = at(i + 1 < kept.size() ? kept[i + 1] : 0);
     const auto pieces = static_cast<std::size_t>(std::max(1.0, std::ceil((b - a).norm() / spacing - 1e-9)));
-    for (std::size_t k = 0; k < pieces; ++k) out.push_back(a + (b - a) * (static_cast<double>(k) / static_cast<double>(pieces)));
+    for (std::size_t k = 0; k < pieces; ++k)
+      out.push_back(a + (b - a) * (static_cast<double>(k) / static_cast<double>(pieces)));
   }
   return out;
 }
@@ -83,7 +85,8 @@ void split_long_edges(Polygon& p, double limit, double piece) {
     out.push_back(a);
     if (len <= limit) continue;
     const auto pieces = static_cast<std::size_t>(std::ceil(len / piece));
-    for (std::size_t k = 1; k < pieces; ++k) out.push_back(a + (b - a) * (static_cast<double>(k) / static_cast<double>(pieces)));
+    for (std::size_t k = 1; k < pieces; ++k)
+      out.push_back(a + (b - a) * (static_cast<double>(k) / static_cast<double>(pieces)));
   }
   p = std::move(out);
 }
@@ -126,7 +129,9 @@ ResamplingReport resample_drawn_stack(ContourStack& stack, double spacing, doubl
       }
       // A cap spaces its interior vertices by the mean edge of its outer polygon: the outer contour's,
       // or a hole's own when the hole is capped (it ends inside material, or becomes a hollow slab).
-      auto mean_edge = [&](std::size_t c) { return perimeter(simplified[c]) / static_cast<double>(simplified[c].size()); };
+      auto mean_edge = [&](std::size_t c) {
+        return perimeter(simplified[c]) / static_cast<double>(simplified[c].size());
+      };
       for (int pass = 0; pass < 32; ++pass) {
         bool changed = false;
         const double outer_mean = mean_edge(o);

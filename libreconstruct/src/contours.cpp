@@ -2,6 +2,8 @@
 
 #include <smooth/errors.h>
 
+#include "contourmesh/internal/polygon2d.h"
+
 #include <algorithm>
 #include <array>
 #include <cmath>
@@ -11,12 +13,7 @@
 
 namespace contourmesh {
 
-double signed_area(const std::vector<Eigen::Vector2d>& p) {
-  double a = 0.0;
-  const std::size_t n = p.size();
-  for (std::size_t i = 0, j = n - 1; i < n; j = i++) a += p[j].x() * p[i].y() - p[i].x() * p[j].y();
-  return 0.5 * a;
-}
+double signed_area(const std::vector<Eigen::Vector2d>& p) { return detail::polygon_signed_area(p); }
 
 double perimeter(const std::vector<Eigen::Vector2d>& p) {
   double len = 0.0;
@@ -26,16 +23,7 @@ double perimeter(const std::vector<Eigen::Vector2d>& p) {
 }
 
 bool point_in_polygon(const std::vector<Eigen::Vector2d>& poly, const Eigen::Vector2d& p) {
-  bool in = false;
-  const std::size_t n = poly.size();
-  for (std::size_t i = 0, j = n - 1; i < n; j = i++) {
-    const Eigen::Vector2d& a = poly[j];
-    const Eigen::Vector2d& b = poly[i];
-    if ((a.y() > p.y()) != (b.y() > p.y()) && p.x() < a.x() + (p.y() - a.y()) * (b.x() - a.x()) / (b.y() - a.y())) {
-      in = !in;
-    }
-  }
-  return in;
+  return detail::polygon_contains(poly, p);
 }
 
 namespace {

@@ -108,8 +108,8 @@ LabelMap read_segmentation(const fs::path& path, itk::ImageIOBase* io) {
     try {
       check_allocation("segmentation of " + std::to_string(layers) + " layer(s)", 0.0, voxels * kVolumeBytesPerVoxel,
                        ResourceLimits{});
-    } catch (const LimitError& e) {
-      throw LimitError(name + ": " + e.what());
+    } catch (const LimitError&) {
+      rethrow_with_context(name);
     }
   }
   auto reader = itk::ImageFileReader<LayeredImage>::New();
@@ -148,7 +148,8 @@ LabelMap read_segmentation(const fs::path& path, itk::ImageIOBase* io) {
   const itk::MetaDataDictionary& dict = io->GetMetaDataDictionary();
   for (int k = 0;; ++k) {
     const std::string prefix = "Segment" + std::to_string(k) + "_";
-    const bool declared = dict.HasKey(prefix + "ID") || dict.HasKey(prefix + "Name") || dict.HasKey(prefix + "LabelValue");
+    const bool declared =
+        dict.HasKey(prefix + "ID") || dict.HasKey(prefix + "Name") || dict.HasKey(prefix + "LabelValue");
     if (!declared) break;
     Label label;
     label.id = metadata(dict, prefix + "ID");
@@ -162,7 +163,8 @@ LabelMap read_segmentation(const fs::path& path, itk::ImageIOBase* io) {
       throw InvalidInputError(what + " is in layer " + std::to_string(label.layer) + " but the file has " +
                               std::to_string(layers) + " layer" + (layers == 1 ? "" : "s"));
     }
-    if (label.value <= 0) throw InvalidInputError(what + " has label value " + std::to_string(label.value) + " (must be > 0)");
+    if (label.value <= 0)
+      throw InvalidInputError(what + " has label value " + std::to_string(label.value) + " (must be > 0)");
     const auto& c = counts[static_cast<std::size_t>(label.layer)];
     const auto it = c.find(label.value);
     label.voxels = it == c.end() ? 0 : it->second;
@@ -206,7 +208,8 @@ LabelMap from_image(CtImage::Pointer image, const std::string& where) {
 std::string list_labels(const LabelMap& map) {
   std::string list;
   for (const Label& l : map.labels) {
-    list += (list.empty() ? "" : ", ") + (l.name.empty() ? std::to_string(l.value) : "'" + l.name + "' (" + std::to_string(l.value) + ")");
+    list += (list.empty() ? "" : ", ") +
+            (l.name.empty() ? std::to_string(l.value) : "'" + l.name + "' (" + std::to_string(l.value) + ")");
   }
   return list.empty() ? std::string("none") : list;
 }
@@ -241,7 +244,8 @@ LabelMap read_label_map(const fs::path& path) {
 std::vector<Label> select_labels(const LabelMap& map, std::string_view spec) {
   std::vector<Label> selected;
   const std::string text(spec);
-  if (text.find_first_not_of(" \t,") == std::string::npos) throw InvalidInputError("no label given (use a value, a name or 'all')");
+  if (text.find_first_not_of(" \t,") == std::string::npos)
+    throw InvalidInputError("no label given (use a value, a name or 'all')");
   if (lower(text) == "all") {
     for (const Label& l : map.labels) {
       if (l.voxels > 0) selected.push_back(l);
@@ -298,7 +302,8 @@ CtImage::Pointer label_mask(const LabelMap& map, const Label& label) {
   const auto size = layer.GetLargestPossibleRegion().GetSize();
   const float value = static_cast<float>(label.value);
   const float* data = layer.GetBufferPointer();
-  std::array<long, 3> lo{std::numeric_limits<long>::max(), std::numeric_limits<long>::max(), std::numeric_limits<long>::max()};
+  std::array<long, 3> lo{std::numeric_limits<long>::max(), std::numeric_limits<long>::max(),
+                         std::numeric_limits<long>::max()};
   std::array<long, 3> hi{-1, -1, -1};
   for (long k = 0, p = 0; k < static_cast<long>(size[2]); ++k) {
     for (long j = 0; j < static_cast<long>(size[1]); ++j) {
@@ -336,7 +341,9 @@ CtImage::Pointer label_mask(const LabelMap& map, const Label& label) {
   for (long k = lo[2]; k <= hi[2]; ++k) {
     for (long j = lo[1]; j <= hi[1]; ++j) {
       const float* row = data + (k * static_cast<long>(size[1]) + j) * static_cast<long>(size[0]);
-      float* dst = out + ((k - first[2]) * static_cast<long>(out_size[1]) + (j - first[1])) * static_cast<long>(out_size[0]) - first[0];
+      float* dst = out +
+                   ((k - first[2]) * static_cast<long>(out_size[1]) + (j - first[1])) * static_cast<long>(out_size[0]) -
+                   first[0];
       for (long i = lo[0]; i <= hi[0]; ++i) dst[i] = row[i] == value ? kLabelMaskInside : 0.0f;
     }
   }
@@ -353,12 +360,8 @@ Reconstruction reconstruct_label(const LabelMap& map, const Label& label, Recons
   try {
     const CtImage::Pointer mask = label_mask(map, label);
     return reconstruct(*mask, options, progress);
-  } catch (const LimitError& e) {
-    throw LimitError(what + ": " + e.what());
-  } catch (const TopologyError& e) {
-    throw TopologyError(what + ": " + e.what());
-  } catch (const InvalidInputError& e) {
-    throw InvalidInputError(what + ": " + e.what());
+  } catch (const InvalidInputError&) {
+    rethrow_with_context(what);  // keeps the type: DivergenceError, TopologyError, LimitError, ...
   }
 }
 

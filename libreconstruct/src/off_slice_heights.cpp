@@ -65,7 +65,8 @@ void check(const Mesh& mesh, const OffSliceOptions& o) {
   }
   if (o.iterations < 1) throw InvalidInputError("off-slice heights: iterations must be >= 1");
   if (!(o.min_fraction >= 0.0 && o.min_fraction < 0.5)) {
-    throw InvalidInputError("off-slice heights: min_fraction must be in [0, 0.5), got " + std::to_string(o.min_fraction));
+    throw InvalidInputError("off-slice heights: min_fraction must be in [0, 0.5), got " +
+                            std::to_string(o.min_fraction));
   }
   if (!(o.inward_pixels >= 0.0) || !std::isfinite(o.inward_pixels)) {
     throw InvalidInputError("off-slice heights: inward_pixels must be >= 0");
@@ -97,7 +98,8 @@ Eigen::Vector3d face_normal(const Eigen::Matrix3Xd& x, const Triangle& t) {
 
 }  // namespace
 
-OffSliceResult fit_off_slice_heights(Mesh mesh, const CtImage& image, double threshold, const OffSliceOptions& options) {
+OffSliceResult fit_off_slice_heights(Mesh mesh, const CtImage& image, double threshold,
+                                     const OffSliceOptions& options) {
   check(mesh, options);
   OffSliceResult result;
   if (options.placement == OffSlicePlacement::Tiled || mesh.num_vertices() == 0) {

@@ -266,7 +266,8 @@ CtImage::Pointer render_phantom(const Phantom& phantom, const PhantomVolumeOptio
   std::vector<detail::ContourNoiseField> fields;
   if (options.contour_noise > 0.0) {
     std::vector<double> slice_z(static_cast<std::size_t>(size[2]));
-    for (std::size_t k = 0; k < slice_z.size(); ++k) slice_z[k] = origin.z() + static_cast<double>(k) * options.spacing.z();
+    for (std::size_t k = 0; k < slice_z.size(); ++k)
+      slice_z[k] = origin.z() + static_cast<double>(k) * options.spacing.z();
     fields = detail::contour_noise_fields(phantom.sdf, phantom.bounds, slice_z, options.spacing.z(),
                                           options.contour_noise, options.seed);
   }

@@ -146,7 +146,8 @@ std::vector<Contour> normalize_slice(std::vector<Work>& work, const PlanarStackO
   std::vector<Work> kept;
   for (Work& k : work) {
     for (std::size_t i = 0; i < k.points.size(); ++i) {
-      if (!k.points[i].allFinite()) throw InvalidInputError(k.name + ": point " + std::to_string(i + 1) + " is not finite");
+      if (!k.points[i].allFinite())
+        throw InvalidInputError(k.name + ": point " + std::to_string(i + 1) + " is not finite");
     }
     const std::size_t removed = drop_repeated(k.points);
     if (removed > 0) {
@@ -375,7 +376,8 @@ void check_planarity(const PlanarContour& contour, const std::string& name, doub
     own_spread = hi - lo;
   }
   if (own_spread <= 2.0 * options.planarity_tolerance) {
-    const double angle = std::acos(std::min(1.0, std::abs(own.normalized().dot(stack.axis_w)))) * 180.0 / std::numbers::pi;
+    const double angle =
+        std::acos(std::min(1.0, std::abs(own.normalized().dot(stack.axis_w)))) * 180.0 / std::numbers::pi;
     msg << "planar but tilted " << mm(angle) << " degrees from the slice planes of the others";
   } else {
     msg << "not planar: its points lie up to " << mm(worst) << " mm from its slice plane (tolerance "
@@ -454,7 +456,8 @@ PlanarStackReport normalize_contour_stack(ContourStack& stack, const std::string
   std::vector<std::string> repeated_names;
   for (std::size_t s = 0; s < stack.slices.size(); ++s) {
     SliceContours& sl = stack.slices[s];
-    if (!std::isfinite(sl.w)) throw InvalidInputError(what + ": slice " + std::to_string(s) + " has no finite position");
+    if (!std::isfinite(sl.w))
+      throw InvalidInputError(what + ": slice " + std::to_string(s) + " has no finite position");
     if (s > 0 && !(sl.w > stack.slices[s - 1].w)) {
       throw InvalidInputError(what + ": slice " + std::to_string(s) + " (" + axis_name + " = " + mm(sl.w) +
                               " mm) is not above slice " + std::to_string(s - 1) + " (" + axis_name + " = " +

@@ -66,7 +66,8 @@ Mesh drop_small_components(Mesh mesh, std::vector<FaceRole>& roles, double min_v
 
 }  // namespace
 
-Reconstruction reconstruct(const CtImage& image, const ReconstructionOptions& options, const ProgressCallback& progress) {
+Reconstruction reconstruct(const CtImage& image, const ReconstructionOptions& options,
+                           const ProgressCallback& progress) {
   Reconstruction out;
   auto t0 = std::chrono::steady_clock::now();
   SegmentationResult seg = segment_contours(image, options.segmentation, progress);
@@ -121,8 +122,8 @@ Reconstruction reconstruct(const CtImage& image, const ReconstructionOptions& op
   out.face_roles = std::move(tiled.face_roles);
   out.mesh = drop_small_components(std::move(tiled.mesh), out.face_roles, min_volume, out.report.dropped_components);
   if (out.mesh.num_faces() == 0) {
-    throw InvalidInputError("every reconstructed piece is smaller than " + std::to_string(options.min_component_voxels) +
-                            " voxels");
+    throw InvalidInputError("every reconstructed piece is smaller than " +
+                            std::to_string(options.min_component_voxels) + " voxels");
   }
   out.contours = std::move(seg.stack);
   return out;

@@ -170,7 +170,8 @@ std::vector<RtContour> read_contours(const gdcm::DataSet& item, const std::files
       values.clear();
     }
     contour.points.reserve(values.size() / 3);
-    for (std::size_t i = 0; i + 2 < values.size(); i += 3) contour.points.emplace_back(values[i], values[i + 1], values[i + 2]);
+    for (std::size_t i = 0; i + 2 < values.size(); i += 3)
+      contour.points.emplace_back(values[i], values[i + 1], values[i + 2]);
     const auto declared = int_value(c, kNumberOfContourPoints);
     if (declared && *declared != static_cast<int>(contour.points.size())) ++count_mismatch;
     out.push_back(std::move(contour));
@@ -336,7 +337,8 @@ RtStructureSet read_structure_set(const std::filesystem::path& file) {
         roi.color = std::array<int, 3>{static_cast<int>(rgb[0]), static_cast<int>(rgb[1]), static_cast<int>(rgb[2])};
       }
       std::vector<RtContour> more = read_contours(item, file, roi.label(), set.warnings, roi.error);
-      roi.contours.insert(roi.contours.end(), std::make_move_iterator(more.begin()), std::make_move_iterator(more.end()));
+      roi.contours.insert(roi.contours.end(), std::make_move_iterator(more.begin()),
+                          std::make_move_iterator(more.end()));
     }
   }
   if (const auto observations = sequence(ds, kRtRoiObservationsSequence)) {
@@ -440,8 +442,9 @@ RoiStack roi_contour_stack(const RtRoi& roi, const PlanarStackOptions& options) 
   }
   out.skipped_contours = skipped_count;
   if (skipped_count > 0) {
-    out.planar.report.warnings.insert(out.planar.report.warnings.begin(),
-                                      what + ": skipped " + skipped_text + ": only closed planar contours bound a volume");
+    out.planar.report.warnings.insert(
+        out.planar.report.warnings.begin(),
+        what + ": skipped " + skipped_text + ": only closed planar contours bound a volume");
   }
   return out;
 }

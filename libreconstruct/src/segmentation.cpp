@@ -21,6 +21,7 @@
 #include <cmath>
 #include <cstdint>
 #include <limits>
+#include <numeric>
 #include <optional>
 #include <utility>
 #include <string>
@@ -117,20 +118,18 @@ std::optional<std::pair<std::size_t, std::size_t>> first_crossing(const std::vec
     }
   }
   // Groups of touching boxes (union-find, sweep along x).
-  std::vector<std::size_t> group(n), by_x(n);
-  for (std::size_t k = 0; k < n; ++k) group[k] = by_x[k] = k;
-  const auto root = [&](std::size_t k) {
-    while (group[k] != k) k = group[k] = group[group[k]];
-    return k;
-  };
-  std::sort(by_x.begin(), by_x.end(), [&](std::size_t a, std::size_t b) { return boxes[a].min().x() < boxes[b].min().x(); });
+  detail::UnionFind<> groups(n);
+  std::vector<std::size_t> by_x(n);
+  std::iota(by_x.begin(), by_x.end(), std::size_t{0});
+  const auto root = [&](std::size_t k) { return groups.find(k); };
+  std::sort(by_x.begin(), by_x.end(),
+            [&](std::size_t a, std::size_t b) { return boxes[a].min().x() < boxes[b].min().x(); });
   for (std::size_t i = 0; i < n; ++i) {
     const Eigen::AlignedBox2d& a = boxes[by_x[i]];
     for (std::size_t j = i + 1; j < n && boxes[by_x[j]].min().x() <= a.max().x(); ++j) {
       const Eigen::AlignedBox2d& b = boxes[by_x[j]];
       if (b.min().y() <= a.max().y() && a.min().y() <= b.max().y()) {
-        const std::size_t ra = root(by_x[i]), rb = root(by_x[j]);
-        group[std::max(ra, rb)] = std::min(ra, rb);
+        groups.unite(by_x[i], by_x[j]);
       }
     }
   }
@@ -207,7 +206,7 @@ struct SliceRegions {
   std::vector<std::uint8_t> mask;  // at or above the threshold (after 3-D component selection)
   std::vector<std::uint8_t> kept;  // mask without the dropped small regions
   std::vector<detail::PixelRun> fg, kept_fg, bg, owned;
-  std::vector<int> union_find;
+  detail::UnionFind<int> union_find;
   detail::RegionImage owner;       // the region of each pixel: its own, or the one whose hole it fills
   std::vector<Box> boxes;          // per fg label: box of its own pixels (x1 < 0: dropped)
   std::vector<std::size_t> area;
@@ -219,7 +218,9 @@ struct SliceRegions {
 // Labels the slice's regions and holes from s.mask, drops regions smaller than the minimum area and
 // assigns the filled holes to their regions (s.owner). Returns the number of regions dropped.
 std::size_t find_regions(int nx, int ny, double pixel_area, const SegmentationOptions& options, SliceRegions& s) {
-  const auto small = [&](std::size_t pixels) { return static_cast<double>(pixels) * pixel_area < options.min_region_area; };
+  const auto small = [&](std::size_t pixels) {
+    return static_cast<double>(pixels) * pixel_area < options.min_region_area;
+  };
   detail::find_runs(s.mask.data(), nx, ny, s.fg);
   const int regions = detail::label_runs(s.fg, detail::Connectivity::Four, s.union_find);
   s.area.assign(static_cast<std::size_t>(regions) + 1, 0);
@@ -415,8 +416,9 @@ SegmentationResult segment_contours(const CtImage& input, const SegmentationOpti
                          ny,
                          spacing[0],
                          spacing[1],
-                         options.sampling > 0.0 ? options.sampling
-                                                : std::min({spacing[0], spacing[1], SegmentationOptions::kMaxDefaultSampling}),
+                         options.sampling > 0.0
+                             ? options.sampling
+                             : std::min({spacing[0], spacing[1], SegmentationOptions::kMaxDefaultSampling}),
                          IsoLevels(static_cast<float>(result.threshold)),
                          options};
   const float* values = dense_values(*image);
@@ -427,7 +429,8 @@ SegmentationResult segment_contours(const CtImage& input, const SegmentationOpti
   if (options.components == ComponentSelection::KeepLargest) {
     volume_mask.resize(result.voxels);
     threshold_pixels(values, volume_mask.data(), volume_mask.size(), setup.iso.threshold);
-    result.foreground_voxels = static_cast<std::size_t>(std::count(volume_mask.begin(), volume_mask.end(), std::uint8_t{1}));
+    result.foreground_voxels =
+        static_cast<std::size_t>(std::count(volume_mask.begin(), volume_mask.end(), std::uint8_t{1}));
     detail::keep_largest_component(volume_mask, nx, ny, static_cast<int>(size[2]));
   }
 
@@ -451,17 +454,18 @@ SegmentationResult segment_contours(const CtImage& input, const SegmentationOpti
   std::atomic<std::size_t> done{0};
   std::atomic<bool> cancelled{false};
   const auto pass = [&](auto&& work) {
-    tbb::parallel_for(tbb::blocked_range<std::size_t>(0, size[2], 1), [&](const tbb::blocked_range<std::size_t>& range) {
-      for (std::size_t z = range.begin(); z != range.end(); ++z) {
-        if (cancelled.load(std::memory_order_relaxed)) return;
-        work(z);
-        const std::size_t finished = done.fetch_add(1) + 1;
-        if (progress && std::this_thread::get_id() == caller &&
-            !progress("segment", 0.5 * static_cast<double>(finished) / static_cast<double>(size[2]))) {
-          cancelled = true;
-        }
-      }
-    });
+    tbb::parallel_for(
+        tbb::blocked_range<std::size_t>(0, size[2], 1), [&](const tbb::blocked_range<std::size_t>& range) {
+          for (std::size_t z = range.begin(); z != range.end(); ++z) {
+            if (cancelled.load(std::memory_order_relaxed)) return;
+            work(z);
+            const std::size_t finished = done.fetch_add(1) + 1;
+            if (progress && std::this_thread::get_id() == caller &&
+                !progress("segment", 0.5 * static_cast<double>(finished) / static_cast<double>(size[2]))) {
+              cancelled = true;
+            }
+          }
+        });
     if (cancelled) throw CancelledError("segmentation");
   };
   pass([&](std::size_t z) {

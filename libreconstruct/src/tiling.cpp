@@ -46,9 +46,11 @@ constexpr double kBytesPerTiledVertex = 120.0;
 void check_options(const TilingOptions& o) {
   auto fail = [](const std::string& what) { throw InvalidInputError("tiling: " + what); };
   if (!(o.min_overlap_fraction > 0.0 && o.min_overlap_fraction <= 1.0)) fail("min_overlap_fraction must be in (0, 1]");
-  if (!(o.min_overlap_of_larger >= 0.0 && o.min_overlap_of_larger < 1.0)) fail("min_overlap_of_larger must be in [0, 1)");
+  if (!(o.min_overlap_of_larger >= 0.0 && o.min_overlap_of_larger < 1.0))
+    fail("min_overlap_of_larger must be in [0, 1)");
   if (o.max_branching_depth < 0) fail("max_branching_depth must be >= 0");
-  if (!(o.max_band_sliver_share >= 0.0 && o.max_band_sliver_share <= 1.0)) fail("max_band_sliver_share must be in [0, 1]");
+  if (!(o.max_band_sliver_share >= 0.0 && o.max_band_sliver_share <= 1.0))
+    fail("max_band_sliver_share must be in [0, 1]");
   if (!(o.max_band_aspect > 0.0) || !std::isfinite(o.max_band_aspect)) fail("max_band_aspect must be > 0");
   if (o.max_intermediate_contours < 1) fail("max_intermediate_contours must be >= 1");
   if (!(o.interpolation_grid > 0.0 && o.interpolation_grid <= 1.0)) fail("interpolation_grid must be in (0, 1]");
@@ -56,9 +58,9 @@ void check_options(const TilingOptions& o) {
 }
 
 // Runs task(k) for k = 0 .. count - 1 on `threads` threads (the caller's among them), taking tasks in
-// order. The caller's thread reports progress before the first task and after each task it finishes; when that returns false,
-// no new task starts and CancelledError is thrown. When tasks throw, the exception of the first such
-// task is rethrown (every task before it has run), so the outcome does not depend on the thread count.
+// order. The caller's thread reports progress before the first task and after each task it finishes; when that returns
+// false, no new task starts and CancelledError is thrown. When tasks throw, the exception of the first such task is
+// rethrown (every task before it has run), so the outcome does not depend on the thread count.
 template <typename Task>
 void run_in_order(std::size_t count, unsigned threads, const Task& task, const ProgressCallback& progress) {
   if (count == 0) return;
@@ -165,7 +167,8 @@ TilingResult tile_contours(const ContourStack& stack, const TilingOptions& optio
   for (std::size_t s = 0; s < S; ++s) {
     for (const LevelContour& c : tiled[s].contours) {
       for (std::size_t p = 0; p < c.points.size(); ++p) {
-        contour_vertices[static_cast<std::size_t>(c.ids[p])] = Eigen::Vector3d(c.points[p].x(), c.points[p].y(), tiled[s].w);
+        contour_vertices[static_cast<std::size_t>(c.ids[p])] =
+            Eigen::Vector3d(c.points[p].x(), c.points[p].y(), tiled[s].w);
       }
     }
   }
@@ -209,7 +212,8 @@ TilingResult tile_contours(const ContourStack& stack, const TilingOptions& optio
     total += static_cast<double>(meshes[k].vertices.size());
   }
   if (total > static_cast<double>(options.limits.max_vertices)) {
-    throw LimitError("tiling: the mesh would have more than " + std::to_string(options.limits.max_vertices) + " vertices");
+    throw LimitError("tiling: the mesh would have more than " + std::to_string(options.limits.max_vertices) +
+                     " vertices");
   }
   Mesh& mesh = result.mesh;
   const auto n = static_cast<Index>(total);
@@ -234,9 +238,12 @@ TilingResult tile_contours(const ContourStack& stack, const TilingOptions& optio
   for (std::size_t k = 0; k < slabs; ++k) {
     const SlabMesh& m = meshes[k];
     for (std::size_t v = 0; v < m.vertices.size(); ++v) {
-      mesh.positions.col(offset[k] + static_cast<Index>(v)) = stack.to_physical(m.vertices[v].head<2>(), m.vertices[v].z());
+      mesh.positions.col(offset[k] + static_cast<Index>(v)) =
+          stack.to_physical(m.vertices[v].head<2>(), m.vertices[v].z());
     }
-    auto global = [&](detail::VertexRef r) { return detail::is_local(r) ? offset[k] + static_cast<Index>(detail::local_index(r)) : r; };
+    auto global = [&](detail::VertexRef r) {
+      return detail::is_local(r) ? offset[k] + static_cast<Index>(detail::local_index(r)) : r;
+    };
     for (const Triangle& t : m.triangles) {
       Triangle g{global(t[0]), global(t[1]), global(t[2])};
       if (left_handed) std::swap(g[1], g[2]);

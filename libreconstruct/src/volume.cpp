@@ -187,8 +187,8 @@ CtImage::Pointer read_image_file(const fs::path& path, const std::string& name, 
       check_allocation(std::to_string(io->GetDimensions(0)) + " x " + std::to_string(io->GetDimensions(1)) + " x " +
                            std::to_string(io->GetDimensions(2)) + " voxels",
                        0.0, voxels * kVolumeBytesPerVoxel, ResourceLimits{});
-    } catch (const LimitError& e) {
-      throw LimitError(name + ": " + e.what());
+    } catch (const LimitError&) {
+      rethrow_with_context(name);
     }
   }
   // What the header promises, checked before ITK reads the data (it reads short data without complaint).

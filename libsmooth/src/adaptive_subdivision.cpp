@@ -123,7 +123,8 @@ AdaptiveMesh subdivide_adaptively(const Mesh& input, std::span<const std::uint8_
       ever[v] = 1;
       is_active[v] = 1;
       for (Index j : adj.ring(v)) {
-        const auto [it, inserted] = midpoint.try_emplace(edge_key(v, j), base + static_cast<Index>(new_positions.size()));
+        const auto [it, inserted] =
+            midpoint.try_emplace(edge_key(v, j), base + static_cast<Index>(new_positions.size()));
         if (!inserted) continue;
         new_positions.push_back(0.5 * (m.positions.col(v) + m.positions.col(j)));
         if (ids) {

@@ -131,7 +131,8 @@ TriangleLocator::TriangleLocator(const Eigen::Matrix3Xd& positions, const std::v
   dims_ = grid.dims;
   fill_csr(grid.count(), triangles.size(),
            [&](std::size_t f, auto&& emit) {
-             const Eigen::Map<const Eigen::Vector3d> a(&corners_[f * 9]), b(&corners_[f * 9 + 3]), c(&corners_[f * 9 + 6]);
+             const Eigen::Map<const Eigen::Vector3d> a(&corners_[f * 9]), b(&corners_[f * 9 + 3]),
+                 c(&corners_[f * 9 + 6]);
              const auto c0 = grid.cell_of(a.cwiseMin(b).cwiseMin(c));
              const auto c1 = grid.cell_of(a.cwiseMax(b).cwiseMax(c));
              for (std::int64_t z = c0[2]; z <= c1[2]; ++z) {

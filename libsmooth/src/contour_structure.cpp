@@ -2,6 +2,8 @@
 
 #include "smooth/errors.h"
 
+#include "contourmesh/internal/union_find.h"
+
 #include <Eigen/Eigenvalues>
 
 #include <algorithm>
@@ -146,22 +148,17 @@ bool assign_ids_by_slice_planes(Mesh& mesh, const MeshAdjacency& adj, const Eige
     if (on_planes < 0.9 * n) return false;
   }
   // Contours: components of same-plane edges.
-  std::vector<Index> parent(static_cast<std::size_t>(n));
-  std::iota(parent.begin(), parent.end(), 0);
-  auto find = [&](Index x) {
-    while (parent[x] != x) x = parent[x] = parent[parent[x]];
-    return x;
-  };
+  detail::UnionFind<Index> planes(static_cast<std::size_t>(n));
   for (Index i = 0; i < n; ++i) {
     for (Index j : adj.ring(i)) {
-      if (slice[j] == slice[i]) parent[find(i)] = find(j);
+      if (slice[j] == slice[i]) planes.unite(i, j);
     }
   }
   std::map<std::pair<std::int32_t, Index>, std::int32_t> contour_of;  // (slice, root) -> index in slice
   std::map<std::int32_t, std::int32_t> next_in_slice;
   std::vector<std::int32_t> contour(static_cast<std::size_t>(n));
   for (Index i : order) {
-    const auto key = std::make_pair(slice[i], find(i));
+    const auto key = std::make_pair(slice[i], planes.find(i));
     auto it = contour_of.find(key);
     if (it == contour_of.end()) it = contour_of.emplace(key, next_in_slice[slice[i]]++).first;
     contour[i] = it->second;
@@ -183,7 +180,8 @@ std::size_t compact_slice_ids(Mesh& mesh) {
   const auto span = static_cast<std::size_t>(used.back() - used.front()) + 1;
   if (span == used.size()) return 0;
   for (std::int32_t& s : mesh.slice_ids) {
-    if (s >= 0) s = used.front() + static_cast<std::int32_t>(std::lower_bound(used.begin(), used.end(), s) - used.begin());
+    if (s >= 0)
+      s = used.front() + static_cast<std::int32_t>(std::lower_bound(used.begin(), used.end(), s) - used.begin());
   }
   return span - used.size();
 }

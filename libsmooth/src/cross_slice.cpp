@@ -21,7 +21,9 @@ double seconds_since(std::chrono::steady_clock::time_point t) {
 void check_options(const CrossSliceOptions& o) {
   const auto fail = [](const std::string& what) { throw InvalidInputError("cross-slice smoothing: " + what); };
   if (o.reach < 1 || o.reach > 30) fail("reach must be in [1, 30], got " + std::to_string(o.reach));
-  if (o.along_reach < 1 || o.along_reach > 30) fail("along reach must be in [1, 30], got " + std::to_string(o.along_reach));
+  if (o.along_reach < 1 || o.along_reach > 30) {
+    fail("along reach must be in [1, 30], got " + std::to_string(o.along_reach));
+  }
   if (!(o.gamma > 0.0 && std::isfinite(o.gamma))) fail("gamma must be a finite number > 0");
   for (const auto& noise : {o.noise_across, o.noise_along}) {
     if (noise && !(*noise >= 0.0 && std::isfinite(*noise))) fail("a noise level must be a finite number >= 0 mm");
@@ -84,7 +86,8 @@ std::size_t smooth_profiles(const detail::ContourFrame& frame, const Eigen::Matr
   const Index n = static_cast<Index>(positions.cols());
   constexpr std::size_t kChunk = 2048;
   std::vector<std::size_t> counts((static_cast<std::size_t>(n) + kChunk - 1) / kChunk, 0);
-  detail::parallel_chunks(static_cast<std::size_t>(n), kChunk, [&](std::size_t chunk, std::size_t begin, std::size_t end) {
+  const std::size_t count = static_cast<std::size_t>(n);
+  detail::parallel_chunks(count, kChunk, [&](std::size_t chunk, std::size_t begin, std::size_t end) {
     detail::Profile profile;
     Eigen::Vector3d m;
     for (std::size_t k = begin; k < end; ++k) {

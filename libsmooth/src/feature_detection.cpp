@@ -175,8 +175,8 @@ FeatureDirections feature_directions(const PrincipalCurvatures& c, Index i) {
 // The smallest eigenvalue of sum_f theta_f n_f n_f^T over the faces around vertex i (theta_f: the
 // face's angle at i, n_f: its unit normal), divided by the trace: how far the normals spread in a third
 // direction. Angle weights make it independent of how the faces are cut into triangles.
-double normal_spread(const Eigen::Matrix3Xd& positions, const std::vector<Triangle>& triangles, const MeshAdjacency& adj,
-                     Index i) {
+double normal_spread(const Eigen::Matrix3Xd& positions, const std::vector<Triangle>& triangles,
+                     const MeshAdjacency& adj, Index i) {
   Eigen::Matrix3d tensor = Eigen::Matrix3d::Zero();
   for (Index f : adj.incident_faces(i)) {
     const Triangle& t = triangles[static_cast<std::size_t>(f)];
@@ -230,15 +230,17 @@ bool continuous_along_line(const Eigen::Matrix3Xd& positions, const std::vector<
 }
 
 // Umbilic candidates vote with their neighbours, in index order (eq. 8); then the label counts.
-void vote_corners(const Eigen::Matrix3Xd& positions, const MeshAdjacency& adj, const std::vector<Index>& umbilic_candidates,
-                  FeatureDetection& out) {
+void vote_corners(const Eigen::Matrix3Xd& positions, const MeshAdjacency& adj,
+                  const std::vector<Index>& umbilic_candidates, FeatureDetection& out) {
   for (Index i : umbilic_candidates) {
     double dmax = 0.0;
     for (Index j : adj.ring(i)) dmax = std::max(dmax, (positions.col(j) - positions.col(i)).norm());
     double psi = 0.0;
     for (Index j : adj.ring(i)) {
       const VertexLabel l = out.labels[j];
-      const double tau = (l == VertexLabel::Edge || l == VertexLabel::Corner) ? 1.0 : l == VertexLabel::Noise ? -1.0 : 0.0;
+      const double tau = (l == VertexLabel::Edge || l == VertexLabel::Corner) ? 1.0
+                         : l == VertexLabel::Noise                            ? -1.0
+                                                                              : 0.0;
       if (tau == 0.0) continue;
       // Unclassified umbilic neighbours (still Smooth-labelled but candidates) count as 0.
       psi += std::exp(-(positions.col(j) - positions.col(i)).norm() / dmax) * tau;

@@ -39,7 +39,8 @@ void check_angle(double degrees, double max, const char* what) {
 
 Eigen::Vector3d unit_axis(const Eigen::Vector3d& axis, const char* what) {
   const double norm = axis.norm();
-  if (!(std::isfinite(norm) && norm > 0.0)) throw InvalidInputError(std::string(what) + ": the axis must be finite and non-zero");
+  if (!(std::isfinite(norm) && norm > 0.0))
+    throw InvalidInputError(std::string(what) + ": the axis must be finite and non-zero");
   return axis / norm;
 }
 

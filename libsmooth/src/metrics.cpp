@@ -106,7 +106,8 @@ AngleStats angle_stats(const Eigen::Matrix3Xd& positions, const std::vector<Tria
       throw InvalidInputError("normal_angular_error: face index " + std::to_string(f) + " out of range");
     }
     const Triangle& t = triangles[f];
-    const Eigen::Vector3d c = (positions.col(t[1]) - positions.col(t[0])).cross(positions.col(t[2]) - positions.col(t[0]));
+    const Eigen::Vector3d c =
+        (positions.col(t[1]) - positions.col(t[0])).cross(positions.col(t[2]) - positions.col(t[0]));
     const double len = c.norm();
     if (!(len > 0.0)) continue;
     const Eigen::Vector3d centroid = (positions.col(t[0]) + positions.col(t[1]) + positions.col(t[2])) / 3.0;

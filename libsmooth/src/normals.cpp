@@ -6,7 +6,8 @@ Eigen::Matrix3Xd face_normals(const Eigen::Matrix3Xd& positions, const std::vect
   Eigen::Matrix3Xd normals(3, static_cast<Eigen::Index>(triangles.size()));
   for (std::size_t f = 0; f < triangles.size(); ++f) {
     const Triangle& t = triangles[f];
-    const Eigen::Vector3d c = (positions.col(t[1]) - positions.col(t[0])).cross(positions.col(t[2]) - positions.col(t[0]));
+    const Eigen::Vector3d c =
+        (positions.col(t[1]) - positions.col(t[0])).cross(positions.col(t[2]) - positions.col(t[0]));
     const double len = c.norm();
     normals.col(static_cast<Eigen::Index>(f)) = len > 0.0 ? Eigen::Vector3d(c / len) : Eigen::Vector3d::Zero();
   }
@@ -27,7 +28,8 @@ Eigen::Matrix3Xd vertex_normals(const Eigen::Matrix3Xd& positions, const std::ve
   Eigen::Matrix3Xd normals = Eigen::Matrix3Xd::Zero(3, positions.cols());
   for (const Triangle& t : triangles) {
     // The unnormalised cross product is twice the area times the unit normal: area weighting for free.
-    const Eigen::Vector3d c = (positions.col(t[1]) - positions.col(t[0])).cross(positions.col(t[2]) - positions.col(t[0]));
+    const Eigen::Vector3d c =
+        (positions.col(t[1]) - positions.col(t[0])).cross(positions.col(t[2]) - positions.col(t[0]));
     for (Index v : t) normals.col(v) += c;
   }
   for (Eigen::Index i = 0; i < normals.cols(); ++i) {

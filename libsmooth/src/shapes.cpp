@@ -3,6 +3,8 @@
 #include "smooth/errors.h"
 #include "smooth/normals.h"
 
+#include "contourmesh/internal/polygon2d.h"
+
 #include <algorithm>
 #include <cmath>
 #include <map>
@@ -98,64 +100,6 @@ Mesh make_cube(int n, double half) {
 
 namespace {
 
-double cross2(const Eigen::Vector2d& a, const Eigen::Vector2d& b) { return a.x() * b.y() - a.y() * b.x(); }
-
-// Ear clipping of a simple counter-clockwise polygon; returns triangles of polygon-local indices, CCW.
-std::vector<std::array<int, 3>> ear_clip(const std::vector<Eigen::Vector2d>& poly) {
-  const int n = static_cast<int>(poly.size());
-  std::vector<int> prev(n), next(n);
-  for (int i = 0; i < n; ++i) {
-    prev[i] = (i + n - 1) % n;
-    next[i] = (i + 1) % n;
-  }
-  auto convex = [&](int i) { return cross2(poly[i] - poly[prev[i]], poly[next[i]] - poly[i]) > 0.0; };
-  auto inside = [&](const Eigen::Vector2d& p, int a, int b, int c) {
-    return cross2(poly[b] - poly[a], p - poly[a]) >= 0.0 && cross2(poly[c] - poly[b], p - poly[b]) >= 0.0 &&
-           cross2(poly[a] - poly[c], p - poly[c]) >= 0.0;
-  };
-  std::vector<std::array<int, 3>> out;
-  int remaining = n;
-  int i = 0;
-  int misses = 0;
-  while (remaining > 3) {
-    bool ear = convex(i);
-    if (ear) {
-      // Only reflex vertices can lie inside a convex ear.
-      for (int k = next[next[i]]; k != prev[i] && ear; k = next[k]) {
-        if (!convex(k) && inside(poly[k], prev[i], i, next[i])) ear = false;
-      }
-    }
-    if (ear || misses > remaining) {  // misses > remaining: numerically degenerate, clip anyway
-      out.push_back({prev[i], i, next[i]});
-      next[prev[i]] = next[i];
-      prev[next[i]] = prev[i];
-      --remaining;
-      misses = 0;
-      i = prev[i];
-    } else {
-      ++misses;
-      i = next[i];
-    }
-  }
-  out.push_back({prev[i], i, next[i]});
-  return out;
-}
-
-double polyline_sdf_2d(const std::vector<Eigen::Vector2d>& poly, const Eigen::Vector2d& p) {
-  double best = std::numeric_limits<double>::infinity();
-  bool in = false;
-  const std::size_t n = poly.size();
-  for (std::size_t i = 0, j = n - 1; i < n; j = i++) {
-    const Eigen::Vector2d& a = poly[j];
-    const Eigen::Vector2d& b = poly[i];
-    const Eigen::Vector2d ab = b - a;
-    const double t = std::clamp((p - a).dot(ab) / ab.squaredNorm(), 0.0, 1.0);
-    best = std::min(best, (a + t * ab - p).squaredNorm());
-    if ((a.y() > p.y()) != (b.y() > p.y()) && p.x() < a.x() + (p.y() - a.y()) * ab.x() / ab.y()) in = !in;
-  }
-  return in ? -std::sqrt(best) : std::sqrt(best);
-}
-
 void check_spec(const ContourStackSpec& s) {
   if (!s.curve) throw InvalidInputError("contour stack: no curve given");
   if (s.slices < 2) throw InvalidInputError("contour stack: needs at least 2 slices, got " + std::to_string(s.slices));
@@ -183,7 +127,7 @@ Mesh make_contour_stack(const ContourStackSpec& spec) {
       mesh.slice_ids[v] = k;
     }
   }
-  const auto caps = ear_clip(ring);
+  const auto caps = detail::triangulate_polygon(ring);
   mesh.triangles.reserve(static_cast<std::size_t>(2) * (S + 1) * P + 2 * caps.size());
   auto band = [&](Index lower, Index upper) {  // first vertex of each ring
     for (int i = 0; i < P; ++i) {
@@ -225,7 +169,7 @@ ScalarField contour_stack_sdf(const ContourStackSpec& spec, int curve_samples) {
   const double extension = spec.end_caps == EndCaps::HalfSpacing ? 0.5 * spec.slice_spacing : 0.0;
   const double half = 0.5 * (spec.slices - 1) * spec.slice_spacing + extension;
   return [poly = std::move(poly), zc, half](const Eigen::Vector3d& p) {
-    const double d2 = polyline_sdf_2d(poly, p.head<2>());
+    const double d2 = detail::polygon_signed_distance(poly, p.head<2>());
     const double dz = std::abs(p.z() - zc) - half;
     const double outside = std::hypot(std::max(d2, 0.0), std::max(dz, 0.0));
     return outside + std::min(std::max(d2, dz), 0.0);

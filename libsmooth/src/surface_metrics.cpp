@@ -67,8 +67,8 @@ SurfaceSamples sample_mesh_surface(const Eigen::Matrix3Xd& positions, const std:
   return s;
 }
 
-SurfaceSamples sample_implicit_surface(const ScalarField& sdf, const VectorField& normal, const Eigen::AlignedBox3d& box,
-                                       double spacing) {
+SurfaceSamples sample_implicit_surface(const ScalarField& sdf, const VectorField& normal,
+                                       const Eigen::AlignedBox3d& box, double spacing) {
   if (!(spacing > 0.0 && std::isfinite(spacing))) {
     throw InvalidInputError("implicit surface sampling: the grid spacing must be > 0");
   }
@@ -118,7 +118,8 @@ SurfaceSamples sample_implicit_surface(const ScalarField& sdf, const VectorField
     SurfaceSamples& out = parts[b];
     std::vector<Eigen::Vector3d> points;
     // The block owns the edges that start at its first kBlock nodes along each axis.
-    const std::array<std::int64_t, 3> own{std::min<std::int64_t>(kBlock, size[0]), std::min<std::int64_t>(kBlock, size[1]),
+    const std::array<std::int64_t, 3> own{std::min<std::int64_t>(kBlock, size[0]),
+                                          std::min<std::int64_t>(kBlock, size[1]),
                                           std::min<std::int64_t>(kBlock, size[2])};
     for (std::int64_t z = 0; z < own[2]; ++z) {
       for (std::int64_t y = 0; y < own[1]; ++y) {
@@ -231,7 +232,8 @@ SurfaceAccuracy surface_accuracy(const Eigen::Matrix3Xd& positions, const std::v
   std::vector<Eigen::Vector3d> face_normal(triangles.size());
   for (std::size_t f = 0; f < triangles.size(); ++f) {
     const Triangle& t = triangles[f];
-    const Eigen::Vector3d c = (positions.col(t[1]) - positions.col(t[0])).cross(positions.col(t[2]) - positions.col(t[0]));
+    const Eigen::Vector3d c =
+        (positions.col(t[1]) - positions.col(t[0])).cross(positions.col(t[2]) - positions.col(t[0]));
     const double len = c.norm();
     face_normal[f] = len > 0.0 ? Eigen::Vector3d(c / len) : Eigen::Vector3d::Zero();
   }
@@ -302,7 +304,8 @@ SurfaceAccuracy surface_accuracy(const Eigen::Matrix3Xd& positions, const std::v
   Sums all_vertices = vertices[kFeature];
   all_vertices.merge(vertices[kSmooth]);
   if (all_vertices.weight > 0.0) a.vertex_rms = std::sqrt(all_vertices.sq / all_vertices.weight);
-  if (vertices[kFeature].weight > 0.0) a.feature_vertex_rms = std::sqrt(vertices[kFeature].sq / vertices[kFeature].weight);
+  if (vertices[kFeature].weight > 0.0)
+    a.feature_vertex_rms = std::sqrt(vertices[kFeature].sq / vertices[kFeature].weight);
   return a;
 }
 

@@ -3,25 +3,21 @@
 #include "smooth/adjacency.h"
 #include "smooth/validation.h"
 
+#include "contourmesh/internal/union_find.h"
+
 #include <algorithm>
 #include <cstdint>
-#include <numeric>
 #include <vector>
 
 namespace contourmesh {
 
 ComponentLabels component_labels(const Mesh& mesh) {
   const Index n = mesh.num_vertices();
-  std::vector<Index> parent(static_cast<std::size_t>(n));
-  std::iota(parent.begin(), parent.end(), 0);
-  auto find = [&](Index x) {
-    while (parent[x] != x) x = parent[x] = parent[parent[x]];
-    return x;
-  };
+  detail::UnionFind<Index> components(static_cast<std::size_t>(n));
   std::vector<std::uint8_t> used(static_cast<std::size_t>(n), 0);
   for (const Triangle& tri : mesh.triangles) {
-    parent[find(tri[0])] = find(tri[1]);
-    parent[find(tri[1])] = find(tri[2]);
+    components.unite(tri[0], tri[1]);
+    components.unite(tri[1], tri[2]);
     used[tri[0]] = used[tri[1]] = used[tri[2]] = 1;
   }
   ComponentLabels labels;
@@ -29,7 +25,7 @@ ComponentLabels component_labels(const Mesh& mesh) {
   std::vector<Index> label_of_root(static_cast<std::size_t>(n), -1);
   for (Index i = 0; i < n; ++i) {
     if (!used[i]) continue;
-    Index& l = label_of_root[find(i)];
+    Index& l = label_of_root[components.find(i)];
     if (l < 0) l = labels.count++;
     labels.of_vertex[i] = l;
   }

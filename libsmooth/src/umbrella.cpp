@@ -13,7 +13,8 @@ void umbrella(const Eigen::Matrix3Xd& positions, const MeshAdjacency& adj, Eigen
   }
   out.resize(3, n);
   double* u = out.data();
-  detail::for_each_ring_sum(positions, adj, [u](Index i, const double* pi, double sx, double sy, double sz, Index count) {
+  using detail::for_each_ring_sum;
+  for_each_ring_sum(positions, adj, [u](Index i, const double* pi, double sx, double sy, double sz, Index count) {
     double* ui = u + 3 * static_cast<std::ptrdiff_t>(i);
     if (count == 0) {
       ui[0] = ui[1] = ui[2] = 0.0;
@@ -38,7 +39,9 @@ Eigen::VectorXd umbrella_norms(const Eigen::Matrix3Xd& positions, const MeshAdja
 
 Eigen::VectorXd umbrella_normal_norms(const Eigen::Matrix3Xd& positions, const MeshAdjacency& adj,
                                       const Eigen::Matrix3Xd& normals) {
-  if (normals.cols() != positions.cols()) throw InvalidInputError("umbrella_normal_norms: one normal per vertex expected");
+  if (normals.cols() != positions.cols()) {
+    throw InvalidInputError("umbrella_normal_norms: one normal per vertex expected");
+  }
   const Eigen::Matrix3Xd u = umbrella(positions, adj);
   return u.cwiseProduct(normals).colwise().sum().cwiseAbs().transpose();
 }

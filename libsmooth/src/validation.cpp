@@ -3,6 +3,8 @@
 #include "smooth/adjacency.h"
 #include "smooth/errors.h"
 
+#include "contourmesh/internal/union_find.h"
+
 #include <algorithm>
 #include <cmath>
 #include <cstdint>
@@ -62,15 +64,10 @@ class ProblemList {
 
 // Number of connected fans formed by the faces around vertex v (1 for a manifold vertex).
 // Two incident faces are connected when they share an edge through v.
-int count_fans(const Mesh& mesh, const MeshAdjacency& adj, Index v, std::vector<Index>& parent) {
+int count_fans(const Mesh& mesh, const MeshAdjacency& adj, Index v, detail::UnionFind<Index>& fans_of) {
   const auto faces = adj.incident_faces(v);
   const auto k = static_cast<Index>(faces.size());
-  parent.resize(faces.size());
-  for (Index a = 0; a < k; ++a) parent[a] = a;
-  auto find = [&](Index x) {
-    while (parent[x] != x) x = parent[x] = parent[parent[x]];
-    return x;
-  };
+  fans_of.reset(faces.size());
   for (Index a = 0; a < k; ++a) {
     const Triangle& ta = mesh.triangles[faces[a]];
     for (Index b = a + 1; b < k; ++b) {
@@ -79,14 +76,14 @@ int count_fans(const Mesh& mesh, const MeshAdjacency& adj, Index v, std::vector<
       for (Index x : ta) {
         if (x == v) continue;
         if (std::find(tb.begin(), tb.end(), x) != tb.end()) {
-          parent[find(a)] = find(b);
+          fans_of.unite(a, b);
           break;
         }
       }
     }
   }
   int fans = 0;
-  for (Index a = 0; a < k; ++a) fans += (find(a) == a) ? 1 : 0;
+  for (Index a = 0; a < k; ++a) fans += (fans_of.find(a) == a) ? 1 : 0;
   return fans;
 }
 
@@ -161,7 +158,7 @@ std::vector<MeshProblem> find_mesh_problems(const Mesh& mesh, const ValidationOp
       if (j > i && adj.edge_face_count[k] > 2) problems.add(MeshProblemKind::NonManifoldEdge, i, j);
     }
   }
-  std::vector<Index> scratch;
+  detail::UnionFind<Index> scratch;
   for (Index i = 0; i < n && !problems.full(); ++i) {
     if (adj.valence(i) > 0 && count_fans(mesh, adj, i, scratch) > 1) {
       problems.add(MeshProblemKind::NonManifoldVertex, i);

@@ -47,7 +47,8 @@ double ridge(double angle, double height, double half_width) {
 
 StackLayout stack_layout(std::int64_t target) {
   StackLayout l;
-  l.points_per_contour = static_cast<int>(std::clamp<double>(std::round(std::sqrt(static_cast<double>(target))), 64, 500));
+  l.points_per_contour =
+      static_cast<int>(std::clamp<double>(std::round(std::sqrt(static_cast<double>(target))), 64, 500));
   l.objects = static_cast<int>(std::max<std::int64_t>(1, target / 500'000));
   const double p = l.points_per_contour;
   // Per object: the contours, the two half-spacing copies of the end contours, and two refined caps

@@ -116,7 +116,8 @@ std::size_t contour_route(const Case& c, StageTimes& times) {
   // reconstruct() times its own stages (wall clock); their CPU time is not known separately.
   times.add("segment", {rec.report.seconds_segment, NAN});
   times.add("tile", {rec.report.seconds_tile, NAN});
-  times.add("checks + components", {std::max(0.0, whole.wall - rec.report.seconds_segment - rec.report.seconds_tile), NAN});
+  times.add("checks + components",
+            {std::max(0.0, whole.wall - rec.report.seconds_segment - rec.report.seconds_tile), NAN});
   times.add("reconstruct() in all", whole);
   // Segmentation once more on its own, for its process CPU time (how many cores it kept busy).
   const Sample alone = measure([&] { (void)segment_contours(*c.image, ro.segmentation); });
@@ -328,10 +329,13 @@ void report(const Case& c, const Run& one, const Run& many, int n, int reps) {
   };
   const Ratios ra = ratios(a), rb = ratios(b);
   std::printf("\n| ratio | 1 thread | %d threads | target |\n| --- | --- | --- | --- |\n", n);
-  std::printf("| (segment + tile) / (threshold + islands/holes + flying edges) | %.2f | %.2f | <= 2 |\n", ra.tiled, rb.tiled);
+  std::printf("| (segment + tile) / (threshold + islands/holes + flying edges) | %.2f | %.2f | <= 2 |\n", ra.tiled,
+              rb.tiled);
   std::printf("| contour route / voxel route, both smoothed | %.2f | %.2f | <= 2.5 |\n", ra.whole, rb.whole);
-  std::printf("| (segment + tile) / bare (threshold + flying edges) | %.2f | %.2f | <= 2 |\n", ra.tiled_bare, rb.tiled_bare);
-  std::printf("| contour route / bare voxel route, both smoothed | %.2f | %.2f | <= 2.5 |\n", ra.whole_bare, rb.whole_bare);
+  std::printf("| (segment + tile) / bare (threshold + flying edges) | %.2f | %.2f | <= 2 |\n", ra.tiled_bare,
+              rb.tiled_bare);
+  std::printf("| contour route / bare voxel route, both smoothed | %.2f | %.2f | <= 2.5 |\n", ra.whole_bare,
+              rb.whole_bare);
   std::printf("\nProcess CPU time at 1 thread (the work, whatever the machine's load): contour route / voxel "
               "route %.2f, / bare voxel route %.2f.\n",
               a.cpu("contour total") / a.cpu("voxel total"), a.cpu("contour total") / a.cpu("bare voxel total"));

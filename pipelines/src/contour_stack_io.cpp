@@ -58,7 +58,8 @@ std::string number_text(double v) { return json(v).dump(); }
 
 bool is_contour_stack_path(const std::filesystem::path& path) {
   std::string ext = path.extension().string();
-  std::transform(ext.begin(), ext.end(), ext.begin(), [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
+  std::transform(ext.begin(), ext.end(), ext.begin(),
+                 [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
   return ext == ".json";
 }
 
@@ -140,7 +141,8 @@ ContourStackFile read_contour_stack(const std::filesystem::path& path) {
       if (!k.is_object()) r.fail(wc, "expected an object with \"points\"");
       const json& pts = r.member(k, "points", wc);
       if (!pts.is_array()) r.fail(wc + ".points", "expected an array of [u, v] pairs");
-      if (pts.size() < 3) r.fail(wc + ".points", "a contour needs at least 3 points, got " + std::to_string(pts.size()));
+      if (pts.size() < 3)
+        r.fail(wc + ".points", "a contour needs at least 3 points, got " + std::to_string(pts.size()));
       Contour contour;
       contour.points.reserve(pts.size());
       for (std::size_t i = 0; i < pts.size(); ++i) {
@@ -178,8 +180,10 @@ std::string contour_stack_json(const ContourStackFile& file) {
   };
   std::ostringstream o;
   o << "{\n  \"format\": \"" << kFormat << "\",\n  \"version\": 1,\n";
-  if (!file.name.empty()) o << "  \"name\": " << json(file.name).dump(-1, ' ', false, json::error_handler_t::replace) << ",\n";
-  if (file.color) o << "  \"color\": [" << (*file.color)[0] << ", " << (*file.color)[1] << ", " << (*file.color)[2] << "],\n";
+  if (!file.name.empty())
+    o << "  \"name\": " << json(file.name).dump(-1, ' ', false, json::error_handler_t::replace) << ",\n";
+  if (file.color)
+    o << "  \"color\": [" << (*file.color)[0] << ", " << (*file.color)[1] << ", " << (*file.color)[2] << "],\n";
   o << "  \"frame\": {\"origin\": " << vec(st.origin) << ", \"axis_u\": " << vec(st.axis_u)
     << ", \"axis_v\": " << vec(st.axis_v) << ", \"axis_w\": " << vec(st.axis_w) << "},\n";
   o << "  \"slices\": [";

@@ -201,12 +201,8 @@ Mesh read_mesh(const fs::path& path, const MeshReadOptions& options) {
       }
       mesh = from_polydata(poly, options.arrays);
     }
-  } catch (const LimitError& e) {
-    throw LimitError(path.string() + ": " + e.what());
-  } catch (const InvalidInputError& e) {
-    const std::string what = e.what();
-    if (what.rfind(path.string() + ": ", 0) == 0) throw;  // already names the file
-    throw InvalidInputError(path.string() + ": " + what);
+  } catch (const InvalidInputError&) {
+    rethrow_with_context(path.string());  // keeps the type; a message that names the file stays as it is
   }
   check_read_mesh(mesh, path, options);
   if (mesh.num_faces() == 0) {

@@ -285,7 +285,8 @@ void write_ply(std::ostream& out, const Mesh& mesh, const ContourIdArrayNames& a
                               " values for " + std::to_string(mesh.num_vertices()) + " vertices");
     }
   }
-  out << "ply\nformat binary_little_endian 1.0\ncomment written by ContourMesh\ncomment " << kCoordinateSystemTag << "\n";
+  out << "ply\nformat binary_little_endian 1.0\ncomment written by ContourMesh\ncomment " << kCoordinateSystemTag
+      << "\n";
   out << "element vertex " << mesh.num_vertices() << "\n";
   out << "property double x\nproperty double y\nproperty double z\n";
   if (ids) out << "property int " << arrays.slice << "\nproperty int " << arrays.contour << "\n";

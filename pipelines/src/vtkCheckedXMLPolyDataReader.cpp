@@ -29,7 +29,8 @@ bool is_space(char c) { return std::isspace(static_cast<unsigned char>(c)) != 0;
 // of four characters, a group with padding or another character ending the data.
 class DataBytes {
  public:
-  DataBytes(const char* file, std::int64_t start, bool base64) : in_(file, std::ios::binary), start_(start), base64_(base64) {
+  DataBytes(const char* file, std::int64_t start, bool base64)
+      : in_(file, std::ios::binary), start_(start), base64_(base64) {
     in_.seekg(0, std::ios::end);
     size_ = in_ ? static_cast<std::int64_t>(in_.tellg()) : 0;
   }
@@ -70,7 +71,8 @@ class DataBytes {
       if (count < 3) break;
     }
     if (decoded.size() < end) return false;
-    out.assign(decoded.begin() + static_cast<std::ptrdiff_t>(offset), decoded.begin() + static_cast<std::ptrdiff_t>(end));
+    out.assign(decoded.begin() + static_cast<std::ptrdiff_t>(offset),
+               decoded.begin() + static_cast<std::ptrdiff_t>(end));
     return true;
   }
 
@@ -155,8 +157,9 @@ int vtkCheckedXMLPolyDataReader::ReadPiece(vtkXMLDataElement* ePiece) {
   }
   this->AnnouncedPoints = points > VTK_ID_MAX - this->AnnouncedPoints ? VTK_ID_MAX : this->AnnouncedPoints + points;
   this->AnnouncedCells = cells > VTK_ID_MAX - this->AnnouncedCells ? VTK_ID_MAX : this->AnnouncedCells + cells;
-  const vtkIdType max_cells =
-      this->MaximumNumberOfPoints > VTK_ID_MAX / kCellsPerPoint ? VTK_ID_MAX : kCellsPerPoint * this->MaximumNumberOfPoints;
+  const vtkIdType max_cells = this->MaximumNumberOfPoints > VTK_ID_MAX / kCellsPerPoint
+                                  ? VTK_ID_MAX
+                                  : kCellsPerPoint * this->MaximumNumberOfPoints;
   if (this->AnnouncedPoints > this->MaximumNumberOfPoints) {
     this->LimitError = "VTP: the header announces " + std::to_string(this->AnnouncedPoints) +
                        " points, more than the limit of " + std::to_string(this->MaximumNumberOfPoints);
@@ -199,7 +202,8 @@ int vtkCheckedXMLPolyDataReader::ReadArrayValues(vtkXMLDataElement* da, vtkIdTyp
       const double offset = values->GetComponent(i, 0);
       if (!(offset >= previous) || offset > most) {
         vtkErrorMacro(<< "cell offset " << startIndex + (i - arrayIndex) << " is " << offset
-                      << (offset > most ? ", more connectivity entries than the file can hold" : ", below the previous one")
+                      << (offset > most ? ", more connectivity entries than the file can hold"
+                                        : ", below the previous one")
                       << " (corrupt file)");
         return 0;
       }

@@ -177,7 +177,8 @@ int vtkContourPolylinesToSurfaceFilter::RequestData(vtkInformation*, vtkInformat
       for (const std::string& w : *list) warnings += (warnings.empty() ? "" : "\n") + w;
     }
     if (!warnings.empty()) vtkWarningMacro(<< warnings);
-    output->ShallowCopy(to_polydata(r.mesh, ContourIdArrayNames{this->ContourIdArrayName, this->ContourIndexArrayName}));
+    output->ShallowCopy(
+        to_polydata(r.mesh, ContourIdArrayNames{this->ContourIdArrayName, this->ContourIndexArrayName}));
     this->SlicewiseVolume = r.report.slicewise_volume;
     return 1;
   } catch (const CancelledError&) {
@@ -196,7 +197,8 @@ void vtkContourPolylinesToSurfaceFilter::PrintSelf(ostream& os, vtkIndent indent
   auto str = [](const char* s) { return s != nullptr ? s : "(none)"; };
   os << indent << "SliceIdArrayName: " << str(this->SliceIdArrayName) << "\n";
   os << indent << "SliceAxis: (" << this->SliceAxis[0] << ", " << this->SliceAxis[1] << ", " << this->SliceAxis[2]
-     << ")" << (this->SliceAxis[0] == 0.0 && this->SliceAxis[1] == 0.0 && this->SliceAxis[2] == 0.0 ? " (common normal)" : "")
+     << ")"
+     << (this->SliceAxis[0] == 0.0 && this->SliceAxis[1] == 0.0 && this->SliceAxis[2] == 0.0 ? " (common normal)" : "")
      << "\n";
   os << indent << "PlanarityTolerance: " << this->PlanarityTolerance << "\n";
   os << indent << "SliceTolerance: " << this->SliceTolerance << "\n";
@@ -213,7 +215,8 @@ void vtkContourPolylinesToSurfaceFilter::PrintSelf(ostream& os, vtkIndent indent
   os << indent << "BandFraction: " << this->BandFraction << "\n";
   os << indent << "Branching: " << (this->Branching == BRANCHING_MID_PLANE ? "MidPlane" : "Interpolated") << "\n";
   os << indent << "MaxBranchingDepth: " << this->MaxBranchingDepth << "\n";
-  os << indent << "BandRefinement: " << (this->BandRefinement == BAND_REFINEMENT_NONE ? "None" : "Interpolated") << "\n";
+  os << indent << "BandRefinement: " << (this->BandRefinement == BAND_REFINEMENT_NONE ? "None" : "Interpolated")
+     << "\n";
   os << indent << "MaxBandSliverShare: " << this->MaxBandSliverShare << "\n";
   os << indent << "MaxBandAspect: " << this->MaxBandAspect << "\n";
   os << indent << "MaxIntermediateContours: " << this->MaxIntermediateContours << "\n";

@@ -45,8 +45,8 @@ int vtkCtImageToContourSurfaceFilter::RequestUpdateExtent(vtkInformation*, vtkIn
   // Tiling needs every slice: ask for the whole volume, whatever piece is requested downstream.
   vtkInformation* in = inputVector[0]->GetInformationObject(0);
   if (in != nullptr && in->Has(vtkStreamingDemandDrivenPipeline::WHOLE_EXTENT())) {
-    in->Set(vtkStreamingDemandDrivenPipeline::UPDATE_EXTENT(), in->Get(vtkStreamingDemandDrivenPipeline::WHOLE_EXTENT()),
-            6);
+    in->Set(vtkStreamingDemandDrivenPipeline::UPDATE_EXTENT(),
+            in->Get(vtkStreamingDemandDrivenPipeline::WHOLE_EXTENT()), 6);
     in->Set(vtkStreamingDemandDrivenPipeline::EXACT_EXTENT(), 1);
   }
   return 1;
@@ -128,7 +128,8 @@ int vtkCtImageToContourSurfaceFilter::RequestData(vtkInformation*, vtkInformatio
     stages.add("tile", 0.7, 0.3);
     const Reconstruction r = reconstruct(*image, o, stages.callback());
     if (this->AbortRequested()) throw CancelledError("output");
-    output->ShallowCopy(to_polydata(r.mesh, ContourIdArrayNames{this->ContourIdArrayName, this->ContourIndexArrayName}));
+    output->ShallowCopy(
+        to_polydata(r.mesh, ContourIdArrayNames{this->ContourIdArrayName, this->ContourIndexArrayName}));
     this->ThresholdUsed = r.report.threshold;
     return 1;
   } catch (const CancelledError&) {
@@ -168,7 +169,8 @@ void vtkCtImageToContourSurfaceFilter::PrintSelf(ostream& os, vtkIndent indent) 
   os << indent << "BandFraction: " << this->BandFraction << "\n";
   os << indent << "Branching: " << (this->Branching == BRANCHING_MID_PLANE ? "MidPlane" : "Interpolated") << "\n";
   os << indent << "MaxBranchingDepth: " << this->MaxBranchingDepth << "\n";
-  os << indent << "BandRefinement: " << (this->BandRefinement == BAND_REFINEMENT_NONE ? "None" : "Interpolated") << "\n";
+  os << indent << "BandRefinement: " << (this->BandRefinement == BAND_REFINEMENT_NONE ? "None" : "Interpolated")
+     << "\n";
   os << indent << "MaxBandSliverShare: " << this->MaxBandSliverShare << "\n";
   os << indent << "MaxBandAspect: " << this->MaxBandAspect << "\n";
   os << indent << "MaxIntermediateContours: " << this->MaxIntermediateContours << "\n";

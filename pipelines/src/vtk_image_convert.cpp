@@ -33,10 +33,12 @@ CtImage::Pointer to_ct_image(vtkImageData* image, vtkDataArray* scalars) {
   int extent[6];
   image->GetExtent(extent);
   const int dims[3] = {extent[1] - extent[0] + 1, extent[3] - extent[2] + 1, extent[5] - extent[4] + 1};
-  if (dims[0] <= 0 || dims[1] <= 0 || dims[2] <= 0) throw InvalidInputError("vtkImageData to CT image: the image is empty");
+  if (dims[0] <= 0 || dims[1] <= 0 || dims[2] <= 0)
+    throw InvalidInputError("vtkImageData to CT image: the image is empty");
   if (scalars == nullptr) scalars = image->GetPointData()->GetScalars();
   if (scalars == nullptr) throw InvalidInputError("vtkImageData to CT image: the image has no point scalars");
-  const auto n = static_cast<std::size_t>(dims[0]) * static_cast<std::size_t>(dims[1]) * static_cast<std::size_t>(dims[2]);
+  const auto n =
+      static_cast<std::size_t>(dims[0]) * static_cast<std::size_t>(dims[1]) * static_cast<std::size_t>(dims[2]);
   const std::string name = scalars->GetName() != nullptr ? scalars->GetName() : "(unnamed)";
   if (scalars->GetNumberOfComponents() != 1) {
     throw InvalidInputError("vtkImageData to CT image: scalars '" + name + "' have " +
@@ -96,10 +98,12 @@ CtImage::Pointer to_ct_image(vtkImageData* image, vtkDataArray* scalars) {
     switch (scalars->GetDataType()) {
       vtkTemplateMacro(copy_to_float(static_cast<const VTK_TT*>(source), target, n));
       default:
-        for (std::size_t i = 0; i < n; ++i) target[i] = static_cast<float>(scalars->GetComponent(static_cast<vtkIdType>(i), 0));
+        for (std::size_t i = 0; i < n; ++i)
+          target[i] = static_cast<float>(scalars->GetComponent(static_cast<vtkIdType>(i), 0));
     }
   } else {
-    for (std::size_t i = 0; i < n; ++i) target[i] = static_cast<float>(scalars->GetComponent(static_cast<vtkIdType>(i), 0));
+    for (std::size_t i = 0; i < n; ++i)
+      target[i] = static_cast<float>(scalars->GetComponent(static_cast<vtkIdType>(i), 0));
   }
   return out;
 }

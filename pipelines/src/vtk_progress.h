@@ -18,7 +18,8 @@ namespace contourmesh::filter_detail {
 /// progress (reported only when it grows), and cancels when `abort` says so.
 class StageProgress {
  public:
-  explicit StageProgress(vtkAlgorithm* algorithm, bool (*abort)(vtkAlgorithm*)) : algorithm_(algorithm), abort_(abort) {}
+  explicit StageProgress(vtkAlgorithm* algorithm, bool (*abort)(vtkAlgorithm*))
+      : algorithm_(algorithm), abort_(abort) {}
 
   void add(std::string stage, double start, double width) { stages_.push_back({std::move(stage), start, width}); }
 

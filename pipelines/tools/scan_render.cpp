@@ -75,9 +75,10 @@ Mesh voxel_route(const CtImage& image, double threshold) {
       for (int i = -1; i <= static_cast<int>(size[0]); ++i) {
         const bool inside = i >= 0 && j >= 0 && k >= 0 && i < static_cast<int>(size[0]) &&
                             j < static_cast<int>(size[1]) && k < static_cast<int>(size[2]);
-        const std::size_t src = (static_cast<std::size_t>(k) * size[1] + static_cast<std::size_t>(j)) * size[0] + static_cast<std::size_t>(i);
-        out[(static_cast<std::size_t>(k + 1) * ny + static_cast<std::size_t>(j + 1)) * nx + static_cast<std::size_t>(i + 1)] =
-            inside && in[src] >= threshold ? 1 : 0;
+        const std::size_t src = (static_cast<std::size_t>(k) * size[1] + static_cast<std::size_t>(j)) * size[0] +
+                                static_cast<std::size_t>(i);
+        out[(static_cast<std::size_t>(k + 1) * ny + static_cast<std::size_t>(j + 1)) * nx +
+            static_cast<std::size_t>(i + 1)] = inside && in[src] >= threshold ? 1 : 0;
       }
     }
   }
@@ -118,7 +119,8 @@ void render(const std::vector<Panel>& panels, const Eigen::Vector3d& focus, doub
   window->SetSize(width, height);
   vtkNew<vtkCamera> camera;
   const double az = azimuth * std::numbers::pi / 180.0, el = elevation * std::numbers::pi / 180.0;
-  const Eigen::Vector3d eye = focus + distance * Eigen::Vector3d(std::cos(el) * std::sin(az), -std::cos(el) * std::cos(az), std::sin(el));
+  const Eigen::Vector3d eye =
+      focus + distance * Eigen::Vector3d(std::cos(el) * std::sin(az), -std::cos(el) * std::cos(az), std::sin(el));
   camera->SetFocalPoint(focus.data());
   camera->SetPosition(eye.data());
   camera->SetViewUp(0.0, 0.0, 1.0);
@@ -158,7 +160,8 @@ void render(const std::vector<Panel>& panels, const Eigen::Vector3d& focus, doub
     auto* p = static_cast<unsigned char*>(image->GetScalarPointer());
     const std::size_t n = static_cast<std::size_t>(image->GetNumberOfPoints()) *
                           static_cast<std::size_t>(image->GetNumberOfScalarComponents());
-    for (std::size_t i = 0; i < n; ++i) p[i] = static_cast<unsigned char>(std::min(255, (p[i] + step / 2) / step * step));
+    for (std::size_t i = 0; i < n; ++i)
+      p[i] = static_cast<unsigned char>(std::min(255, (p[i] + step / 2) / step * step));
   }
   vtkNew<vtkPNGWriter> writer;
   writer->SetFileName(png.c_str());
@@ -176,12 +179,14 @@ int main(int argc, char** argv) {
   std::vector<std::string> meshes;
   app.add_option("volume", volume, "CT volume or DICOM directory")->required();
   app.add_option("--threshold", threshold, "Threshold of the voxel route")->required();
-  app.add_option("--mesh", meshes, "A mesh file and its title (repeatable), rendered left to right before the voxel route")
+  app.add_option("--mesh", meshes,
+                 "A mesh file and its title (repeatable), rendered left to right before the voxel route")
       ->expected(2)
       ->take_all();
   app.add_option("--focus", focus_text, "Point looked at, x,y,z in mm (physical)")->required();
   app.add_option("--distance", distance, "Distance of the camera from the focus, mm")->capture_default_str();
-  app.add_option("--azimuth", azimuth, "Camera direction about the slice axis, degrees (0: from -y)")->capture_default_str();
+  app.add_option("--azimuth", azimuth, "Camera direction about the slice axis, degrees (0: from -y)")
+      ->capture_default_str();
   app.add_option("--elevation", elevation, "Camera elevation above the slice planes, degrees")->capture_default_str();
   app.add_option("--size", size_text, "Picture size WIDTHxHEIGHT in pixels")->capture_default_str();
   app.add_option("--color-levels", color_levels, "Levels per colour channel, 2 to 256 (32 shrinks the PNG)")
@@ -199,7 +204,8 @@ int main(int argc, char** argv) {
     for (std::size_t k = 0; k < meshes.size(); k += 2) panels.push_back({read_mesh(meshes[k]), meshes[k + 1]});
     const CtImage::Pointer image = read_volume(volume);
     panels.push_back({voxel_route(*image, threshold), "voxel route: threshold, flying edges, windowed sinc"});
-    render(panels, parse_vector(focus_text, "--focus"), distance, azimuth, elevation, width, height, output, color_levels);
+    render(panels, parse_vector(focus_text, "--focus"), distance, azimuth, elevation, width, height, output,
+           color_levels);
   } catch (const std::exception& e) {
     std::cerr << "contourmesh_scan_render: error: " << e.what() << "\n";
     return 2;

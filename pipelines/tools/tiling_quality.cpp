@@ -162,15 +162,17 @@ void print_json(const std::vector<Row>& rows) {
               << ", \"closed\": " << (r.topology.closed ? "true" : "false")
               << ", \"manifold\": " << (r.topology.manifold ? "true" : "false")
               << ", \"euler_characteristic\": " << r.topology.euler_characteristic
-              << ", \"expected_euler_characteristic\": " << (r.expected_euler ? std::to_string(*r.expected_euler) : "null")
+              << ", \"expected_euler_characteristic\": "
+              << (r.expected_euler ? std::to_string(*r.expected_euler) : "null")
               << ", \"slice_spacing\": " << r.slice_spacing << ", \"hausdorff\": " << opt(r.hausdorff)
               << ", \"rms\": " << opt(r.rms) << ", \"shelf_area\": " << fixed(r.shelf_area, 3)
               << ", \"true_shelf_area\": " << opt(r.true_shelf_area)
               << ", \"sliver_area_share\": " << fixed(r.quality.sliver_area_share, 6)
-              << ", \"share_without_ids\": " << fixed(r.quality.share_without_ids, 6) << ", \"vertices\": " << r.vertices
-              << ", \"branchings\": " << r.branchings << ", \"refined_bands\": " << r.refined_bands
-              << ", \"composites\": " << r.composites << ", \"seconds_segment\": " << r.seconds_segment
-              << ", \"seconds_tile\": " << r.seconds_tile << "}" << (i + 1 < rows.size() ? "," : "") << "\n";
+              << ", \"share_without_ids\": " << fixed(r.quality.share_without_ids, 6)
+              << ", \"vertices\": " << r.vertices << ", \"branchings\": " << r.branchings
+              << ", \"refined_bands\": " << r.refined_bands << ", \"composites\": " << r.composites
+              << ", \"seconds_segment\": " << r.seconds_segment << ", \"seconds_tile\": " << r.seconds_tile << "}"
+              << (i + 1 < rows.size() ? "," : "") << "\n";
   }
   std::cout << "]\n";
 }

@@ -202,7 +202,8 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
     }
     const FeatureSmoothingResult result = feature_preserving_smooth(mesh, options);
     fuzz::check_detection(result.detection, n, "feature_preserving_smooth");
-    if (result.detection.labels != detection.labels) fuzz::fail("feature_preserving_smooth labels differ from detect_features");
+    if (result.detection.labels != detection.labels)
+      fuzz::fail("feature_preserving_smooth labels differ from detect_features");
     fuzz::check_mesh_is_sane(result.mesh, "feature_preserving_smooth");
     if (options.output == OutputResolution::Original &&
         (result.mesh.num_vertices() != n || result.mesh.triangles != mesh.triangles)) {

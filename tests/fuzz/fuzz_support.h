@@ -137,7 +137,8 @@ inline void write_file(const std::filesystem::path& path, const std::uint8_t* da
 inline void check_mesh_is_sane(const Mesh& mesh, std::string_view context) {
   const Index n = mesh.num_vertices();
   for (Index i = 0; i < n; ++i) {
-    if (!mesh.positions.col(i).allFinite()) fail(std::string(context) + ": vertex " + std::to_string(i) + " is not finite");
+    if (!mesh.positions.col(i).allFinite())
+      fail(std::string(context) + ": vertex " + std::to_string(i) + " is not finite");
   }
   for (Index f = 0; f < mesh.num_faces(); ++f) {
     for (Index v : mesh.triangles[f]) {

@@ -164,7 +164,8 @@ void check_tiling(const ContourStack& stack, const TilingResult& result) {
   std::map<std::pair<Index, Index>, int> directed;
   for (Index f = 0; f < mesh.num_faces(); ++f) {
     const Triangle& t = mesh.triangles[f];
-    if (t[0] == t[1] || t[1] == t[2] || t[0] == t[2]) fail("tile_contours: triangle " + std::to_string(f) + " repeats a vertex");
+    if (t[0] == t[1] || t[1] == t[2] || t[0] == t[2])
+      fail("tile_contours: triangle " + std::to_string(f) + " repeats a vertex");
     for (int k = 0; k < 3; ++k) {
       if (++directed[{t[k], t[(k + 1) % 3]}] > 1) {
         fail("tile_contours: edge (" + std::to_string(t[k]) + ", " + std::to_string(t[(k + 1) % 3]) +
@@ -202,7 +203,8 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
           lo = lo.cwiseMin(p);
           hi = hi.cwiseMax(p);
         }
-        std::fprintf(stderr, "  slice %zu (w %g) contour %zu: %s, parent %d, %zu points, area %g, box (%g, %g)-(%g, %g)\n", s,
+        std::fprintf(stderr,
+                     "  slice %zu (w %g) contour %zu: %s, parent %d, %zu points, area %g, box (%g, %g)-(%g, %g)\n", s,
                      stack.slices[s].w, c, k.is_hole ? "hole" : "outer", k.parent, k.points.size(),
                      k.points.size() >= 3 ? signed_area(k.points) : 0.0, lo.x(), lo.y(), hi.x(), hi.y());
       }

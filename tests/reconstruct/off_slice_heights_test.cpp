@@ -139,7 +139,8 @@ TEST(OffSliceHeights, NoFaceTurnsOverOnANoisyBranchingShape) {
   const OffSliceResult fitted = fit_off_slice_heights(tiled, *image, 500.0);
   for (const Triangle& t : tiled.triangles) {
     auto normal = [&](const Mesh& m) {
-      return Eigen::Vector3d((m.positions.col(t[1]) - m.positions.col(t[0])).cross(m.positions.col(t[2]) - m.positions.col(t[0])));
+      return Eigen::Vector3d(
+          (m.positions.col(t[1]) - m.positions.col(t[0])).cross(m.positions.col(t[2]) - m.positions.col(t[0])));
     };
     const Eigen::Vector3d before = normal(tiled), after = normal(fitted.mesh);
     if (before.norm() < 1e-12) continue;

@@ -68,7 +68,8 @@ void expect_prism_edges_covered(const Phantom& p, const std::vector<Vec2>& secti
     const Vec3 a = origin + section[i].x() * u + section[i].y() * v;
     const Vec3 b = origin + section[j].x() * u + section[j].y() * v;
     expect_edge_covered(p, a - half * axis, a + half * axis, what + " lateral edge " + std::to_string(i));
-    for (double t : {-half, half}) expect_edge_covered(p, a + t * axis, b + t * axis, what + " end edge " + std::to_string(i));
+    for (double t : {-half, half})
+      expect_edge_covered(p, a + t * axis, b + t * axis, what + " end edge " + std::to_string(i));
   }
 }
 

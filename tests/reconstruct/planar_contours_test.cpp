@@ -133,9 +133,9 @@ TEST(PlanarContours, AClosingPointAloneIsNoWarning) {
 }
 
 TEST(PlanarContours, DegenerateContoursAreSkippedWithAWarning) {
-  const PlanarStack s = build_contour_stack(
-      {contour({{0, 0, 0}, {1, 0, 0}, {2, 0, 0}}, "contour 2"), contour(square3(0, 0, 4, 0)), contour(square3(0, 0, 4, 2))},
-      "t");
+  const PlanarStack s = build_contour_stack({contour({{0, 0, 0}, {1, 0, 0}, {2, 0, 0}}, "contour 2"),
+                                             contour(square3(0, 0, 4, 0)), contour(square3(0, 0, 4, 2))},
+                                            "t");
   EXPECT_EQ(s.report.dropped_contours, 1u);
   EXPECT_EQ(s.stack.num_contours(), 2u);
   ASSERT_FALSE(s.report.warnings.empty());
@@ -269,7 +269,8 @@ TEST(ResampleDrawn, MergesDensePointsWithinTheTolerance) {
   EXPECT_LT(r.size(), 80u);
   for (const auto& p : r) EXPECT_NEAR(p.norm(), 10.0, 1e-9);  // points stay on the drawn polygon
   // Chords depart from the circle by at most the tolerance.
-  for (std::size_t i = 0; i < r.size(); ++i) EXPECT_GE((0.5 * (r[i] + r[(i + 1) % r.size()])).norm(), 10.0 - 0.05 - 1e-3);
+  for (std::size_t i = 0; i < r.size(); ++i)
+    EXPECT_GE((0.5 * (r[i] + r[(i + 1) % r.size()])).norm(), 10.0 - 0.05 - 1e-3);
 }
 
 TEST(ResampleDrawn, SmallerThanTheSpacingKeepsTheDrawnShape) {

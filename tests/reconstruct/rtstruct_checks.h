@@ -65,7 +65,8 @@ inline void expect_roi_reconstructs(const RtRoi& roi) {
   EXPECT_TRUE(t.manifold) << t.problems;
   expect_outward(r.mesh);
   const double v = enclosed_volume(r.mesh);
-  EXPECT_NEAR(v / slicewise_volume(drawn.planar.stack), 1.0, 0.05) << v << " vs " << slicewise_volume(drawn.planar.stack);
+  EXPECT_NEAR(v / slicewise_volume(drawn.planar.stack), 1.0, 0.05)
+      << v << " vs " << slicewise_volume(drawn.planar.stack);
   const ContourDeviation d = contour_deviation(r.mesh, drawn.planar.stack);
   EXPECT_LT(d.max, 0.1);
   EXPECT_EQ(d.slices, drawn.planar.stack.slices.size());

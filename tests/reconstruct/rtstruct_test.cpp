@@ -127,7 +127,8 @@ class WrittenStructureSet : public ::testing::Test {
   static test::TestRoi cylinder(int number, const std::string& name, int slices = 4) {
     test::TestRoi roi = test::roi_of(number, name);
     roi.color = std::array<int, 3>{255, 0, 0};
-    for (int k = 0; k < slices; ++k) roi.contours.push_back(test::contour_of("CLOSED_PLANAR", test::ellipse(0, 0, 10, 8, 2.5 * k)));
+    for (int k = 0; k < slices; ++k)
+      roi.contours.push_back(test::contour_of("CLOSED_PLANAR", test::ellipse(0, 0, 10, 8, 2.5 * k)));
     return roi;
   }
   test::ScopedTempDir dir_{"rtstruct"};
@@ -162,7 +163,8 @@ TEST_F(WrittenStructureSet, PointAndOpenContoursAreSkippedWithAWarningNamingThem
 }
 
 TEST_F(WrittenStructureSet, OnlyPointsIsAnErrorNamingTheRoi) {
-  const RtStructureSet set = read_rt_structure_set(write({test::roi_of(2, "Marker", {test::contour_of("POINT", {{1, 2, 3}})})}));
+  const RtStructureSet set =
+      read_rt_structure_set(write({test::roi_of(2, "Marker", {test::contour_of("POINT", {{1, 2, 3}})})}));
   try {
     (void)roi_contour_stack(set.rois[0]);
     FAIL();

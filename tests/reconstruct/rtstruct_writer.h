@@ -116,7 +116,8 @@ inline void write_rtstruct(const std::filesystem::path& path, const std::vector<
     put(rcs, 0x3006, 0x0084, gdcm::VR::IS, std::to_string(roi.number));
     if (roi.color) {
       put(rcs, 0x3006, 0x002A, gdcm::VR::IS,
-          std::to_string((*roi.color)[0]) + "\\" + std::to_string((*roi.color)[1]) + "\\" + std::to_string((*roi.color)[2]));
+          std::to_string((*roi.color)[0]) + "\\" + std::to_string((*roi.color)[1]) + "\\" +
+              std::to_string((*roi.color)[2]));
     }
     std::vector<gdcm::Item> contours;
     for (const TestContour& c : roi.contours) {

@@ -47,7 +47,9 @@ CtImage::Pointer make_volume(const std::array<int, 3>& n, const Eigen::Vector3d&
   return image;
 }
 
-double cylinder(const Eigen::Vector3d& p, double cx, double cy, double r) { return std::hypot(p.x() - cx, p.y() - cy) - r; }
+double cylinder(const Eigen::Vector3d& p, double cx, double cy, double r) {
+  return std::hypot(p.x() - cx, p.y() - cy) - r;
+}
 
 TEST(Segmentation, CylinderGivesOneAccurateCounterClockwiseContourPerSlice) {
   const auto image = make_volume({60, 60, 5}, {0.5, 0.5, 2.0}, {-15, -15, 0},

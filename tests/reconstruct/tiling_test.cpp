@@ -97,7 +97,8 @@ TEST(Tiling, RefinedCapsHaveWellShapedTrianglesOnTheirPlane) {
   int cap_triangles = 0;
   double worst_edge = 0.0, worst_ratio = 0.0;
   for (const Triangle& t : r.mesh.triangles) {
-    const Eigen::Vector3d a = r.mesh.positions.col(t[0]), b = r.mesh.positions.col(t[1]), c = r.mesh.positions.col(t[2]);
+    const Eigen::Vector3d a = r.mesh.positions.col(t[0]), b = r.mesh.positions.col(t[1]),
+                          c = r.mesh.positions.col(t[2]);
     if (std::abs(a.z() - top) > 1e-9 || std::abs(b.z() - top) > 1e-9 || std::abs(c.z() - top) > 1e-9) continue;
     ++cap_triangles;
     const double e = std::max({(a - b).norm(), (b - c).norm(), (c - a).norm()});
@@ -394,8 +395,9 @@ TEST(Tiling, AHoleInsideAHoleIsRejected) {
   for (auto& slice : s.slices) slice.contours.push_back(circle(0, 0, 10, 48));
   s.slices[1].contours.push_back(circle(0, 0, 6, 36, true, 0));
   s.slices[1].contours.push_back(circle(0, 0, 3, 24, true, 0));
-  EXPECT_EQ(tiling_error(s), "tiling: hole contour 2 of slice 1 lies inside hole contour 1 (a region inside a hole is an "
-                             "outer contour)");
+  EXPECT_EQ(tiling_error(s),
+            "tiling: hole contour 2 of slice 1 lies inside hole contour 1 (a region inside a hole is an "
+            "outer contour)");
   // An island inside the hole, given as an outer contour, is a valid slice.
   s.slices[1].contours[2] = circle(0, 0, 3, 24);
   EXPECT_EQ(tiling_error(s), "");

@@ -27,7 +27,7 @@ TEST(ClosestPoint, TriangleRegionsAreExact) {
   EXPECT_TRUE(closest_point_on_triangle({0.5, 0.5, 3.0}, a, b, c).isApprox(Eigen::Vector3d(0.5, 0.5, 0)));  // face
   EXPECT_TRUE(closest_point_on_triangle({-1, -1, 0}, a, b, c).isApprox(a));                                 // vertex
   EXPECT_TRUE(closest_point_on_triangle({1, -2, 1}, a, b, c).isApprox(Eigen::Vector3d(1, 0, 0)));           // edge
-  EXPECT_TRUE(closest_point_on_triangle({2, 2, 0}, a, b, c).isApprox(Eigen::Vector3d(1, 1, 0)));            // hypotenuse
+  EXPECT_TRUE(closest_point_on_triangle({2, 2, 0}, a, b, c).isApprox(Eigen::Vector3d(1, 1, 0)));  // hypotenuse
 }
 
 TEST(ClosestPoint, DegenerateTriangleGivesTheNearestEdgePoint) {

@@ -14,7 +14,9 @@ constexpr double kPi = std::numbers::pi;
 
 ContourStackSpec cylinder(double radius, int slices) {
   ContourStackSpec spec;
-  spec.curve = [radius](double t) { return Eigen::Vector2d(radius * std::cos(2 * kPi * t), radius * std::sin(2 * kPi * t)); };
+  spec.curve = [radius](double t) {
+    return Eigen::Vector2d(radius * std::cos(2 * kPi * t), radius * std::sin(2 * kPi * t));
+  };
   spec.slices = slices;
   spec.points_per_contour = 90;
   spec.slice_spacing = 2.0;

@@ -58,7 +58,8 @@ TEST(Curvature, ScaleInvariantUmbilicsAndSignOfConcaveCrease) {
   m.positions *= 1e-6;
   const PrincipalCurvatures b = principal_curvatures(m.positions, m.triangles, adj);
   EXPECT_EQ(a.umbilic, b.umbilic);
-  for (Index i = 0; i < m.num_vertices(); i += 97) EXPECT_NEAR(b.kappa_max[i] * 1e-6, a.kappa_max[i], 1e-9 * std::abs(a.kappa_max[i]) + 1e-12);
+  for (Index i = 0; i < m.num_vertices(); i += 97)
+    EXPECT_NEAR(b.kappa_max[i] * 1e-6, a.kappa_max[i], 1e-9 * std::abs(a.kappa_max[i]) + 1e-12);
   // Turn the cylinder inside out: the curvature across becomes negative.
   for (Triangle& t : m.triangles) std::swap(t[1], t[2]);
   const PrincipalCurvatures inv = principal_curvatures(m.positions, m.triangles, adj);

@@ -190,7 +190,8 @@ TEST(InputPolicy, MissingIdsFallBackOrAreRefusedAsAsked) {
   InputPolicyOptions x = for_detection();
   x.slice_axis = Eigen::Vector3d::UnitX();
   add_noise(m, {0.1, 5, NoiseDirection::InPlane});  // off any plane normal to x
-  EXPECT_NE(error_of(m, x).find("do not lie on planes normal to the slice axis x"), std::string::npos) << error_of(m, x);
+  EXPECT_NE(error_of(m, x).find("do not lie on planes normal to the slice axis x"), std::string::npos)
+      << error_of(m, x);
 }
 
 TEST(InputPolicy, GappedIdsAreCompactedWithAWarning) {

@@ -19,8 +19,9 @@ TEST(MeshQuality, MinimumAngleOfKnownTriangles) {
               60.0, 1e-9);
   EXPECT_NEAR(minimum_angle_degrees(o, o + Eigen::Vector3d(1, 0, 0), o + Eigen::Vector3d(0, 1, 0)), 45.0, 1e-9);
   // A right triangle with legs 1 and tan(5 degrees): its smallest angle is 5 degrees.
-  EXPECT_NEAR(minimum_angle_degrees(o, o + Eigen::Vector3d(0, 0, 1), o + Eigen::Vector3d(std::tan(5 * kPi / 180), 0, 1)),
-              5.0, 1e-9);
+  EXPECT_NEAR(
+      minimum_angle_degrees(o, o + Eigen::Vector3d(0, 0, 1), o + Eigen::Vector3d(std::tan(5 * kPi / 180), 0, 1)), 5.0,
+      1e-9);
   EXPECT_EQ(minimum_angle_degrees(o, o, o + Eigen::Vector3d(1, 0, 0)), 0.0);
   EXPECT_EQ(minimum_angle_degrees(o, o + Eigen::Vector3d(1, 0, 0), o + Eigen::Vector3d(2, 0, 0)), 0.0);
 }
@@ -71,7 +72,8 @@ TEST(MeshQuality, AreaFacingTheAxisCountsFacesParallelToTheSlices) {
   const Eigen::Vector3d tilted(0.0, std::sin(7 * kPi / 180), std::cos(7 * kPi / 180));
   EXPECT_NEAR(area_facing_axis(cube.positions, cube.triangles, tilted, 10.0), 8.0, 1e-9);
   EXPECT_NEAR(area_facing_axis(cube.positions, cube.triangles, tilted, 5.0), 0.0, 1e-9);
-  EXPECT_THROW((void)area_facing_axis(cube.positions, cube.triangles, Eigen::Vector3d::Zero(), 10.0), InvalidInputError);
+  EXPECT_THROW((void)area_facing_axis(cube.positions, cube.triangles, Eigen::Vector3d::Zero(), 10.0),
+               InvalidInputError);
   EXPECT_THROW((void)area_facing_axis(cube.positions, cube.triangles, z, 10.0, std::vector<std::uint8_t>(3, 0)),
                InvalidInputError);
 }

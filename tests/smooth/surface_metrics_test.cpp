@@ -46,9 +46,9 @@ SurfaceTruth sphere_truth(double r) {
   SurfaceTruth t;
   t.distance = sphere_sdf(r);
   t.normal = radial();
-  t.samples = sample_implicit_surface(t.distance, t.normal,
-                                      Eigen::AlignedBox3d(Eigen::Vector3d::Constant(-r - 1), Eigen::Vector3d::Constant(r + 1)),
-                                      0.25);
+  t.samples = sample_implicit_surface(
+      t.distance, t.normal, Eigen::AlignedBox3d(Eigen::Vector3d::Constant(-r - 1), Eigen::Vector3d::Constant(r + 1)),
+      0.25);
   return t;
 }
 
@@ -109,9 +109,8 @@ TEST(SurfaceAccuracy, CubeAgainstRoundedCubeHasTheCornerGapAsHausdorff) {
   SurfaceTruth t;
   t.distance = rounded_box_sdf(half, round);
   t.normal = numeric_normal(t.distance);
-  t.samples = sample_implicit_surface(t.distance, t.normal,
-                                      Eigen::AlignedBox3d(Eigen::Vector3d::Constant(-11), Eigen::Vector3d::Constant(11)),
-                                      0.2);
+  t.samples = sample_implicit_surface(
+      t.distance, t.normal, Eigen::AlignedBox3d(Eigen::Vector3d::Constant(-11), Eigen::Vector3d::Constant(11)), 0.2);
   const SurfaceAccuracy a = surface_accuracy(mesh, t, {.density = 20.0});
   EXPECT_NEAR(a.all.mesh_to_truth_max, (std::sqrt(3.0) - 1.0) * round, 0.01);
   // The truth's maximum is found among its samples (0.2 mm grid): from below, within a few hundredths.

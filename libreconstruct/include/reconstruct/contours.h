@@ -27,7 +27,7 @@ struct SliceContours {
 
 /// A stack of slices with the frame that maps slice coordinates to physical space:
 /// physical = origin + u * axis_u + v * axis_v + w * axis_w (orthonormal, right-handed axes).
-/// Slices are ordered by increasing w; their index in `slices` is the slice id c(i) of SPEC 2.
+/// Slices are ordered by increasing w; their index in `slices` is the slice id c(i) of mesh.h.
 struct ContourStack {
   std::vector<SliceContours> slices;
   Eigen::Vector3d origin = Eigen::Vector3d::Zero();
@@ -81,7 +81,8 @@ struct PolygonCrossing {
 /// contours of one slice must not meet); each polygon's own self-intersections are not looked for (see
 /// find_self_intersection). The same grid search: about linear time in the total number of points.
 /// nullopt also when a point is not finite.
-[[nodiscard]] std::optional<PolygonCrossing> find_polygon_crossing(const std::vector<std::vector<Eigen::Vector2d>>& polygons);
+[[nodiscard]] std::optional<PolygonCrossing> find_polygon_crossing(
+    const std::vector<std::vector<Eigen::Vector2d>>& polygons);
 
 /// Resamples a closed polygon uniformly by arc length to round(perimeter / spacing) points (at least
 /// 3), starting at its first point. Throws InvalidInputError for spacing <= 0 or < 3 input points.

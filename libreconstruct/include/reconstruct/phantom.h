@@ -1,5 +1,5 @@
-// Synthetic CT phantoms with analytic ground truth (SPEC 4): bone-like solids given by signed distance
-// functions, rendered into CT-like volumes in Hounsfield units with partial-volume effect, blur and
+// Synthetic CT phantoms with analytic ground truth (docs/reconstruction.md, "Phantoms"): bone-like solids given by
+// signed distance functions, rendered into CT-like volumes in Hounsfield units with partial-volume effect, blur and
 // noise. The evaluation compares reconstructed and smoothed meshes against the analytic surface.
 #pragma once
 
@@ -63,7 +63,7 @@ struct Phantom {
   int surface_components = 1;
   int euler_characteristic = 2;
   /// Points densely sampled (spacing <= 0.5 mm) along the sharp edges and at the corners of the solid:
-  /// the "feature lines" that define feature regions in the evaluation (SPEC 5).
+  /// the "feature lines" that define feature regions in the evaluation (docs/results.md).
   std::vector<Eigen::Vector3d> feature_points;
 };
 

@@ -1,4 +1,4 @@
-// The reconstruction chain of SPEC 1: CT volume -> segmentation -> contours -> tiling -> mesh.
+// The reconstruction chain (docs/reconstruction.md): CT volume -> segmentation -> contours -> tiling -> mesh.
 #pragma once
 
 #include "reconstruct/off_slice_heights.h"

@@ -74,8 +74,8 @@ struct RtStructureSet {
 /// file, a DICOM file of another kind (naming its modality), a file with no Structure Set ROI Sequence.
 /// Contour Data that is not a list of numbers in threes marks its ROI (RtRoi::error). An ROI Contour
 /// item for an ROI number not declared, a Number of Contour Points that disagrees with the data, and
-/// ROI numbers declared twice are warnings. Character sets: ISO_IR 100 (Latin-1) and ISO_IR 192 (UTF-8) names are converted to
-/// UTF-8; other bytes above 127 are replaced by '?'.
+/// ROI numbers declared twice are warnings. Character sets: ISO_IR 100 (Latin-1) and ISO_IR 192 (UTF-8) names are
+/// converted to UTF-8; other bytes above 127 are replaced by '?'.
 [[nodiscard]] RtStructureSet read_rt_structure_set(const std::filesystem::path& file);
 
 /// The ROI named `selector`: its exact name (blanks trimmed), else its name ignoring case if only one

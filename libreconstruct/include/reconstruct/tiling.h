@@ -1,5 +1,5 @@
-// Tiling (SPEC 4): stitching the contours of adjacent slices into a closed triangle mesh that keeps,
-// for every vertex, the slice and contour it came from.
+// Tiling (docs/reconstruction.md, "Tiling"): stitching the contours of adjacent slices into a closed triangle mesh that
+// keeps, for every vertex, the slice and contour it came from.
 #pragma once
 
 #include "reconstruct/contours.h"
@@ -91,7 +91,8 @@ struct TilingOptions {
 /// What the tiler did, for reports.
 struct TilingStats {
   std::size_t one_to_one = 0;        ///< contour pairs of adjacent slices tiled directly by one band
-  std::size_t branchings = 0;        ///< groups of adjacent slices whose topology changes (split, merge, hole opening or closing)
+  std::size_t branchings =
+      0;  ///< groups of adjacent slices whose topology changes (split, merge, hole opening or closing)
   std::size_t refined_bands = 0;     ///< groups of adjacent slices tiled through intermediate contours for band quality
   std::size_t intermediate_contours = 0;  ///< contours inserted between slices by shape-based interpolation
   std::size_t composites = 0;        ///< mid-plane composite contours (Meyers), each with flat bridges

@@ -139,7 +139,8 @@ std::vector<BandTriangle> minimum_area_band(const Polygon& lower, double wl, con
   // twists the whole band.
   int q0 = -1;
   {
-    const Eigen::Vector2d tangent = lower[static_cast<std::size_t>((r0 + 1) % m)] - lower[static_cast<std::size_t>((r0 + m - 1) % m)];
+    const Eigen::Vector2d tangent =
+        lower[static_cast<std::size_t>((r0 + 1) % m)] - lower[static_cast<std::size_t>((r0 + m - 1) % m)];
     double best = std::numeric_limits<double>::infinity(), best_any = best;
     int any = 0;
     for (int j = 0; j < n; ++j) {
@@ -148,7 +149,8 @@ std::vector<BandTriangle> minimum_area_band(const Polygon& lower, double wl, con
         best_any = d;
         any = j;
       }
-      if (d < best && tangent.dot(upper[static_cast<std::size_t>((j + 1) % n)] - upper[static_cast<std::size_t>((j + n - 1) % n)]) > 0.0) {
+      if (d < best && tangent.dot(upper[static_cast<std::size_t>((j + 1) % n)] -
+                                  upper[static_cast<std::size_t>((j + n - 1) % n)]) > 0.0) {
         best = d;
         q0 = j;
       }
@@ -171,7 +173,8 @@ std::vector<BandTriangle> minimum_area_band(const Polygon& lower, double wl, con
   std::vector<int> lo, hi;
   std::vector<std::uint8_t> moves;
   if (cells > static_cast<double>(options.full_dp_limit)) {
-    diagonal_corridor(m, n, std::max({8, static_cast<int>(std::ceil(options.band_fraction * n)), (n + m - 1) / m + 2}), lo, hi);
+    diagonal_corridor(m, n, std::max({8, static_cast<int>(std::ceil(options.band_fraction * n)), (n + m - 1) / m + 2}),
+                      lo, hi);
     moves = least_cost_path(P, Q, lo, hi, span_weight, options);
   } else if (cells > kCoarseToFineCells && std::min(m, n) >= 32) {
     const int k = std::max(2, static_cast<int>(std::round(std::sqrt(cells / kCoarseCells))));
@@ -203,7 +206,8 @@ BandQuality band_quality(const Polygon& lower, double wl, const Polygon& upper, 
                          const std::vector<BandTriangle>& band) {
   BandQuality q;
   auto point = [&](const BandCorner& c) {
-    const Eigen::Vector2d& p = c.ring == 0 ? lower[static_cast<std::size_t>(c.index)] : upper[static_cast<std::size_t>(c.index)];
+    const Eigen::Vector2d& p =
+        c.ring == 0 ? lower[static_cast<std::size_t>(c.index)] : upper[static_cast<std::size_t>(c.index)];
     return Eigen::Vector3d(p.x(), p.y(), c.ring == 0 ? wl : wu);
   };
   for (const BandTriangle& t : band) {

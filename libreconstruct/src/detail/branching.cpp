@@ -5,6 +5,8 @@
 #include "detail/correspondence.h"
 #include "reconstruct/contours.h"
 
+#include "contourmesh/internal/union_find.h"
+
 #include <algorithm>
 #include <array>
 #include <limits>
@@ -33,9 +35,8 @@ bool in_outline(const Level& level, const Eigen::Vector2d& p) {
 }
 
 // The pair (point of `a`, point of `b`) a bridge joins: the nearest pair; for a hole that opens (`gap`
-// given: the other level), the nearest pair whose midpoint lies outside the other level's outer contours, where the wall between hole and outer contour is open on
-// the other side (the nearest pair overall when
-// there is none).
+// given: the other level), the nearest pair whose midpoint lies outside the other level's outer contours, where the
+// wall between hole and outer contour is open on the other side (the nearest pair overall when there is none).
 std::pair<std::size_t, std::size_t> bridge_ends(const LevelContour& a, const LevelContour& b, const Level* gap,
                                                 double& distance) {
   std::vector<std::tuple<double, std::size_t, std::size_t>> nearest;
@@ -122,22 +123,6 @@ void close_quad(std::array<VertexRef, 4> c, std::array<Eigen::Vector2d, 4> p, bo
   }
 }
 
-class UnionFind {
- public:
-  explicit UnionFind(std::size_t n) : parent_(n) { std::iota(parent_.begin(), parent_.end(), 0); }
-  std::size_t find(std::size_t x) {
-    while (parent_[x] != x) x = parent_[x] = parent_[parent_[x]];
-    return x;
-  }
-  void unite(std::size_t a, std::size_t b) {
-    a = find(a);
-    b = find(b);
-    if (a != b) parent_[std::max(a, b)] = std::min(a, b);
-  }
-
- private:
-  std::vector<std::size_t> parent_;
-};
 
 // The contours `members` of `level` copied onto plane w and joined into one composite contour; `below`
 // says whether the originals lie below the plane.
@@ -159,7 +144,8 @@ LevelContour composite_of(const Level& level, const std::vector<int>& members, c
 // When every contour of `inner` (of level `in`) lies inside one contour of `outer` (of level `of`), the
 // contours of `outer` that hold them, one per contour of `inner`; empty otherwise. The holders must be
 // outer contours without holes in their level, the others outer contours, and none may touch another.
-std::vector<int> holders(const Level& of, const std::vector<int>& outer, const Level& in, const std::vector<int>& inner) {
+std::vector<int> holders(const Level& of, const std::vector<int>& outer, const Level& in,
+                         const std::vector<int>& inner) {
   std::vector<Polygon> polygons;
   for (int o : outer) {
     const LevelContour& c = of.contours[static_cast<std::size_t>(o)];
@@ -176,8 +162,9 @@ std::vector<int> holders(const Level& of, const std::vector<int>& outer, const L
     int found = -1;
     for (int o : outer) {
       const LevelContour& h = of.contours[static_cast<std::size_t>(o)];
-      if (h.box.contains(c.box) && std::all_of(c.points.begin(), c.points.end(),
-                                               [&](const Eigen::Vector2d& p) { return point_in_polygon(h.points, p); })) {
+      if (h.box.contains(c.box) && std::all_of(c.points.begin(), c.points.end(), [&](const Eigen::Vector2d& p) {
+            return point_in_polygon(h.points, p);
+          })) {
         found = o;
         break;
       }
@@ -235,7 +222,8 @@ bool tile_nested(const Level& lower, const Level& upper, const std::vector<int>&
         cap_end(h, {}, of.w, extension, holders_below, options, out);
       } else if (inside.size() == 1) {
         const LevelContour& c = in.contours[static_cast<std::size_t>(inside[0])];
-        if (holders_below) emit_band(h, c, untwisted_band(h.points, lower.w, c.points, upper.w, options, h.spacing()), out);
+        if (holders_below)
+          emit_band(h, c, untwisted_band(h.points, lower.w, c.points, upper.w, options, h.spacing()), out);
         else emit_band(c, h, untwisted_band(c.points, lower.w, h.points, upper.w, options, h.spacing()), out);
       } else {
         nested_fill(h, holders_below, in, inside, 0.5 * (lower.w + upper.w), options, out);
@@ -253,7 +241,7 @@ void tile_composite(const Level& lower, const Level& upper, const TilingOptions&
   const std::size_t na = lower.contours.size(), nb = upper.contours.size();
   const double w0 = lower.w, w1 = upper.w;
   const double extension = options.end_caps == EndCaps::HalfSpacing ? 0.5 * (w1 - w0) : 0.0;
-  UnionFind groups(na + nb);
+  UnionFind<> groups(na + nb);
   for (std::size_t i = 0; i < na; ++i) {
     for (int j : links.up[i]) groups.unite(i, na + static_cast<std::size_t>(j));
   }
@@ -262,7 +250,8 @@ void tile_composite(const Level& lower, const Level& upper, const TilingOptions&
   for (std::size_t i = 0; i < na; ++i) {
     const LevelContour& c = lower.contours[i];
     if (!links.up[i].empty()) lower_of[groups.find(i)].push_back(static_cast<int>(i));
-    else if (links.opens_up[i]) lower_of[groups.find(static_cast<std::size_t>(c.parent))].push_back(static_cast<int>(i));
+    else if (links.opens_up[i])
+      lower_of[groups.find(static_cast<std::size_t>(c.parent))].push_back(static_cast<int>(i));
   }
   for (std::size_t j = 0; j < nb; ++j) {
     const LevelContour& c = upper.contours[j];
@@ -283,14 +272,17 @@ void tile_composite(const Level& lower, const Level& upper, const TilingOptions&
     }
     if (tile_nested(lower, upper, L, U, extension, options, out)) continue;
     const bool both = L.size() > 1 && U.size() > 1;
-    const LevelContour lower_ring = L.size() > 1 ? composite_of(lower, L, upper, both ? w0 + (w1 - w0) / 3.0 : 0.5 * (w0 + w1), true, out)
-                                                 : lower.contours[static_cast<std::size_t>(L[0])];
+    const LevelContour lower_ring =
+        L.size() > 1 ? composite_of(lower, L, upper, both ? w0 + (w1 - w0) / 3.0 : 0.5 * (w0 + w1), true, out)
+                     : lower.contours[static_cast<std::size_t>(L[0])];
     const double wl = L.size() > 1 ? (both ? w0 + (w1 - w0) / 3.0 : 0.5 * (w0 + w1)) : w0;
-    const LevelContour upper_ring = U.size() > 1 ? composite_of(upper, U, lower, both ? w0 + 2.0 * (w1 - w0) / 3.0 : 0.5 * (w0 + w1), false, out)
-                                                 : upper.contours[static_cast<std::size_t>(U[0])];
+    const LevelContour upper_ring =
+        U.size() > 1 ? composite_of(upper, U, lower, both ? w0 + 2.0 * (w1 - w0) / 3.0 : 0.5 * (w0 + w1), false, out)
+                     : upper.contours[static_cast<std::size_t>(U[0])];
     const double wu = U.size() > 1 ? (both ? w0 + 2.0 * (w1 - w0) / 3.0 : 0.5 * (w0 + w1)) : w1;
     emit_band(lower_ring, upper_ring,
-              untwisted_band(lower_ring.points, wl, upper_ring.points, wu, options, 0.5 * (lower_ring.spacing() + upper_ring.spacing())),
+              untwisted_band(lower_ring.points, wl, upper_ring.points, wu, options,
+                             0.5 * (lower_ring.spacing() + upper_ring.spacing())),
               out);
   }
   // Ends: outer contours with no partner (with their holes), and holes that end inside a continuing

@@ -2,7 +2,7 @@
 // umbrella-based smoothing then drags the cap's rim towards its middle and rounds the object's ends.
 #pragma once
 
-#include "detail/polygon.h"
+#include "contourmesh/internal/polygon2d.h"
 
 #include <array>
 #include <vector>

@@ -69,7 +69,8 @@ void cap_hole_end(const LevelContour& hole, double w, double extension, bool upw
   LevelContour r = extend(hole, w, extension, upward, out);
   std::reverse(r.points.begin(), r.points.end());
   std::reverse(r.ids.begin(), r.ids.end());
-  cap(r, {}, upward ? w + std::max(extension, 0.0) : w - std::max(extension, 0.0), !upward, FaceRole::Cap, options, out);
+  cap(r, {}, upward ? w + std::max(extension, 0.0) : w - std::max(extension, 0.0), !upward, FaceRole::Cap, options,
+      out);
 }
 
 }  // namespace contourmesh::detail

@@ -122,7 +122,8 @@ std::string first_line(const std::string& text) {
     if (preamble) continue;
     const auto open = line.find(" (0x");
     const auto close = line.find("): ");
-    if (open != std::string::npos && close != std::string::npos && open < close && close < 80) line = line.substr(close + 3);
+    if (open != std::string::npos && close != std::string::npos && open < close && close < 80)
+      line = line.substr(close + 3);
     std::string printable;
     for (char c : line.substr(0, 200)) printable += std::isprint(static_cast<unsigned char>(c)) ? c : '?';
     return line.size() > 200 ? printable + "..." : printable;

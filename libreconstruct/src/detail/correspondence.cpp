@@ -1,28 +1,12 @@
 #include "detail/correspondence.h"
 
+#include "contourmesh/internal/union_find.h"
+
 #include <algorithm>
-#include <numeric>
 
 namespace contourmesh::detail {
 
 namespace {
-
-class UnionFind {
- public:
-  explicit UnionFind(std::size_t n) : parent_(n) { std::iota(parent_.begin(), parent_.end(), 0); }
-  std::size_t find(std::size_t x) {
-    while (parent_[x] != x) x = parent_[x] = parent_[parent_[x]];
-    return x;
-  }
-  void unite(std::size_t a, std::size_t b) {
-    a = find(a);
-    b = find(b);
-    if (a != b) parent_[std::max(a, b)] = std::min(a, b);
-  }
-
- private:
-  std::vector<std::size_t> parent_;
-};
 
 bool overlaps(const LevelContour& a, const LevelContour& b, double of_smaller, double of_larger) {
   const double needed = std::max(of_smaller * std::min(a.area, b.area), of_larger * std::max(a.area, b.area));
@@ -102,10 +86,11 @@ Correspondence correspond(const Level& lower, const Level& upper, double of_smal
 
 std::vector<ContourGroup> contour_groups(const Level& lower, const Level& upper, const Correspondence& links) {
   const std::size_t na = lower.contours.size(), nb = upper.contours.size();
-  UnionFind uf(na + nb);
+  UnionFind<> uf(na + nb);
   for (std::size_t i = 0; i < na; ++i) {
     for (int j : links.up[i]) uf.unite(i, na + static_cast<std::size_t>(j));
-    if (lower.contours[i].is_hole && lower.contours[i].parent >= 0) uf.unite(i, static_cast<std::size_t>(lower.contours[i].parent));
+    if (lower.contours[i].is_hole && lower.contours[i].parent >= 0)
+      uf.unite(i, static_cast<std::size_t>(lower.contours[i].parent));
   }
   for (std::size_t j = 0; j < nb; ++j) {
     if (upper.contours[j].is_hole && upper.contours[j].parent >= 0) {

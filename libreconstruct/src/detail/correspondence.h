@@ -47,6 +47,7 @@ enum class GroupChange {
 
 /// The kind of `group`; for OneToOne, `pairs` receives the (lower, upper) pairs, outer first.
 [[nodiscard]] GroupChange classify_group(const ContourGroup& group, const Level& lower, const Level& upper,
-                                         const Correspondence& links, std::vector<std::pair<int, int>>* pairs = nullptr);
+                                         const Correspondence& links,
+                                         std::vector<std::pair<int, int>>* pairs = nullptr);
 
 }  // namespace contourmesh::detail

@@ -371,8 +371,8 @@ CtImage::Pointer read_dicom_series(const fs::path& directory, const std::string&
     try {
       check_allocation("resampling " + std::to_string(count) + " slices", 0.0, voxels * kVolumeBytesPerVoxel,
                        ResourceLimits{});
-    } catch (const LimitError& e) {
-      throw LimitError(shown + ": " + e.what());
+    } catch (const LimitError&) {
+      rethrow_with_context(shown);
     }
     image = resample_slices(*image, w, count);
     slice_spacing = (w.back() - w.front()) / static_cast<double>(count - 1);

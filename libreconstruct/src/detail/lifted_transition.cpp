@@ -151,7 +151,8 @@ bool lifted_transition(const Level& lower, const Level& upper, SlabMesh& out) {
       const Corner &ca = corners[static_cast<std::size_t>(a)], &cb = corners[static_cast<std::size_t>(b)];
       if (ca.polygon < 0 || cb.polygon < 0 || level_of(ca) != level_of(cb)) return false;
       if (ca.polygon != cb.polygon) return true;
-      const int n = static_cast<int>((ca.polygon == 0 ? outer : holes[static_cast<std::size_t>(ca.polygon - 1)]).points.size());
+      const int n =
+          static_cast<int>((ca.polygon == 0 ? outer : holes[static_cast<std::size_t>(ca.polygon - 1)]).points.size());
       const int d = std::abs(ca.vertex - cb.vertex);
       return d != 1 && d != n - 1;
     };
@@ -167,7 +168,9 @@ bool lifted_transition(const Level& lower, const Level& upper, SlabMesh& out) {
       for (const auto& [edge, around] : faces_of) {
         if (!in_plane(edge.first, edge.second)) continue;
         const int m = static_cast<int>(corners.size());
-        corners.push_back({-1, -1, 0.5 * (corners[static_cast<std::size_t>(edge.first)].p + corners[static_cast<std::size_t>(edge.second)].p)});
+        corners.push_back({-1, -1,
+                           0.5 * (corners[static_cast<std::size_t>(edge.first)].p +
+                                  corners[static_cast<std::size_t>(edge.second)].p)});
         for (std::size_t t : around) {
           // (a, b, c) with the edge a-b becomes (a, m, c) and (m, b, c), keeping the orientation.
           std::array<int, 3> tri = tris[t];
@@ -195,8 +198,12 @@ bool lifted_transition(const Level& lower, const Level& upper, SlabMesh& out) {
       }
     }
     for (const auto& t : tris) {
-      if (f.up) out.add_triangle(ref[static_cast<std::size_t>(t[0])], ref[static_cast<std::size_t>(t[1])], ref[static_cast<std::size_t>(t[2])], FaceRole::Band);
-      else out.add_triangle(ref[static_cast<std::size_t>(t[0])], ref[static_cast<std::size_t>(t[2])], ref[static_cast<std::size_t>(t[1])], FaceRole::Band);
+      if (f.up)
+        out.add_triangle(ref[static_cast<std::size_t>(t[0])], ref[static_cast<std::size_t>(t[1])],
+                         ref[static_cast<std::size_t>(t[2])], FaceRole::Band);
+      else
+        out.add_triangle(ref[static_cast<std::size_t>(t[0])], ref[static_cast<std::size_t>(t[2])],
+                         ref[static_cast<std::size_t>(t[1])], FaceRole::Band);
     }
   }
   return true;

@@ -15,9 +15,11 @@ ShapeBuild build_ridge_box() {
   const std::vector<Vec2> section = {{-20.0, -15.0}, {20.0, -15.0}, {20.0, 3.0}, {0.0, 15.0}, {-20.0, 3.0}};
   constexpr double kHalfLength = 25.0;
   ShapeBuild s;
-  s.sdf = [section](const Vec3& p) { return sd_extrude(sd_polygon(p.head<2>(), section), p.z(), kHalfLength); };
+  s.sdf = [section](const Vec3& p) {
+    return sd_extrude(polygon_signed_distance(section, p.head<2>()), p.z(), kHalfLength);
+  };
   s.bounds = box_of({-20.0, -15.0, -kHalfLength}, {20.0, 15.0, kHalfLength});
-  s.volume = polygon_area(section) * 2.0 * kHalfLength;  // 960 * 50 = 48000 mm^3
+  s.volume = polygon_signed_area(section) * 2.0 * kHalfLength;  // 960 * 50 = 48000 mm^3
   for (std::size_t i = 0, j = section.size() - 1; i < section.size(); j = i, ++i) {
     const Vec3 a(section[i].x(), section[i].y(), 0.0);
     const Vec3 b(section[j].x(), section[j].y(), 0.0);
@@ -38,8 +40,9 @@ ShapeBuild build_femur() {
   // Posterior ridge (linea aspera): a triangular prism along z whose apex stands 4 mm off the shaft.
   const std::vector<Vec2> ridge = {{-3.5, 9.0}, {3.5, 9.0}, {0.0, 16.0}};
   constexpr double kRidgeHalf = 25.0;
-  parts.push_back({[ridge](const Vec3& p) { return sd_extrude(sd_polygon(p.head<2>(), ridge), p.z(), kRidgeHalf); },
-                   box_of({-3.5, 9.0, -kRidgeHalf}, {3.5, 16.0, kRidgeHalf})});
+  parts.push_back(
+      {[ridge](const Vec3& p) { return sd_extrude(polygon_signed_distance(ridge, p.head<2>()), p.z(), kRidgeHalf); },
+       box_of({-3.5, 9.0, -kRidgeHalf}, {3.5, 16.0, kRidgeHalf})});
   // Neck (capsule, radius 8, about 126 degrees to the shaft) and spherical head (radius 15).
   const Vec3 neck_a(0.0, 0.0, 28.0), head_centre(-28.0, 0.0, 48.0);
   parts.push_back(
@@ -75,7 +78,7 @@ ShapeBuild build_pelvis() {
   ShapeBuild s;
   s.sdf = [section, rotation](const Vec3& p) {
     const Vec3 q = rotation.transpose() * p;
-    return sd_polygon(Vec2(length2(q.x(), q.y()), q.z()), section);
+    return polygon_signed_distance(section, Vec2(length2(q.x(), q.y()), q.z()));
   };
   // Pappus: volume = area * 2 pi * (r of the centroid).
   double moment = 0.0;  // integral of r over the section

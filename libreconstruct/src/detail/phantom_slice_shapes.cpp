@@ -49,14 +49,14 @@ ShapeBuild build_tilted_box() {
   ShapeBuild s;
   s.sdf = [=](const Vec3& p) {
     const Vec3 q = rotation.transpose() * p;
-    return sd_extrude(sd_polygon(Vec2(q.x(), q.z()), section), q.y(), kHalfW);
+    return sd_extrude(polygon_signed_distance(section, Vec2(q.x(), q.z())), q.y(), kHalfW);
   };
   std::vector<Vec3> corners;
   for (const Vec2& c : section) {
     for (double t : {-kHalfW, kHalfW}) corners.push_back(c.x() * u + c.y() * v + t * w);
   }
   s.bounds = bounds_of(corners);
-  s.volume = polygon_area(section) * 2.0 * kHalfW;
+  s.volume = polygon_signed_area(section) * 2.0 * kHalfW;
   sample_prism_edges(section, Vec3::Zero(), u, v, w, kHalfW, s.sdf, s.features);
   return s;
 }
@@ -76,14 +76,14 @@ ShapeBuild build_in_slice_ridge() {
   const Vec3 across(-std::sin(turn), std::cos(turn), 0.0);  // y'
   ShapeBuild s;
   s.sdf = [=](const Vec3& p) {
-    return sd_extrude(sd_polygon(Vec2(across.dot(p), p.z()), section), along.dot(p), kHalfLength);
+    return sd_extrude(polygon_signed_distance(section, Vec2(across.dot(p), p.z())), along.dot(p), kHalfLength);
   };
   std::vector<Vec3> corners;
   for (const Vec2& c : section) {
     for (double t : {-kHalfLength, kHalfLength}) corners.push_back(c.x() * across + c.y() * Vec3::UnitZ() + t * along);
   }
   s.bounds = bounds_of(corners);
-  s.volume = polygon_area(section) * 2.0 * kHalfLength;
+  s.volume = polygon_signed_area(section) * 2.0 * kHalfLength;
   sample_prism_edges(section, Vec3::Zero(), across, Vec3::UnitZ(), along, kHalfLength, s.sdf, s.features);
   return s;
 }
@@ -108,10 +108,11 @@ ShapeBuild build_end_face_on_slice() {
   s.sdf = [=](const Vec3& p) {
     const double cylinder = sd_extrude((p.head<2>() - cylinder_centre).norm() - kRadius, p.z() - 0.5 * (kBottom + kTop),
                                        0.5 * (kTop - kBottom));
-    const double box = sd_extrude(sd_polygon(p.head<2>(), rectangle), p.z(), kBoxHalf);
+    const double box = sd_extrude(polygon_signed_distance(rectangle, p.head<2>()), p.z(), kBoxHalf);
     return std::min(cylinder, box);  // disjoint solids: exact
   };
-  s.bounds = box_of(Vec3(cylinder_centre.x() - kRadius, -kRadius, kBottom), Vec3(cylinder_centre.x() + kRadius, kRadius, kTop));
+  s.bounds = box_of(Vec3(cylinder_centre.x() - kRadius, -kRadius, kBottom),
+                    Vec3(cylinder_centre.x() + kRadius, kRadius, kTop));
   for (const Vec2& c : rectangle) {
     for (double z : {-kBoxHalf, kBoxHalf}) s.bounds.extend(Vec3(c.x(), c.y(), z));
   }

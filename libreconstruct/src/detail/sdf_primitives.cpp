@@ -6,29 +6,6 @@
 
 namespace contourmesh::detail {
 
-// Exact signed distance to a simple polygon (any orientation), after Inigo Quilez.
-double sd_polygon(const Vec2& p, const std::vector<Vec2>& v) {
-  double d = (p - v[0]).squaredNorm();
-  double s = 1.0;
-  for (std::size_t i = 0, j = v.size() - 1; i < v.size(); j = i, ++i) {
-    const Vec2 e = v[j] - v[i];
-    const Vec2 w = p - v[i];
-    const Vec2 b = w - e * std::clamp(w.dot(e) / e.squaredNorm(), 0.0, 1.0);
-    d = std::min(d, b.squaredNorm());
-    const bool c0 = p.y() >= v[i].y();
-    const bool c1 = p.y() < v[j].y();
-    const bool c2 = e.x() * w.y() > e.y() * w.x();
-    if ((c0 && c1 && c2) || (!c0 && !c1 && !c2)) s = -s;
-  }
-  return s * std::sqrt(d);
-}
-
-double polygon_area(const std::vector<Vec2>& v) {
-  double a = 0.0;
-  for (std::size_t i = 0, j = v.size() - 1; i < v.size(); j = i, ++i) a += v[j].x() * v[i].y() - v[i].x() * v[j].y();
-  return 0.5 * a;
-}
-
 namespace {
 
 // Root of G(s) = sum_i (r_i z_i / (s + r_i))^2 - 1 for Eberly's normalised closest-point problem on an

@@ -2,6 +2,8 @@
 // inside, millimetres).
 #pragma once
 
+#include "contourmesh/internal/polygon2d.h"
+
 #include <Eigen/Core>
 
 #include <algorithm>
@@ -39,11 +41,8 @@ inline double sd_extrude(double d2, double w, double half_height) {
   return std::min(std::max(qx, qy), 0.0) + length2(std::max(qx, 0.0), std::max(qy, 0.0));
 }
 
-/// Exact signed distance to a simple polygon (any orientation), after Inigo Quilez.
-double sd_polygon(const Vec2& p, const std::vector<Vec2>& v);
-
-/// Signed area of a polygon: positive when counter-clockwise.
-double polygon_area(const std::vector<Vec2>& v);
+// Polygons (sections of prisms and solids of revolution): polygon_signed_distance and
+// polygon_signed_area of contourmesh/internal/polygon2d.h.
 
 /// An axis-aligned ellipse in a plane, with its exact signed distance (Eberly's closest point).
 struct Ellipse {

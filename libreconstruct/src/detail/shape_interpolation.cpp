@@ -238,7 +238,8 @@ std::vector<Polygon> zero_level(const DistancePair& fields, double t, double lev
 }
 
 double level_for_area(const DistancePair& fields, double t, double target_area) {
-  const std::size_t count = static_cast<std::size_t>(std::max(fields.nx, 0)) * static_cast<std::size_t>(std::max(fields.ny, 0));
+  const std::size_t count =
+      static_cast<std::size_t>(std::max(fields.nx, 0)) * static_cast<std::size_t>(std::max(fields.ny, 0));
   if (count < 4) return 0.0;
   const double cell = fields.h * fields.h;
   auto area_at = [&](double iso) {

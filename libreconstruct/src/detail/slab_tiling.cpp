@@ -55,7 +55,8 @@ class Interpolation {
   [[nodiscard]] double w(double t) const { return w0_ + t * (w1_ - w0_); }
 
   // The contours of level t that belong to the piece whose contours are `lower` and `upper` and that
-  // no other piece has taken: outer contours that meet the piece's outer contours, and their holes. Empty when the level cannot be made or nothing belongs to the piece.
+  // no other piece has taken: outer contours that meet the piece's outer contours, and their holes. Empty when the
+  // level cannot be made or nothing belongs to the piece.
   std::vector<std::size_t> select(double t, const Level& lower, const Level& upper) {
     Extracted& e = level(t);
     std::vector<std::size_t> chosen;
@@ -67,7 +68,8 @@ class Interpolation {
     // contours hold a point of each other.
     auto meets = [](const Polygon& a, const Eigen::AlignedBox2d& box_a, const LevelContour& b) {
       if (!box_a.intersects(b.box)) return false;
-      const std::size_t step_a = std::max<std::size_t>(1, a.size() / 8), step_b = std::max<std::size_t>(1, b.points.size() / 8);
+      const std::size_t step_a = std::max<std::size_t>(1, a.size() / 8),
+                        step_b = std::max<std::size_t>(1, b.points.size() / 8);
       for (std::size_t i = 0; i < a.size(); i += step_a) {
         if (b.box.contains(a[i]) && point_in_polygon(b.points, a[i])) return true;
       }
@@ -253,7 +255,8 @@ class SlabTiler {
       twisted = twisted || pair_twisted;
     }
     if (top) direct.stats.one_to_one += pairs.size();
-    if (options_.band_refinement == BandRefinement::Interpolated && quality.sliver_share() > options_.max_band_sliver_share) {
+    if (options_.band_refinement == BandRefinement::Interpolated &&
+        quality.sliver_share() > options_.max_band_sliver_share) {
       // A nearly flat band between nested contours: the lifted triangulation of the region between.
       SlabMesh lifted = out.scratch();
       if (lifted_transition(restrict_level(lower, group.lower), restrict_level(upper, group.upper), lifted) &&
@@ -365,10 +368,13 @@ class SlabTiler {
     if (cap_area >= rival.score()) return false;
     // Only a tiling that joins the levels across far more than they are apart has failed.
     Polygon lower_points, upper_points;
-    for (const LevelContour& c : lower.contours) lower_points.insert(lower_points.end(), c.points.begin(), c.points.end());
-    for (const LevelContour& c : upper.contours) upper_points.insert(upper_points.end(), c.points.begin(), c.points.end());
+    for (const LevelContour& c : lower.contours)
+      lower_points.insert(lower_points.end(), c.points.begin(), c.points.end());
+    for (const LevelContour& c : upper.contours)
+      upper_points.insert(upper_points.end(), c.points.begin(), c.points.end());
     const double spacing = mean_spacing(lower, upper);
-    if (rival.longest_edge <= 2.0 * std::hypot(contour_distance(lower_points, upper_points), upper.w - lower.w) + 2.0 * spacing) {
+    if (rival.longest_edge <=
+        2.0 * std::hypot(contour_distance(lower_points, upper_points), upper.w - lower.w) + 2.0 * spacing) {
       return false;
     }
     const double quarter = 0.25 * (upper.w - lower.w);

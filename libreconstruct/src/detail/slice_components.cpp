@@ -25,25 +25,6 @@ int next_change(const std::uint8_t* row, int x, int nx, bool on) {
   return x;
 }
 
-int find_root(std::vector<int>& parent, int a) {
-  while (parent[a] != a) {
-    parent[a] = parent[parent[a]];  // path halving
-    a = parent[a];
-  }
-  return a;
-}
-
-// Joins the sets of a and b; the smaller label becomes the root, so every root is the first label
-// created in its component. Returns the root.
-int unite(std::vector<int>& parent, int a, int b) {
-  a = find_root(parent, a);
-  b = find_root(parent, b);
-  if (a == b) return a;
-  if (b < a) std::swap(a, b);
-  parent[b] = a;
-  return a;
-}
-
 }  // namespace
 
 void find_runs(const std::uint8_t* mask, int nx, int ny, std::vector<PixelRun>& runs) {
@@ -72,8 +53,10 @@ void complement_runs(const std::vector<PixelRun>& runs, int nx, int ny, std::vec
   }
 }
 
-int label_runs(std::vector<PixelRun>& runs, Connectivity connectivity, std::vector<int>& parent) {
-  parent.assign(1, 0);  // provisional labels start at 1
+int label_runs(std::vector<PixelRun>& runs, Connectivity connectivity, UnionFind<int>& labels) {
+  // UnionFind keeps the smallest label as the root, so every root is the first label created in its
+  // component.
+  labels.reset(1);  // provisional labels start at 1
   const int reach = connectivity == Connectivity::Eight ? 1 : 0;
   std::size_t prev_begin = 0, prev_end = 0;  // the runs of the row above the current one
   for (std::size_t i = 0; i < runs.size();) {
@@ -87,12 +70,9 @@ int label_runs(std::vector<PixelRun>& runs, Connectivity connectivity, std::vect
       while (j < prev_end && runs[j].x1 <= lo) ++j;
       int label = 0;
       for (std::size_t k = j; k < prev_end && runs[k].x0 < hi; ++k) {
-        label = label == 0 ? find_root(parent, runs[k].label) : unite(parent, label, runs[k].label);
+        label = label == 0 ? labels.find(runs[k].label) : labels.unite(label, runs[k].label);
       }
-      if (label == 0) {
-        label = static_cast<int>(parent.size());
-        parent.push_back(label);
-      }
+      if (label == 0) label = labels.add();
       runs[i].label = label;
     }
     prev_begin = row_begin;
@@ -100,10 +80,10 @@ int label_runs(std::vector<PixelRun>& runs, Connectivity connectivity, std::vect
   }
   // Final labels: the roots in creation order, which is the raster order of the first pixels. Labels
   // of the row above were stored before later unions: resolve every run through its root.
-  std::vector<int> final_label(parent.size(), 0);
+  std::vector<int> final_label(labels.size(), 0);
   int count = 0;
-  for (std::size_t l = 1; l < parent.size(); ++l) {
-    const int root = find_root(parent, static_cast<int>(l));
+  for (std::size_t l = 1; l < labels.size(); ++l) {
+    const int root = labels.find(static_cast<int>(l));
     final_label[l] = root == static_cast<int>(l) ? ++count : final_label[root];
   }
   for (PixelRun& r : runs) r.label = final_label[r.label];
@@ -124,14 +104,14 @@ void keep_largest_component(std::vector<std::uint8_t>& mask, int nx, int ny, int
     }
   }
   for (std::size_t k = 1; k < row_begin.size(); ++k) row_begin[k] += row_begin[k - 1];
-  std::vector<int> parent(runs.size());
-  for (std::size_t k = 0; k < runs.size(); ++k) parent[k] = static_cast<int>(k);
+  UnionFind<int> components(runs.size());
   // Joins the overlapping runs of two rows (6-connectivity: runs share an edge when their x ranges
   // overlap).
   auto join_rows = [&](std::size_t a, std::size_t b) {
     std::size_t i = row_begin[a], j = row_begin[b];
     while (i < row_begin[a + 1] && j < row_begin[b + 1]) {
-      if (runs[i].x0 < runs[j].x1 && runs[j].x0 < runs[i].x1) unite(parent, static_cast<int>(i), static_cast<int>(j));
+      if (runs[i].x0 < runs[j].x1 && runs[j].x0 < runs[i].x1)
+        components.unite(static_cast<int>(i), static_cast<int>(j));
       if (runs[i].x1 < runs[j].x1) ++i;
       else ++j;
     }
@@ -147,7 +127,7 @@ void keep_largest_component(std::vector<std::uint8_t>& mask, int nx, int ny, int
   // root of the largest size is the first component in raster order.
   std::vector<std::size_t> size(runs.size(), 0);
   for (std::size_t k = 0; k < runs.size(); ++k) {
-    size[find_root(parent, static_cast<int>(k))] += static_cast<std::size_t>(runs[k].x1 - runs[k].x0);
+    size[components.find(static_cast<int>(k))] += static_cast<std::size_t>(runs[k].x1 - runs[k].x0);
   }
   std::size_t best = runs.size();
   for (std::size_t k = 0; k < runs.size(); ++k) {
@@ -159,7 +139,7 @@ void keep_largest_component(std::vector<std::uint8_t>& mask, int nx, int ny, int
     for (int y = 0; y < ny; ++y) {
       const std::size_t row = static_cast<std::size_t>(z) * ny + y;
       for (; static_cast<std::size_t>(k) < row_begin[row + 1]; ++k) {
-        if (find_root(parent, k) != static_cast<int>(best)) continue;
+        if (components.find(k) != static_cast<int>(best)) continue;
         std::fill_n(mask.begin() + static_cast<std::ptrdiff_t>(static_cast<std::size_t>(z) * slice +
                                                               static_cast<std::size_t>(y) * nx + runs[k].x0),
                     runs[k].x1 - runs[k].x0, std::uint8_t{1});

@@ -1,6 +1,8 @@
 // Private: connected components of a binary slice image, by runs and union-find (segmentation).
 #pragma once
 
+#include "contourmesh/internal/union_find.h"
+
 #include <cstdint>
 #include <vector>
 
@@ -31,7 +33,7 @@ void complement_runs(const std::vector<PixelRun>& runs, int nx, int ny, std::vec
 /// sets every run's label to 1..count and returns count. Components are numbered in the raster order of
 /// their first pixel (row by row, then x), the numbering of a flood fill started from each unlabelled
 /// pixel in raster order. Union-find over the runs; `scratch` keeps its buffer between calls.
-int label_runs(std::vector<PixelRun>& runs, Connectivity connectivity, std::vector<int>& scratch);
+int label_runs(std::vector<PixelRun>& runs, Connectivity connectivity, UnionFind<int>& scratch);
 
 /// Keeps, of a binary volume (nx x ny x nz, x fastest, bytes 0 or 1), only the largest 6-connected
 /// component of the 1s; the first in raster order (z, then y, then x of its first voxel) among

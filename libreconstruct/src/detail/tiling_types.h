@@ -2,7 +2,7 @@
 // an intermediate plane made by interpolation); a slab mesh collects what one slab's tiling adds.
 #pragma once
 
-#include "detail/polygon.h"
+#include "contourmesh/internal/polygon2d.h"
 #include "reconstruct/tiling.h"
 
 #include <smooth/limits.h>

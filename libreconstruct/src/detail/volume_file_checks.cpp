@@ -60,7 +60,9 @@ struct Promise {
   }
 };
 
-[[noreturn]] void fail(const std::string& shown, const std::string& what) { throw InvalidInputError(shown + ": " + what); }
+[[noreturn]] void fail(const std::string& shown, const std::string& what) {
+  throw InvalidInputError(shown + ": " + what);
+}
 
 void check_length(const std::string& shown, const Promise& p, std::uint64_t available, const std::string& where) {
   if (p.voxel_bytes == 0 || available >= p.bytes()) return;
@@ -264,7 +266,8 @@ void check_sform(const std::string& shown, const Eigen::Matrix3d& m) {
         std::ostringstream msg;
         msg.precision(3);
         msg << "the NIfTI sform matrix is sheared: voxel axes " << a + 1 << " and " << b + 1 << " meet at "
-            << std::acos(std::clamp(cosine, -1.0, 1.0)) * 180.0 / 3.14159265358979 << " degrees, not 90 (a gantry tilt?); "
+            << std::acos(std::clamp(cosine, -1.0, 1.0)) * 180.0 / 3.14159265358979
+            << " degrees, not 90 (a gantry tilt?); "
             << "ITK would make them orthogonal and misplace every slice: resample the volume onto an orthogonal grid "
                "first";
         fail(shown, msg.str());
@@ -300,7 +303,8 @@ void check_nifti(const fs::path& path, const std::string& shown, bool gz) {
   if (version == 1) {
     const auto ndim = get<std::int16_t>(h, 40, swap);
     if (ndim < 1 || ndim > 7) return;
-    for (int d = 1; d <= ndim; ++d) p.sizes.push_back(static_cast<std::uint64_t>(std::max<std::int16_t>(get<std::int16_t>(h, 40 + 2 * d, swap), 1)));
+    for (int d = 1; d <= ndim; ++d)
+      p.sizes.push_back(static_cast<std::uint64_t>(std::max<std::int16_t>(get<std::int16_t>(h, 40 + 2 * d, swap), 1)));
     const auto bitpix = get<std::int16_t>(h, 72, swap);
     p.voxel_bytes = bitpix > 0 && bitpix % 8 == 0 ? static_cast<std::uint64_t>(bitpix / 8) : 0;
     const auto vox_offset = get<float>(h, 108, swap);
@@ -378,7 +382,8 @@ void check_nrrd(const fs::path& path, const std::string& shown) {
     if (p.sizes.empty()) return;
   }
   p.voxel_bytes = nrrd_type_size(lower(fields["type"]));
-  if (fields.count("byte skip") || fields.count("byteskip") || fields.count("line skip") || fields.count("lineskip")) return;
+  if (fields.count("byte skip") || fields.count("byteskip") || fields.count("line skip") || fields.count("lineskip"))
+    return;
   const std::string encoding = lower(fields["encoding"]);
   const bool gzip = encoding == "gzip" || encoding == "gz";
   if (encoding != "raw" && !gzip) return;

@@ -1,4 +1,4 @@
-// Adaptive subdivision around feature vertices (Xu et al. 2006, section 4; SPEC 3.4).
+// Adaptive subdivision around feature vertices (Xu et al. 2006, section 4).
 #pragma once
 
 #include "smooth/feature_detection.h"

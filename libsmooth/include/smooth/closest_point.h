@@ -1,5 +1,5 @@
 // Nearest-point queries on a triangle mesh's surface and on a point set, through a uniform grid of
-// buckets. Used by the surface metrics (docs/smoothing.md, "How accuracy is measured") and wherever a
+// buckets. Used by the surface metrics (surface_metrics.h) and wherever a
 // point must be compared with a surface.
 #pragma once
 

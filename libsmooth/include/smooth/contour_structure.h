@@ -1,4 +1,4 @@
-// The contour structure of a tiled mesh (SPEC 2), recovered from its vertex ids and connectivity:
+// The contour structure of a tiled mesh (the ids of mesh.h), recovered from its vertex ids and connectivity:
 // each vertex's two neighbours along its own contour, windows of consecutive contour vertices, and
 // the slice axis.
 #pragma once
@@ -33,7 +33,7 @@ struct ContourNeighbours {
 /// non-collinear vertices (throws InvalidInputError otherwise).
 [[nodiscard]] Eigen::Vector3d estimate_slice_axis(const Mesh& mesh);
 
-/// Recovers slice and contour ids for a contour-stack mesh saved without them (SPEC 2): vertices are
+/// Recovers slice and contour ids for a contour-stack mesh saved without them (ids as in mesh.h): vertices are
 /// binned by their coordinate along `axis` (values closer than `tolerance`, default 1e-4 of the extent
 /// along the axis, share a slice plane; planes are numbered in increasing order), and within a plane
 /// the connected components of that plane's edges are the contours. Returns false and leaves the

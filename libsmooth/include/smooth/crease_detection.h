@@ -1,6 +1,6 @@
 // Sharp features of a (smoothed) mesh: creases found from the spread of face normals around each vertex,
 // kept when they extend along a line, and widened to a band. The cross-slice smoother labels its
-// result with it (docs/smoothing.md, "Feature labels").
+// result with it (docs/results.md, "Feature labels of the paper's method").
 //
 // 1. Core vertices: the normal tensor T = sum_f A_f n_f n_f^T / 3 over the faces of the vertex and of
 //    its ring neighbours within `radius` (faces counted once per such vertex they touch) has eigenvalues

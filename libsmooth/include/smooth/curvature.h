@@ -1,5 +1,5 @@
 // Principal curvatures and directions by weighted quadric fitting (Milroy et al. 1997), as used by
-// Xu et al. 2006, section 3.1 (paper eqs. 9-13; SPEC 3.2).
+// Xu et al. 2006, section 3.1 (paper eqs. 9-13).
 #pragma once
 
 #include "smooth/adjacency.h"

@@ -1,4 +1,4 @@
-// How a contour-based mesh closes the ends of an object (SPEC 2 and 4).
+// How a contour-based mesh closes the ends of an object (docs/reconstruction.md, "Tiling").
 #pragma once
 
 namespace contourmesh {
@@ -10,7 +10,7 @@ enum class EndCaps {
   /// this is the unbiased end position (the "slab" convention of radiotherapy structure volumes).
   /// Default.
   HalfSpacing,
-  /// In the plane of the last contour: cap triangles use that slice's vertices only (SPEC 2). The
+  /// In the plane of the last contour: cap triangles use that slice's vertices only. The
   /// object then ends, on average, half a spacing short at each end.
   AtEndSlice,
 };

@@ -1,7 +1,7 @@
-// Feature detection by contour continuity: the paper's Algorithm 2 (Xu et al. 2006, section 3.2;
-// SPEC 3.3). A vertex whose umbrella is large is an edge when the in-slice curvatures of its own contour
-// and of the two adjacent contours agree where the feature line crosses them, noise when they do not;
-// umbilic vertices vote with their neighbours (eq. 8) for corner or noise.
+// Feature detection by contour continuity: the paper's Algorithm 2 (Xu et al. 2006, section 3.2). A vertex
+// whose umbrella is large is an edge when the in-slice curvatures of its own contour and of the two adjacent
+// contours agree where the feature line crosses them, noise when they do not; umbilic vertices vote with their
+// neighbours (eq. 8) for corner or noise.
 #pragma once
 
 #include "smooth/adjacency.h"
@@ -28,7 +28,8 @@ enum class VertexLabel : std::uint8_t {
 /// "smooth", "edge", "corner", "noise".
 [[nodiscard]] std::string_view to_string(VertexLabel label);
 
-/// Which size of the umbrella U(v) decides whether a vertex is examined (SPEC 3.1).
+/// Which size of the umbrella U(v) decides whether a vertex is examined (the threshold gamma of Algorithm 2 on the
+/// umbrella of paper eq. 7).
 enum class UmbrellaMeasure {
   Length,           ///< |U|, the paper's choice (default)
   NormalComponent,  ///< |U . n|: ignores tangential irregularity of the tiling
@@ -46,7 +47,7 @@ enum class DetectionMode {
 
 /// What happens to a candidate whose feature line runs within a slice plane (S parallel to the
 /// slices), or that lies off the slices (end-cap rims, branching copies): the paper's blind spot
-/// (SPEC 3.3).
+/// (paper Algorithm 2).
 enum class InSliceFeatures {
   /// The paper's rule (default): no continuity across contours can be shown, so the vertex is noise.
   Noise,
@@ -76,15 +77,14 @@ struct DetectionOptions {
   double delta_factor = 0.5;
   InSliceFeatures in_slice = InSliceFeatures::Noise;
   /// Corners where faces meet (an extension; the paper examines corners only at umbilic vertices).
-  /// At a vertex where three or more faces meet, such as a box corner, the quadric fit of SPEC 3.2 gives
-  /// two curvatures that differ, and principal directions that mean nothing. A candidate whose face
-  /// normals spread in three directions therefore goes to the Psi vote (eq. 8), as an umbilic one does.
-  /// The measure is the smallest eigenvalue of the angle-weighted normal tensor
-  /// sum_f theta_f n_f n_f^T, divided by its trace: 1/3 at a cube corner, 0 along a sharp edge, about
-  /// (h kappa)^2 / 8 on a smooth patch with edges h long. The threshold is scale-free, in [0, 1/3];
-  /// a value above 1/3 turns the rule off.
+  /// At a vertex where three or more faces meet, such as a box corner, the quadric fit of curvature.h (paper eq. 9)
+  /// gives two curvatures that differ, and principal directions that mean nothing. A candidate whose face normals
+  /// spread in three directions therefore goes to the Psi vote (eq. 8), as an umbilic one does. The measure is the
+  /// smallest eigenvalue of the angle-weighted normal tensor sum_f theta_f n_f n_f^T, divided by its trace: 1/3 at a
+  /// cube corner, 0 along a sharp edge, about (h kappa)^2 / 8 on a smooth patch with edges h long. The threshold is
+  /// scale-free, in [0, 1/3]; a value above 1/3 turns the rule off.
   double corner_spread = 0.1;
-  /// Consecutive contour vertices in each curve fit (odd, >= 5; SPEC default 7).
+  /// Consecutive contour vertices in each curve fit (odd, >= 5; default 7).
   int window = 7;
   /// Taubin lambda|mu iterations applied to a copy used for detection only (paper section 5), >= 0.
   int prefilter_iterations = 0;
@@ -123,7 +123,7 @@ struct FeatureDetection {
 /// Edge test: k0 k > 0 and |k0 - k| < delta for each adjacent contour that exists (one at the first
 /// and last slice, none for a vertex off the slices: noise). No intersection inside the window
 /// (S misses the contour there) is noise; so is S parallel to the slices (a feature line within a
-/// slice plane: the paper's blind spot, SPEC 3.3).
+/// slice plane: the paper's blind spot).
 /// Umbilic candidates, and those whose face normals spread in three directions (`corner_spread`), are
 /// classified after all others, in index order, by Psi_i = sum_j w_j tau_j with w_j = exp(-d_ij / d_max)
 /// and tau_j = +1 for edge/corner, -1 for noise, 0 otherwise (eq. 8).

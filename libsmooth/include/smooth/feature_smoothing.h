@@ -1,4 +1,4 @@
-// The paper's method end to end (Xu et al. 2006, Algorithm 1; SPEC 3): detect features, subdivide
+// The paper's method end to end (Xu et al. 2006, Algorithm 1): detect features, subdivide
 // adaptively around them, smooth the adaptive mesh with a linear isotropic scheme, resume the
 // original resolution.
 #pragma once

@@ -1,5 +1,5 @@
 // The triangle mesh type shared by every ContourMesh library: positions, triangles and the per-vertex
-// contour ids of SPEC section 2.
+// contour ids that the smoothing of Xu et al. 2006 reads (the slice c(i) of each vertex, paper section 3).
 #pragma once
 
 #include <Eigen/Core>
@@ -27,7 +27,9 @@ using Triangle = std::array<Index, 3>;
 ///   right-hand rule).
 /// - `slice_ids[i]` is c(i), the 0-based index of the slice (contour level) that vertex i lies on,
 ///   ordered along the slice axis; `contour_ids[i]` names the contour within that slice. Both are
-///   either empty (a mesh without ids) or hold one entry per vertex; kNoId marks a vertex on no slice.
+///   either empty (a mesh without ids) or hold one entry per vertex; kNoId marks a vertex on no slice
+///   (cap interiors, branching composites, intermediate contours, subdivision vertices). Any other
+///   negative id is invalid, for every reader, writer, the CLI and the VTK filters.
 struct Mesh {
   Eigen::Matrix3Xd positions;
   std::vector<Triangle> triangles;

@@ -15,7 +15,8 @@ namespace contourmesh {
 
 /// Smallest interior angle of the triangle (a, b, c), in degrees, in [0, 60]. 0 for a triangle with a
 /// repeated corner or collinear corners.
-[[nodiscard]] double minimum_angle_degrees(const Eigen::Vector3d& a, const Eigen::Vector3d& b, const Eigen::Vector3d& c);
+[[nodiscard]] double minimum_angle_degrees(const Eigen::Vector3d& a, const Eigen::Vector3d& b,
+                                           const Eigen::Vector3d& c);
 
 /// Share of the surface area, in [0, 1], held by faces whose smallest angle is below
 /// `min_angle_degrees` (slivers: their normals, curvatures and umbrella operators are unreliable).

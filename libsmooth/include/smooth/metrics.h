@@ -1,5 +1,5 @@
-// Shape metrics for the evaluation protocol (SPEC 5): volume, area, volume shrinking rate, distance to
-// an analytic surface and normal error against an analytic normal field.
+// Shape metrics for the evaluation protocol (the comparison of methods, docs/results.md): volume, area, volume
+// shrinking rate, distance to an analytic surface and normal error against an analytic normal field.
 #pragma once
 
 #include "smooth/mesh.h"

@@ -39,7 +39,7 @@ struct ContourStackSpec {
 /// Tiles contour k to contour k+1 vertex by vertex (each quad split into two triangles) and closes
 /// both ends with ear-clipped caps, half a spacing beyond the end slices (on copies of the end
 /// contours, ids kNoId, appended after the slice vertices) or in the end slices (caps then use only
-/// the end contours' vertices, SPEC 2). Vertex ids: slice k for every vertex of contour k, contour
+/// the end contours' vertices, as in end_caps.h). Vertex ids: slice k for every vertex of contour k, contour
 /// index 0. Outward-oriented and closed.
 /// Throws InvalidInputError for parameters out of range.
 [[nodiscard]] Mesh make_contour_stack(const ContourStackSpec& spec);

@@ -1,4 +1,5 @@
-// The split of each 1-ring by slice (SPEC 2): N1^c(i), N1^{c-1}(i), N1^{c+1}(i).
+// The split of each 1-ring by slice (the paper's notation, section 3; ids as in mesh.h): N1^c(i), N1^{c-1}(i),
+// N1^{c+1}(i).
 #pragma once
 
 #include "smooth/adjacency.h"
@@ -25,7 +26,9 @@ struct SliceRings {
   [[nodiscard]] std::span<const Index> other(Index i) const { return span(other_begin[i], offsets[i + 1]); }
 
  private:
-  [[nodiscard]] std::span<const Index> span(Index b, Index e) const { return {neighbors.data() + b, neighbors.data() + e}; }
+  [[nodiscard]] std::span<const Index> span(Index b, Index e) const {
+    return {neighbors.data() + b, neighbors.data() + e};
+  }
 };
 
 /// Splits every 1-ring by the slice ids of the mesh. Throws InvalidInputError if the mesh has no

@@ -1,4 +1,4 @@
-// Accuracy measured over surfaces, not at vertices (docs/smoothing.md, "How accuracy is measured"):
+// Accuracy measured over surfaces, not at vertices (docs/reconstruction.md, "Judging a tiling"):
 // uniform samples on a mesh (their distance to the true surface) and on the true surface (their
 // distance to the mesh), two-sided RMS and Hausdorff distance, area-weighted normal error, each split
 // into a feature region (near the truth's sharp edges and corners) and the smooth rest.
@@ -35,9 +35,9 @@ struct SurfaceSamples {
 /// more with probability equal to the remainder, placed uniformly in the face; every sample weighs
 /// 1 / density. Reproducible for a seed. Throws InvalidInputError for density <= 0, a face index out
 /// of range, or more than `max_samples` samples.
-[[nodiscard]] SurfaceSamples sample_mesh_surface(const Eigen::Matrix3Xd& positions, const std::vector<Triangle>& triangles,
-                                                 double density, std::uint64_t seed = 1,
-                                                 std::size_t max_samples = 50'000'000);
+[[nodiscard]] SurfaceSamples sample_mesh_surface(const Eigen::Matrix3Xd& positions,
+                                                 const std::vector<Triangle>& triangles, double density,
+                                                 std::uint64_t seed = 1, std::size_t max_samples = 50'000'000);
 
 /// Samples of the zero set of a signed distance function inside `box`: the crossings of the edges of a
 /// grid of `spacing` (found in a narrow band only: blocks where |sdf| rules out the surface are skipped,
@@ -99,8 +99,9 @@ struct SurfaceAccuracy {
 
 /// Measures a mesh against a truth. Runs on every core. Throws InvalidInputError when the truth has
 /// no distance or no samples, for options out of range, or a mesh whose faces name missing vertices.
-[[nodiscard]] SurfaceAccuracy surface_accuracy(const Eigen::Matrix3Xd& positions, const std::vector<Triangle>& triangles,
-                                               const SurfaceTruth& truth, const SurfaceMetricsOptions& options = {});
+[[nodiscard]] SurfaceAccuracy surface_accuracy(const Eigen::Matrix3Xd& positions,
+                                               const std::vector<Triangle>& triangles, const SurfaceTruth& truth,
+                                               const SurfaceMetricsOptions& options = {});
 [[nodiscard]] SurfaceAccuracy surface_accuracy(const Mesh& mesh, const SurfaceTruth& truth,
                                                const SurfaceMetricsOptions& options = {});
 

@@ -1,4 +1,4 @@
-// The umbrella operator of the paper (eq. 7, SPEC 3.1): the discrete uniform Laplacian.
+// The umbrella operator of the paper (eq. 7): the discrete uniform Laplacian.
 #pragma once
 
 #include "smooth/adjacency.h"

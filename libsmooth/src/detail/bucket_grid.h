@@ -29,7 +29,8 @@ struct BucketGrid {
     g.cell = cell;
     g.origin = lo;
     for (int a = 0; a < 3; ++a) {
-      g.dims[static_cast<std::size_t>(a)] = std::max<std::int64_t>(1, static_cast<std::int64_t>(std::ceil(extent[a] / cell)));
+      g.dims[static_cast<std::size_t>(a)] =
+          std::max<std::int64_t>(1, static_cast<std::int64_t>(std::ceil(extent[a] / cell)));
     }
     return g;
   }

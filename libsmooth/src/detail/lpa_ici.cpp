@@ -140,7 +140,8 @@ LpaIciResult lpa_ici(const Profile& p, const LpaIciOptions& o) {
     }
     const Moments below = centre_only + down, above = centre_only + up, both = below + up;
     double value = 0.0, variance = 0.0;
-    if (added_down && !g[kBelow].stopped && fit_parabola(below, value, variance)) g[kBelow].offer(value, variance, h, o);
+    if (added_down && !g[kBelow].stopped && fit_parabola(below, value, variance))
+      g[kBelow].offer(value, variance, h, o);
     if (added_up && !g[kAbove].stopped && fit_parabola(above, value, variance)) g[kAbove].offer(value, variance, h, o);
     if (added_down || added_up) {
       if (!g[kSymmetric].stopped && fit_parabola(both, value, variance)) g[kSymmetric].offer(value, variance, h, o);

@@ -16,7 +16,8 @@ SliceEdgeGrid::SliceEdgeGrid(const Mesh& mesh, const ContourNeighbours& contour,
   for (Index i = 0; i < n; ++i) {
     if (!on_contour[static_cast<std::size_t>(i)]) continue;
     for (Index j : contour.of[static_cast<std::size_t>(i)]) {
-      if (j > i && on_contour[static_cast<std::size_t>(j)] && mesh.slice_ids[static_cast<std::size_t>(j)] == mesh.slice_ids[static_cast<std::size_t>(i)]) {
+      if (j > i && on_contour[static_cast<std::size_t>(j)] &&
+          mesh.slice_ids[static_cast<std::size_t>(j)] == mesh.slice_ids[static_cast<std::size_t>(i)]) {
         edge_a_.push_back(i);
         edge_b_.push_back(j);
         lo = std::min(lo, mesh.slice_ids[static_cast<std::size_t>(i)]);
@@ -50,8 +51,12 @@ SliceEdgeGrid::SliceEdgeGrid(const Mesh& mesh, const ContourNeighbours& contour,
     const auto s = static_cast<std::size_t>(mesh.slice_ids[static_cast<std::size_t>(edge_a_[e])] - lo);
     const Slice& sl = slices_[s];
     const Eigen::Vector2d a = uv(edge_a_[e]), b = uv(edge_b_[e]);
-    const auto cu = [&](double u) { return std::clamp<std::int64_t>(static_cast<std::int64_t>(std::floor((u - sl.u0) / cell_)), 0, sl.nu - 1); };
-    const auto cv = [&](double v) { return std::clamp<std::int64_t>(static_cast<std::int64_t>(std::floor((v - sl.v0) / cell_)), 0, sl.nv - 1); };
+    const auto cu = [&](double u) {
+      return std::clamp<std::int64_t>(static_cast<std::int64_t>(std::floor((u - sl.u0) / cell_)), 0, sl.nu - 1);
+    };
+    const auto cv = [&](double v) {
+      return std::clamp<std::int64_t>(static_cast<std::int64_t>(std::floor((v - sl.v0) / cell_)), 0, sl.nv - 1);
+    };
     for (std::int64_t y = cv(std::min(a.y(), b.y())); y <= cv(std::max(a.y(), b.y())); ++y) {
       for (std::int64_t x = cu(std::min(a.x(), b.x())); x <= cu(std::max(a.x(), b.x())); ++x) visit(s, y * sl.nu + x);
     }

@@ -31,8 +31,8 @@ class SliceEdgeGrid {
   /// `plane_normal`, whose ends' normals face `facing` (positive dot product of their sum), the crossing
   /// nearest to `near` in the slice plane, if within `radius`.
   [[nodiscard]] bool cut(std::int32_t slice, const Eigen::Matrix3Xd& positions, const Eigen::Matrix3Xd& normals,
-                         const Eigen::Vector3d& origin, const Eigen::Vector3d& plane_normal, const Eigen::Vector3d& near,
-                         const Eigen::Vector3d& facing, double radius, EdgeCut& out) const;
+                         const Eigen::Vector3d& origin, const Eigen::Vector3d& plane_normal,
+                         const Eigen::Vector3d& near, const Eigen::Vector3d& facing, double radius, EdgeCut& out) const;
 
  private:
   struct Slice {

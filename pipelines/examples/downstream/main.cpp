@@ -126,7 +126,8 @@ int main(int argc, char** argv) {
     ok &= check(image_surface->GetOutput()->GetNumberOfPolys() == reconstruction.mesh.num_faces(),
                 "the image filter gives the reconstruction");
     const cm::TopologySummary polyline_topology = cm::summarize_topology(from_polylines);
-    ok &= check(polyline_topology.closed && polyline_topology.manifold, "the polyline filter gives a closed manifold mesh");
+    ok &= check(polyline_topology.closed && polyline_topology.manifold,
+                "the polyline filter gives a closed manifold mesh");
     ok &= check(std::abs(cm::enclosed_volume(from_polylines) - phantom.volume) < 0.05 * phantom.volume,
                 "the polyline filter's volume within 5 % of the analytic volume");
     return ok ? EXIT_SUCCESS : EXIT_FAILURE;

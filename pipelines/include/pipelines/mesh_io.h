@@ -40,7 +40,7 @@ inline constexpr const char* kStlHeader = "ContourMesh output. SPACE=LPS";
 /// True when the format stores per-vertex contour ids (PLY, VTP).
 [[nodiscard]] bool format_keeps_contour_ids(MeshFormat format);
 
-/// Names of the per-vertex id arrays (SPEC 2).
+/// Names of the per-vertex id arrays (the slice and contour ids of smooth/mesh.h).
 struct ContourIdArrayNames {
   std::string slice = "ContourId";       ///< c(i), the slice index
   std::string contour = "ContourIndex";  ///< which contour of that slice

@@ -36,8 +36,9 @@
 class vtkContourPolylinesToSurfaceFilter : public vtkPolyDataAlgorithm {
  public:
   static vtkContourPolylinesToSurfaceFilter* New();
-  vtkTypeMacro(vtkContourPolylinesToSurfaceFilter, vtkPolyDataAlgorithm)  // no ";": the macro ends with "public:" (-Wpedantic)
-  void PrintSelf(ostream& os, vtkIndent indent) override;
+  vtkTypeMacro(vtkContourPolylinesToSurfaceFilter,
+               vtkPolyDataAlgorithm)  // no ";": the macro ends with "public:" (-Wpedantic)
+      void PrintSelf(ostream& os, vtkIndent indent) override;
 
   enum DriftAlignmentType {
     DRIFT_ALIGNMENT_CENTROIDS = 0,  ///< tile a drifting single contour in centroid-aligned slices (default)

@@ -29,8 +29,9 @@
 class vtkCtImageToContourSurfaceFilter : public vtkPolyDataAlgorithm {
  public:
   static vtkCtImageToContourSurfaceFilter* New();
-  vtkTypeMacro(vtkCtImageToContourSurfaceFilter, vtkPolyDataAlgorithm)  // no ";": the macro ends with "public:" (-Wpedantic)
-  void PrintSelf(ostream& os, vtkIndent indent) override;
+  vtkTypeMacro(vtkCtImageToContourSurfaceFilter,
+               vtkPolyDataAlgorithm)  // no ";": the macro ends with "public:" (-Wpedantic)
+      void PrintSelf(ostream& os, vtkIndent indent) override;
 
   enum ThresholdMethodType {
     THRESHOLD_FIXED = 0,  ///< voxels >= Threshold are foreground (default)

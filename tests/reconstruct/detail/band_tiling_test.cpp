@@ -18,7 +18,8 @@ using test::arc_points;
 using test::circle_points;
 
 Eigen::Vector3d corner(const Polygon& lower, double wl, const Polygon& upper, double wu, const BandCorner& c) {
-  const Eigen::Vector2d& p = c.ring == 0 ? lower[static_cast<std::size_t>(c.index)] : upper[static_cast<std::size_t>(c.index)];
+  const Eigen::Vector2d& p =
+      c.ring == 0 ? lower[static_cast<std::size_t>(c.index)] : upper[static_cast<std::size_t>(c.index)];
   return {p.x(), p.y(), c.ring == 0 ? wl : wu};
 }
 
@@ -57,12 +58,14 @@ TEST(BandTiling, LargeContoursSolvedCoarseToFineKeepTheLeastArea) {
 TEST(BandTiling, QualityCountsSliversOfAFlatBand) {
   // Concentric circles 6 mm apart in the plane and 0.5 mm apart across: long thin faces.
   const Polygon lower = circle_points(0, 0, 16, 140), upper = circle_points(0, 0, 10, 90);
-  const BandQuality flat = band_quality(lower, 0.0, upper, 0.5, minimum_area_band(lower, 0.0, upper, 0.5, TilingOptions{}));
+  const BandQuality flat =
+      band_quality(lower, 0.0, upper, 0.5, minimum_area_band(lower, 0.0, upper, 0.5, TilingOptions{}));
   EXPECT_GT(flat.sliver_share(), 0.3);
   EXPECT_NEAR(flat.longest_cross_edge, std::hypot(6.0, 0.5), 0.5);
   // A cylinder's band has no slivers.
   const Polygon ring = circle_points(0, 0, 10, 90);
-  const BandQuality steep = band_quality(ring, 0.0, ring, 1.0, minimum_area_band(ring, 0.0, ring, 1.0, TilingOptions{}));
+  const BandQuality steep =
+      band_quality(ring, 0.0, ring, 1.0, minimum_area_band(ring, 0.0, ring, 1.0, TilingOptions{}));
   EXPECT_EQ(steep.sliver_share(), 0.0);
 }
 
@@ -75,7 +78,8 @@ TEST(BandTiling, SlitsAtDifferentPlacesOfAThinWallTwistTheBand) {
   // A ring wall with a narrow slit, the slit a quarter turn on in the next slice: both are one outer
   // contour, but every band between them crosses the wall's inside.
   const Polygon a = arc_points(0.05, 2 * std::numbers::pi - 0.05, 18, 20, 120);
-  const Polygon b = arc_points(std::numbers::pi / 2 + 0.05, std::numbers::pi / 2 + 2 * std::numbers::pi - 0.05, 18, 20, 120);
+  const Polygon b =
+      arc_points(std::numbers::pi / 2 + 0.05, std::numbers::pi / 2 + 2 * std::numbers::pi - 0.05, 18, 20, 120);
   const double spacing = perimeter(a) / static_cast<double>(a.size());
   const BandQuality q = band_quality(a, 0.0, b, 1.0, minimum_area_band(a, 0.0, b, 1.0, TilingOptions{}));
   EXPECT_TRUE(band_is_twisted(a, 0.0, b, 1.0, q, spacing)) << q.longest_cross_edge;

@@ -43,7 +43,8 @@ TEST(Branching, OneToTwoIsBridgedOnTheMidPlane) {
   test::TestStack stack;
   const Level lower{0.0, {stack.contour(circle_points(0, 0, 10, 64), 0.0)}};
   // Two discs that poke out of the lower one: not nested, so a composite.
-  const Level upper{2.0, {stack.contour(circle_points(-8, 0, 5, 32), 2.0), stack.contour(circle_points(8, 0, 5, 32), 2.0)}};
+  const Level upper{2.0,
+                    {stack.contour(circle_points(-8, 0, 5, 32), 2.0), stack.contour(circle_points(8, 0, 5, 32), 2.0)}};
   SlabMesh out = stack.slab();
   tile_composite(lower, upper, TilingOptions{}, out);
   EXPECT_EQ(out.stats.composites, 1u);
@@ -64,8 +65,9 @@ TEST(Branching, ContoursInsideOneAreJoinedByAWellShapedFill) {
   // would fan slivers across the flat region between them; the nested fill triangulates it.
   test::TestStack stack;
   const Level lower{0.0, {stack.contour(circle_points(0, 0, 15, 120), 0.0)}};
-  const Level upper{0.5, {stack.contour(circle_points(-6, 0, 2, 16), 0.5), stack.contour(circle_points(6, 0, 2, 16), 0.5),
-                          stack.contour(circle_points(0, 7, 2, 16), 0.5)}};
+  const Level upper{0.5,
+                    {stack.contour(circle_points(-6, 0, 2, 16), 0.5), stack.contour(circle_points(6, 0, 2, 16), 0.5),
+                     stack.contour(circle_points(0, 7, 2, 16), 0.5)}};
   SlabMesh out = stack.slab();
   tile_composite(lower, upper, TilingOptions{}, out);
   double fill = 0.0;
@@ -88,7 +90,9 @@ TEST(Branching, AnOpeningHoleIsBridgedWhereTheWallIsOpenAbove) {
   // A ring below a ring wall with one slit at angle 2 rad: the composite of outer contour and hole is
   // bridged across the wall at the slit, so that the band above follows the wall.
   test::TestStack stack;
-  const Level lower{0.0, {stack.contour(circle_points(0, 0, 20, 120), 0.0), stack.contour(circle_points(0, 0, 15, 90, true), 0.0, true, 0)}};
+  const Level lower{0.0,
+                    {stack.contour(circle_points(0, 0, 20, 120), 0.0),
+                     stack.contour(circle_points(0, 0, 15, 90, true), 0.0, true, 0)}};
   const Level upper{1.0, {stack.contour(arc_points(2.1, 2.0 + 2 * std::numbers::pi - 0.1, 15, 20, 110), 1.0)}};
   SlabMesh out = stack.slab();
   tile_composite(lower, upper, TilingOptions{}, out);
@@ -96,7 +100,9 @@ TEST(Branching, AnOpeningHoleIsBridgedWhereTheWallIsOpenAbove) {
   for (std::size_t f = 0; f < out.triangles.size(); ++f) {
     if (out.roles[f] != FaceRole::Bridge) continue;
     ++bridges;
-    const Eigen::Vector3d c = (out.position(out.triangles[f][0]) + out.position(out.triangles[f][1]) + out.position(out.triangles[f][2])) / 3.0;
+    const Eigen::Vector3d c =
+        (out.position(out.triangles[f][0]) + out.position(out.triangles[f][1]) + out.position(out.triangles[f][2])) /
+        3.0;
     EXPECT_NEAR(std::atan2(c.y(), c.x()), 2.0, 0.17);  // the slit spans 1.9 to 2.1 rad
   }
   EXPECT_EQ(bridges, 2);

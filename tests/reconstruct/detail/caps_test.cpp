@@ -40,7 +40,8 @@ TEST(Caps, AnEndIsExtendedAndCappedWithItsHoles) {
   const double cap = faces_area(out, FaceRole::Cap, &lo, &hi);
   EXPECT_DOUBLE_EQ(lo, 5.0);  // half a spacing (given: 1 mm) above the slice
   EXPECT_DOUBLE_EQ(hi, 5.0);
-  const double polygon = 0.5 * 180 * 400 * std::sin(2 * std::numbers::pi / 180) - 0.5 * 45 * 25 * std::sin(2 * std::numbers::pi / 45);
+  const double polygon =
+      0.5 * 180 * 400 * std::sin(2 * std::numbers::pi / 180) - 0.5 * 45 * 25 * std::sin(2 * std::numbers::pi / 45);
   EXPECT_NEAR(cap, polygon, 1e-6 * polygon);
   for (std::size_t f = 0; f < out.triangles.size(); ++f) {
     const Triangle& t = out.triangles[f];

@@ -38,8 +38,12 @@ TEST(Correspondence, AnOverlapBelowTheFractionOfTheSmallerIsNoLink) {
 
 TEST(Correspondence, HolesLinkOnlyWhenTheirOuterContoursDo) {
   test::TestStack stack;
-  Level lower{0.0, {stack.contour(circle_points(0, 0, 10, 60), 0.0), stack.contour(circle_points(0, 0, 4, 30, true), 0.0, true, 0)}};
-  Level upper{2.0, {stack.contour(circle_points(0, 0, 10, 60), 2.0), stack.contour(circle_points(0, 0, 4, 30, true), 2.0, true, 0)}};
+  Level lower{
+      0.0,
+      {stack.contour(circle_points(0, 0, 10, 60), 0.0), stack.contour(circle_points(0, 0, 4, 30, true), 0.0, true, 0)}};
+  Level upper{
+      2.0,
+      {stack.contour(circle_points(0, 0, 10, 60), 2.0), stack.contour(circle_points(0, 0, 4, 30, true), 2.0, true, 0)}};
   std::vector<std::pair<int, int>> pairs;
   const Correspondence c = correspond(lower, upper, 0.05, 0.01);
   EXPECT_EQ(c.up[1], std::vector<int>{1});
@@ -48,15 +52,21 @@ TEST(Correspondence, HolesLinkOnlyWhenTheirOuterContoursDo) {
   EXPECT_EQ(classify_group(groups[0], lower, upper, c, &pairs), GroupChange::OneToOne);
   EXPECT_EQ(pairs, (std::vector<std::pair<int, int>>{{0, 0}, {1, 1}}));
   // Without the outer link (far outer contour above), the holes do not link either.
-  Level far{2.0, {stack.contour(circle_points(100, 0, 10, 60), 2.0), stack.contour(circle_points(100, 0, 4, 30, true), 2.0, true, 0)}};
+  Level far{2.0,
+            {stack.contour(circle_points(100, 0, 10, 60), 2.0),
+             stack.contour(circle_points(100, 0, 4, 30, true), 2.0, true, 0)}};
   EXPECT_TRUE(correspond(lower, far, 0.05, 0.01).up[1].empty());
 }
 
 TEST(Correspondence, AHoleOpensWhereTheOtherLevelHasNoWallAndEndsWhereItIsCovered) {
   test::TestStack stack;
   // A tube's ring below two arcs of its wall (the hole's region is background above: it opens) ...
-  Level ring{0.0, {stack.contour(circle_points(0, 0, 12, 80), 0.0), stack.contour(circle_points(0, 0, 8, 60, true), 0.0, true, 0)}};
-  Level arcs{2.0, {stack.contour(arc_points(0.3, 2.84, 8, 12, 30), 2.0), stack.contour(arc_points(3.44, 5.98, 8, 12, 30), 2.0)}};
+  Level ring{
+      0.0,
+      {stack.contour(circle_points(0, 0, 12, 80), 0.0), stack.contour(circle_points(0, 0, 8, 60, true), 0.0, true, 0)}};
+  Level arcs{
+      2.0,
+      {stack.contour(arc_points(0.3, 2.84, 8, 12, 30), 2.0), stack.contour(arc_points(3.44, 5.98, 8, 12, 30), 2.0)}};
   const Correspondence open = correspond(ring, arcs, 0.05, 0.01);
   EXPECT_TRUE(open.up[1].empty());
   EXPECT_TRUE(open.opens_up[1]);

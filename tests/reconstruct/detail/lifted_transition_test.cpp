@@ -45,12 +45,16 @@ TEST(LiftedTransition, AShrinkingDiscIsAWellShapedSlope) {
 TEST(LiftedTransition, SmallContoursInsideAnAnnulusFaceUpBetweenThem) {
   // A ring below, two small discs standing on its wall above.
   test::TestStack stack;
-  const Level lower{0.0, {stack.contour(circle_points(0, 0, 12, 80), 0.0), stack.contour(circle_points(0, 0, 6, 40, true), 0.0, true, 0)}};
-  const Level upper{1.0, {stack.contour(circle_points(9, 0, 1.5, 12), 1.0), stack.contour(circle_points(-9, 0, 1.5, 12), 1.0)}};
+  const Level lower{
+      0.0,
+      {stack.contour(circle_points(0, 0, 12, 80), 0.0), stack.contour(circle_points(0, 0, 6, 40, true), 0.0, true, 0)}};
+  const Level upper{
+      1.0, {stack.contour(circle_points(9, 0, 1.5, 12), 1.0), stack.contour(circle_points(-9, 0, 1.5, 12), 1.0)}};
   SlabMesh fill = stack.slab();
   ASSERT_TRUE(lifted_transition(lower, upper, fill));
   for (const Triangle& t : fill.triangles) {
-    const Eigen::Vector3d n = (fill.position(t[1]) - fill.position(t[0])).cross(fill.position(t[2]) - fill.position(t[0]));
+    const Eigen::Vector3d n =
+        (fill.position(t[1]) - fill.position(t[0])).cross(fill.position(t[2]) - fill.position(t[0]));
     EXPECT_GT(n.z(), 0.0) << "material below, nothing above";
   }
 }
@@ -61,7 +65,8 @@ TEST(LiftedTransition, FillsOnBothSidesOfALevelShareNoEdgeInItsPlane) {
   // the same edge in the middle plane used by four faces. Such edges are split off the plane.
   test::TestStack stack;
   const Level bottom{0.0, {stack.contour(circle_points(0, 0, 10, 12), 0.0)}};
-  const Level middle{2.0, {stack.contour(circle_points(-3.75, 0, 3.5, 12), 2.0), stack.contour(circle_points(3.75, 0, 3.5, 12), 2.0)}};
+  const Level middle{
+      2.0, {stack.contour(circle_points(-3.75, 0, 3.5, 12), 2.0), stack.contour(circle_points(3.75, 0, 3.5, 12), 2.0)}};
   const Level top{4.0, {stack.contour(circle_points(0, 0, 10, 12), 4.0)}};
   SlabMesh below = stack.slab(), lower = stack.slab(), upper = stack.slab(), above = stack.slab();
   ASSERT_TRUE(lifted_transition(bottom, middle, lower));
@@ -79,7 +84,8 @@ TEST(LiftedTransition, CrossingContoursOrAnEndAreLeftToTheOthers) {
   SlabMesh out = stack.slab();
   EXPECT_FALSE(lifted_transition(lower, crossing, out));
   // A second lower disc with nothing above it: its face is bounded by one level only.
-  const Level two{0.0, {stack.contour(circle_points(0, 0, 5, 30), 0.0), stack.contour(circle_points(20, 0, 5, 30), 0.0)}};
+  const Level two{0.0,
+                  {stack.contour(circle_points(0, 0, 5, 30), 0.0), stack.contour(circle_points(20, 0, 5, 30), 0.0)}};
   const Level one{1.0, {stack.contour(circle_points(0, 0, 2, 12), 1.0)}};
   EXPECT_FALSE(lifted_transition(two, one, out));
   EXPECT_TRUE(out.triangles.empty());

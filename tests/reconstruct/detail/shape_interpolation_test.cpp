@@ -86,9 +86,9 @@ TEST(ShapeInterpolation, OneDiscSplitsIntoTwoBetweenTheSlices) {
 TEST(ShapeInterpolation, AWindowInAWallClosesGradually) {
   // Two arcs with windows between them below a full annulus (the orbits of a skull): the window at the
   // middle of the wall closes before the slice that has none, and the closed level is an annulus.
-  const DistancePair g =
-      signed_distance_pair({arc_points(0.3, 3.14159 - 0.3, 8, 12, 40), arc_points(3.14159 + 0.3, 2 * 3.14159 - 0.3, 8, 12, 40)},
-                           {circle_points(0, 0, 12, 120), circle_points(0, 0, 8, 80, true)}, 0.2);
+  const DistancePair g = signed_distance_pair(
+      {arc_points(0.3, 3.14159 - 0.3, 8, 12, 40), arc_points(3.14159 + 0.3, 2 * 3.14159 - 0.3, 8, 12, 40)},
+      {circle_points(0, 0, 12, 120), circle_points(0, 0, 8, 80, true)}, 0.2);
   EXPECT_EQ(zero_level(g, 0.1).size(), 2u);
   const auto closed = interpolate_contours(g, 0.95, 0.7);
   ASSERT_TRUE(closed);

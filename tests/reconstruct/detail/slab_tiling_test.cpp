@@ -64,9 +64,11 @@ TEST(SlabTiling, AShrinkingContourIsRefinedUntilItsBandHasNoSlivers) {
 
 TEST(SlabTiling, StatisticsCountTheSlabsGroupsOnce) {
   test::TestStack stack;
-  const Level lower{0.0, {stack.contour(circle_points(0, 0, 10, 64), 0.0), stack.contour(circle_points(40, 0, 5, 32), 0.0)}};
-  const Level upper{2.0, {stack.contour(circle_points(-6, 0, 5, 32), 2.0), stack.contour(circle_points(6, 0, 5, 32), 2.0),
-                          stack.contour(circle_points(40, 0, 5, 32), 2.0)}};
+  const Level lower{0.0,
+                    {stack.contour(circle_points(0, 0, 10, 64), 0.0), stack.contour(circle_points(40, 0, 5, 32), 0.0)}};
+  const Level upper{2.0,
+                    {stack.contour(circle_points(-6, 0, 5, 32), 2.0), stack.contour(circle_points(6, 0, 5, 32), 2.0),
+                     stack.contour(circle_points(40, 0, 5, 32), 2.0)}};
   SlabMesh out = stack.slab();
   tile_slab(lower, upper, TilingOptions{}, out);
   EXPECT_EQ(out.stats.branchings, 1u);
@@ -82,22 +84,25 @@ TEST(SlabTiling, SlitsThatMoveAroundAThinWallAreNotJoinedAcrossIt) {
   std::vector<Level> levels;
   for (int k = 0; k < 4; ++k) {
     const double a = 0.8 * k;
-    levels.push_back({1.5 * k, {stack.contour(arc_points(a + 0.04, a + 2 * std::numbers::pi - 0.04, 18, 21, 120), 1.5 * k)}});
+    levels.push_back(
+        {1.5 * k, {stack.contour(arc_points(a + 0.04, a + 2 * std::numbers::pi - 0.04, 18, 21, 120), 1.5 * k)}});
   }
   const Mesh mesh = tile_levels(stack, levels, TilingOptions{});
   const test::Topology t = test::topology_of(mesh);
   EXPECT_TRUE(t.closed && t.manifold) << t.problems;
   double longest = 0.0;
   for (const Triangle& f : mesh.triangles) {
-    for (int k = 0; k < 3; ++k) longest = std::max(longest, (mesh.positions.col(f[k]) - mesh.positions.col(f[(k + 1) % 3])).norm());
+    for (int k = 0; k < 3; ++k)
+      longest = std::max(longest, (mesh.positions.col(f[k]) - mesh.positions.col(f[(k + 1) % 3])).norm());
   }
   EXPECT_LT(longest, 12.0);
 }
 
 TEST(SlabTiling, IntermediateContoursOfABranchLieBetweenTheSlices) {
   test::TestStack stack;
-  const std::vector<Level> levels = {{0.0, {stack.contour(circle_points(0, 0, 10, 64), 0.0)}},
-                                     {2.0, {stack.contour(circle_points(-7, 0, 4.5, 32), 2.0), stack.contour(circle_points(7, 0, 4.5, 32), 2.0)}}};
+  const std::vector<Level> levels = {
+      {0.0, {stack.contour(circle_points(0, 0, 10, 64), 0.0)}},
+      {2.0, {stack.contour(circle_points(-7, 0, 4.5, 32), 2.0), stack.contour(circle_points(7, 0, 4.5, 32), 2.0)}}};
   std::vector<SlabMesh> slabs;
   const Mesh mesh = tile_levels(stack, levels, TilingOptions{}, &slabs);
   const test::Topology t = test::topology_of(mesh);

@@ -89,7 +89,7 @@ TEST(SliceComponents, LabelsAndNumberingMatchAFloodFill) {
     for (const bool eight : {false, true}) {
       for (const bool selected : {true, false}) {
         std::vector<PixelRun> runs, selected_runs;
-        std::vector<int> scratch;
+        UnionFind<int> scratch;
         find_runs(mask.data(), nx, ny, runs);
         if (selected) selected_runs = runs;
         else complement_runs(runs, nx, ny, selected_runs);
@@ -109,7 +109,7 @@ TEST(SliceComponents, DiagonalPixelsAndEmptyRows) {
                                           0, 0, 0,  //
                                           0, 1, 1};
   std::vector<PixelRun> runs;
-  std::vector<int> scratch;
+  UnionFind<int> scratch;
   find_runs(mask.data(), 3, 4, runs);
   auto four = runs, eight = runs;
   EXPECT_EQ(label_runs(four, Connectivity::Four, scratch), 3);

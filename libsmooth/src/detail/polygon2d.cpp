@@ -1,10 +1,43 @@
-#include "detail/polygon.h"
+#include "contourmesh/internal/polygon2d.h"
 
 #include <algorithm>
 #include <cmath>
 #include <limits>
 
 namespace contourmesh::detail {
+
+double polygon_signed_area(const Polygon& p) {
+  double a = 0.0;
+  const std::size_t n = p.size();
+  for (std::size_t i = 0, j = n - 1; i < n; j = i++) a += p[j].x() * p[i].y() - p[i].x() * p[j].y();
+  return 0.5 * a;
+}
+
+bool polygon_contains(const Polygon& polygon, const Eigen::Vector2d& p) {
+  bool in = false;
+  const std::size_t n = polygon.size();
+  for (std::size_t i = 0, j = n - 1; i < n; j = i++) {
+    if (crosses_ray(polygon[j], polygon[i], p)) in = !in;
+  }
+  return in;
+}
+
+double polygon_signed_distance(const Polygon& v, const Eigen::Vector2d& p) {
+  double d = (p - v[0]).squaredNorm();
+  double s = 1.0;
+  for (std::size_t i = 0, j = v.size() - 1; i < v.size(); j = i, ++i) {
+    const Eigen::Vector2d e = v[j] - v[i];
+    const Eigen::Vector2d w = p - v[i];
+    const Eigen::Vector2d b = w - e * std::clamp(w.dot(e) / e.squaredNorm(), 0.0, 1.0);
+    d = std::min(d, b.squaredNorm());
+    // The edge winds around p: flip the sign (counts edges crossing p's horizontal line on one side).
+    const bool c0 = p.y() >= v[i].y();
+    const bool c1 = p.y() < v[j].y();
+    const bool c2 = e.x() * w.y() > e.y() * w.x();
+    if ((c0 && c1 && c2) || (!c0 && !c1 && !c2)) s = -s;
+  }
+  return s * std::sqrt(d);
+}
 
 namespace {
 
@@ -108,7 +141,8 @@ double cross(const Eigen::Vector2d& a, const Eigen::Vector2d& b, const Eigen::Ve
   return (b.x() - a.x()) * (c.y() - a.y()) - (b.y() - a.y()) * (c.x() - a.x());
 }
 
-bool in_triangle(const Eigen::Vector2d& a, const Eigen::Vector2d& b, const Eigen::Vector2d& c, const Eigen::Vector2d& p) {
+bool in_triangle(const Eigen::Vector2d& a, const Eigen::Vector2d& b, const Eigen::Vector2d& c,
+                 const Eigen::Vector2d& p) {
   return cross(a, b, p) >= 0.0 && cross(b, c, p) >= 0.0 && cross(c, a, p) >= 0.0;
 }
 
@@ -263,7 +297,8 @@ class Ring {
 
 }  // namespace
 
-std::vector<std::array<PolygonVertex, 3>> triangulate_with_holes(const Polygon& outer, const std::vector<Polygon>& holes) {
+std::vector<std::array<PolygonVertex, 3>> triangulate_with_holes(const Polygon& outer,
+                                                                 const std::vector<Polygon>& holes) {
   Ring ring;
   const int start = ring.add_loop(outer, 0);
   // Eberly: holes in order of decreasing rightmost x.
@@ -281,6 +316,12 @@ std::vector<std::array<PolygonVertex, 3>> triangulate_with_holes(const Polygon& 
     ring.eliminate_hole(start, hole_start);
   }
   return ring.clip(start);
+}
+
+std::vector<std::array<int, 3>> triangulate_polygon(const Polygon& polygon) {
+  std::vector<std::array<int, 3>> out;
+  for (const auto& t : triangulate_with_holes(polygon, {})) out.push_back({t[0].vertex, t[1].vertex, t[2].vertex});
+  return out;
 }
 
 }  // namespace contourmesh::detail
