@@ -20,7 +20,6 @@
 #include <vtkXMLPolyDataWriter.h>
 
 #include <sys/stat.h>
-#include <sys/wait.h>
 #include <unistd.h>
 
 #include <algorithm>
@@ -37,6 +36,7 @@
 #include <string>
 #include <vector>
 
+#include "cli_runner.h"
 #include "test_support.h"
 
 namespace contourmesh {
@@ -44,11 +44,8 @@ namespace {
 
 namespace fs = std::filesystem;
 
-struct CliRun {
-  int code = -1;
-  std::string out;
-  std::string err;
-};
+using test::CliRun;
+using test::expect_rejected;
 
 class BadInput : public ::testing::Test {
  protected:
@@ -57,48 +54,12 @@ class BadInput : public ::testing::Test {
     write_mesh(stack_, dir_ / "stack.ply");
   }
 
-  CliRun run(const std::string& args) const {
-    const fs::path err_file = dir_ / "stderr.txt";
-    const std::string cmd = std::string(CONTOURMESH_CLI) + " " + args + " 2>" + err_file.string();
-    CliRun r;
-    FILE* pipe = popen(cmd.c_str(), "r");
-    if (!pipe) return r;
-    std::array<char, 4096> buf{};
-    std::size_t n = 0;
-    while ((n = fread(buf.data(), 1, buf.size(), pipe)) > 0) r.out.append(buf.data(), n);
-    const int status = pclose(pipe);
-    r.code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
-    std::ifstream in(err_file);
-    r.err.assign(std::istreambuf_iterator<char>(in), {});
-    fs::remove(err_file);
-    return r;
-  }
-
-  // Lines of stderr other than the progress display's "STAGE done in X s" lines.
-  static int non_progress_lines(const std::string& err) {
-    std::istringstream in(err);
-    int n = 0;
-    for (std::string line; std::getline(in, line);) {
-      if (line.find(" done in ") == std::string::npos) ++n;
-    }
-    return n;
-  }
-
-  // Exit code 2, exactly one line on stderr besides the progress lines of the stages that finished,
-  // "contourmesh CMD: error: " then every fragment.
-  static void expect_rejected(const CliRun& r, const std::vector<std::string>& fragments) {
-    EXPECT_EQ(r.code, 2) << r.err;
-    EXPECT_EQ(non_progress_lines(r.err), 1) << "one line: " << r.err;
-    EXPECT_NE(r.err.find(": error: "), std::string::npos) << r.err;
-    for (const std::string& f : fragments) EXPECT_NE(r.err.find(f), std::string::npos) << "'" << f << "' in " << r.err;
-  }
+  CliRun run(const std::string& args) const { return test::run_cli(CONTOURMESH_CLI, args, dir_); }
 
   // No output and no temporary left in the directory: only the files the test wrote.
   void expect_nothing_written(const fs::path& output) const {
     EXPECT_FALSE(fs::exists(output)) << output;
-    for (const auto& e : fs::directory_iterator(dir_)) {
-      EXPECT_NE(e.path().filename().string().front(), '.') << "stray temporary " << e.path();
-    }
+    test::expect_no_temporaries(dir_);
   }
 
   fs::path write_text(const std::string& name, const std::string& text) const {
