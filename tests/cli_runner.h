@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // Runs the contourmesh command (or another program) as a user does, for the CLI-level tests: exit code,
 // stdout, stderr.
 #pragma once

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // The bad-input catalogue of docs/robustness.md, one test per entry: the contourmesh command run as a
 // user runs it, on files written here. A rejected input exits 2 with one line on stderr naming the file
 // and what is wrong, and leaves no output behind (an existing output untouched); a repaired input exits

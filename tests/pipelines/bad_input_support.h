@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // Shared by the bad-input tests (the catalogue of docs/robustness.md): the BadInput fixture, which runs the
 // contourmesh command on files written to a scratch folder, and small writers of damaged mesh files.
 #pragma once

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // Runs the contourmesh executable as a user would and checks exit codes, JSON and outputs.
 #include <pipelines/mesh_io.h>
 #include <smooth/adjacency.h>

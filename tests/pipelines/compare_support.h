@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // Helpers shared by the tests of the evaluation harness: small fast comparisons, text and PNG checks,
 // and the contourmesh CLI run as a user would (under xvfb-run for the renders when there is no display).
 #pragma once

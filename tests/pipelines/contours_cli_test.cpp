@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // The contour route of the contourmesh executable: `contours`, `reconstruct` and `run` on RT Structure
 // Sets and contour files, --roi all, --contours-out, and what they refuse.
 #include <pipelines/contour_stack_io.h>

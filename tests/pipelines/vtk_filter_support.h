@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // Shared by the VTK filter tests: observers of VTK's error, warning and progress events, comparisons of
 // point arrays, and the VtkFilters fixture (a noisy ridge stack, a coarse femur phantom, a scratch folder).
 #pragma once

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // vtkCtImageToContourSurfaceFilter gives exactly what reconstruct() gives, for every option; the image
 // conversion keeps physical positions; image -> surface -> smoothing chains and the contourmesh CLI agree
 // with the filters.

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // vtkContourFeatureSmoothingFilter as documented: aborts from a progress observer, missing contour ids,
 // option clamping, locked vertices, diverging runs and presets.
 #include <pipelines/mesh_io.h>

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // vtkContourFeatureSmoothingFilter inside real VTK pipelines gives exactly what the libsmooth calls give:
 // positions for every method and option, chains of filters, and the FeatureLabel array.
 #include <pipelines/mesh_io.h>

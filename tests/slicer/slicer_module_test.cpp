@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // The 3D Slicer CLI module run as Slicer runs it, and the LPS tag of written meshes.
 #include <pipelines/mesh_io.h>
 #include <reconstruct/phantom.h>
