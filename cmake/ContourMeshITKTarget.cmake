@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: BSD-3-Clause
 # Defines ContourMesh::itk, an imported interface target holding the usage requirements of the ITK
 # modules libreconstruct uses, from ITK_INCLUDE_DIRS and ITK_LIBRARIES as set by the last
 # find_package(ITK COMPONENTS ...).

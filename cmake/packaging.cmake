@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: BSD-3-Clause
 # The ContourMesh CMake package: `cmake --install <build> --prefix <prefix>` puts
 #   <prefix>/include/{smooth,reconstruct,pipelines}/*.h   public headers
 #   <prefix>/lib/libcontourmesh_*.a                       the libraries (static by default)

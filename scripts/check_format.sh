@@ -1,4 +1,5 @@
 #!/usr/bin/env bash
+# SPDX-License-Identifier: BSD-3-Clause
 # Lists C++ source lines longer than the 120 columns of .clang-format, as FILE:LINE: N columns, and
 # exits 1 when there are any. The code base is not run through clang-format wholesale (it would touch
 # every file at once); new and edited code should be, and this check keeps the column limit meanwhile.

@@ -1,4 +1,5 @@
 #!/usr/bin/env bash
+# SPDX-License-Identifier: BSD-3-Clause
 # Regenerates docs/results.md and docs/results/ from a real run of `contourmesh compare --phantom all`:
 # every phantom at the default resolution in the three noise regimes (CT noise at 20 and 60 HU, contour
 # noise of 0.4 mm at 20 HU), means over seeds 1-3, with the verdicts of the default, under xvfb-run when

@@ -1,4 +1,5 @@
 #!/usr/bin/env bash
+# SPDX-License-Identifier: BSD-3-Clause
 # Makes `import contourmesh` work in Debian's python3 without further steps: writes contourmesh.pth,
 # pointing at the package a build tree holds (default build/release/python), into the site-packages
 # directory Debian's python3 reads under /usr/local (/usr/local/lib/python3.X/dist-packages). Called by

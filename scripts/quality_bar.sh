@@ -1,4 +1,5 @@
 #!/usr/bin/env bash
+# SPDX-License-Identifier: BSD-3-Clause
 # Issue 4's quality bar: feature-region RMS distance to the true surface (mm) and volume change (%) of
 # each smoothing method on the ridge-box, femur and pelvis phantoms (0.7 x 0.7 x 2 mm voxels, 0.5 mm
 # blur, NOISE HU of Gaussian noise), one `contourmesh run --json` per cell. Prints a Markdown table.

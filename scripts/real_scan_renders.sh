@@ -1,4 +1,5 @@
 #!/usr/bin/env bash
+# SPDX-License-Identifier: BSD-3-Clause
 # The real-scan pictures of docs/real_scans.md: for each CT of ../shared/data, the contour route's
 # unsmoothed tiling (`contourmesh reconstruct`), the contour route with the default smoothing
 # (`contourmesh run`) and 3D Slicer's voxel route (threshold, flying edges, windowed sinc 20), side by

@@ -1,4 +1,5 @@
 #!/usr/bin/env bash
+# SPDX-License-Identifier: BSD-3-Clause
 # Builds the release preset and runs contourmesh_route_bench: the contour route (segmentation, tiling,
 # default smoothing) against the voxel route (threshold, island/hole clean-up, flying edges, windowed
 # sinc) on the head-and-neck DICOM series at 300 HU and the skull phantom at 0.4 x 0.4 x 1 mm, stage

@@ -1,4 +1,5 @@
 #!/usr/bin/env bash
+# SPDX-License-Identifier: BSD-3-Clause
 # The contour route on an RT Structure Set, every ROI: contours, slices, vertices, the tiled volume
 # against the slice-wise (radiotherapy) volume, the distance in each slice plane between the surface
 # and the drawn contours (unsmoothed, and after `contourmesh run`'s default smoothing), and times.

@@ -1,4 +1,5 @@
 #!/usr/bin/env bash
+# SPDX-License-Identifier: BSD-3-Clause
 # Builds the release preset and runs contourmesh_bench: every stage of ContourMesh and its VTK
 # counterparts at 10k, 100k, 1M and 4M vertices in one run, then the ratios between them, a Markdown
 # summary (docs/benchmarks.md) and the speed targets of issue 6. About 5 minutes and 3 GB of memory on

@@ -1,4 +1,5 @@
 #!/usr/bin/env bash
+# SPDX-License-Identifier: BSD-3-Clause
 # Builds the libFuzzer targets (the "fuzz" preset: clang, ASan + UBSan) and runs each one in turn.
 # Usage: scripts/run_fuzzers.sh [SECONDS_PER_TARGET] [TARGET...]
 #   SECONDS_PER_TARGET  default 30 (CI); docs/robustness.md quotes 600-second runs.

@@ -1,4 +1,5 @@
 #!/usr/bin/env bash
+# SPDX-License-Identifier: BSD-3-Clause
 # The main job: set up a fresh machine, build the release preset, and run the whole pipeline on the
 # built-in femur phantom (CT volume with noise -> contours -> mesh -> the default smoothing).
 # Writes out/femur.stl and prints a short summary.

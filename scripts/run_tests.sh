@@ -1,4 +1,5 @@
 #!/usr/bin/env bash
+# SPDX-License-Identifier: BSD-3-Clause
 # Set up a fresh machine, build, and run every test through ctest.
 # Usage: scripts/run_tests.sh [release|asan]   (default: release; asan = AddressSanitizer + UBSan)
 set -euo pipefail

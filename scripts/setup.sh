@@ -1,4 +1,5 @@
 #!/usr/bin/env bash
+# SPDX-License-Identifier: BSD-3-Clause
 # Installs, from Debian's packages, everything ContourMesh needs to build and test; skips what is
 # already installed. Safe to run again. Needs root or sudo when something is missing.
 set -euo pipefail

@@ -1,4 +1,5 @@
 #!/usr/bin/env bash
+# SPDX-License-Identifier: BSD-3-Clause
 # Regenerates the tiling-quality figures of docs/reconstruction.md ("Tiling quality"): builds the
 # release preset, then
 #   1. contourmesh_tiling_quality on the ten phantoms at 20 HU and on the three real scans of

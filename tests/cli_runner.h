@@ -1,9 +1,12 @@
-// Runs the contourmesh command as a user does, for the CLI-level tests: exit code, stdout, stderr.
+// SPDX-License-Identifier: BSD-3-Clause
+// Runs the contourmesh command (or another program) as a user does, for the CLI-level tests: exit code,
+// stdout, stderr.
 #pragma once
 
 #include <gtest/gtest.h>
 
 #include <sys/wait.h>
+#include <unistd.h>
 
 #include <array>
 #include <cstdio>
@@ -23,18 +26,39 @@ struct CliRun {
   std::string err;  ///< stderr
 };
 
-/// Runs `sh -c "PREFIX CONTOURMESH ARGS"` with stderr captured in `scratch`/stderr.txt. `prefix` may be
-/// shell set-up ending with ';', such as "ulimit -f 64;" (the command is then exec'ed, so that the
-/// limit applies to it), or a wrapper command such as "strace -o trace.txt".
-/// CONTOURMESH_TEST_CLI in the environment replaces `cli` (to run the tests against another build, e.g.
-/// the parent commit's, and see them fail there).
-inline CliRun run_cli(std::filesystem::path cli, const std::string& args, const std::filesystem::path& scratch,
-                      const std::string& prefix = "") {
-  if (const char* other = std::getenv("CONTOURMESH_TEST_CLI"); other != nullptr && *other != '\0') cli = other;
+/// `text` quoted for sh: between single quotes, each single quote written as '\''.
+inline std::string shell_quote(const std::string& text) {
+  std::string q(1, '\'');
+  for (const char c : text) {
+    if (c == '\'') {
+      q += "'\\''";
+    } else {
+      q.push_back(c);
+    }
+  }
+  q.push_back('\'');
+  return q;
+}
+
+/// A prefix for run_cli that runs the command under its own X server (xvfb-run), for the renders when no
+/// display is reachable: a server number derived from the process id and an authority file in `scratch`,
+/// so that parallel tests and other users' servers do not collide.
+inline std::string xvfb_prefix(const std::filesystem::path& scratch) {
+  const int server = 200 + static_cast<int>(getpid() % 700);
+  return "xvfb-run -a -n " + std::to_string(server) + " -f " + (scratch / "xauthority").string();
+}
+
+/// Runs `sh -c "PREFIX PROGRAM ARGS"` with stderr captured in `scratch`/stderr.txt (removed
+/// afterwards). `args` is shell text: quote paths that may hold spaces or quotes (shell_quote). `prefix`
+/// may be shell set-up ending with ';', such as "ulimit -f 64;" (the program is then exec'ed, so that
+/// the limit applies to it), or a wrapper command such as "strace -o trace.txt", "env -u DISPLAY",
+/// "NAME=value" or xvfb_prefix().
+inline CliRun run_program(const std::filesystem::path& program, const std::string& args,
+                          const std::filesystem::path& scratch, const std::string& prefix = "") {
   const std::filesystem::path err_file = scratch / "stderr.txt";
   const bool setup = prefix.empty() || prefix.back() == ';';
-  const std::string command = prefix + (setup ? " exec " : " ") + cli.string() + " " + args;
-  const std::string cmd = "sh -c '" + command + "' 2>" + err_file.string();
+  const std::string command = prefix + (setup ? " exec " : " ") + program.string() + " " + args;
+  const std::string cmd = "sh -c " + shell_quote(command) + " 2>" + err_file.string();
   CliRun r;
   FILE* pipe = popen(cmd.c_str(), "r");
   if (!pipe) return r;
@@ -47,6 +71,14 @@ inline CliRun run_cli(std::filesystem::path cli, const std::string& args, const 
   r.err.assign(std::istreambuf_iterator<char>(in), {});
   std::filesystem::remove(err_file);
   return r;
+}
+
+/// run_program for the contourmesh command `cli`. CONTOURMESH_TEST_CLI in the environment replaces `cli`
+/// (to run the tests against another build, e.g. the parent commit's, and see them fail there).
+inline CliRun run_cli(std::filesystem::path cli, const std::string& args, const std::filesystem::path& scratch,
+                      const std::string& prefix = "") {
+  if (const char* other = std::getenv("CONTOURMESH_TEST_CLI"); other != nullptr && *other != '\0') cli = other;
+  return run_program(cli, args, scratch, prefix);
 }
 
 /// Lines of stderr other than the progress display's "STAGE done in X s" lines.

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 #include "damaged_inputs.h"
 
 #include <gdcmAttribute.h>

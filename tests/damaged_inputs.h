@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // The "damaged inputs" fixture generator: small volumes, DICOM series and files broken the way real
 // ones break (cut short, a corrupt stream, a sheared or singular direction, a duplicated or missing
 // slice, NaN voxels ...), written at test time into a scratch directory. docs/robustness.md lists what

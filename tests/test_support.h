@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // Helpers shared by the test suites: a per-test scratch directory and a small noisy contour stack.
 #pragma once
 

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // available_threads() on its own, without ITK: the tiler needs it, and the fuzz build (clang, which
 // Debian's ITK headers refuse) compiles the tiler without the rest of threads.cpp.
 #include "reconstruct/threads.h"

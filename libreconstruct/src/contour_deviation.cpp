@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 #include "reconstruct/contour_deviation.h"
 
 #include <smooth/errors.h>

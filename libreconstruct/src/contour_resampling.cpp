@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 #include "reconstruct/contour_resampling.h"
 
 #include <smooth/errors.h>

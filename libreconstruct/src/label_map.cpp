@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // ITK first: its IO headers bring ITK's own Eigen, which must come before the system one.
 #include <itkImageFileReader.h>
 #include <itkImageIOFactory.h>

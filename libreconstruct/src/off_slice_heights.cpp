@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 #include "reconstruct/off_slice_heights.h"
 
 #include <smooth/adjacency.h>

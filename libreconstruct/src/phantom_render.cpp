@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // render_phantom: a phantom's solid sampled into a CT-like volume (partial volume by supersampling, blur,
 // noise).
 #include "reconstruct/phantom.h"

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 #include "reconstruct/planar_contours.h"
 
 #include <smooth/errors.h>

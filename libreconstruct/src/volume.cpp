@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 #include "reconstruct/volume.h"
 
 #include "detail/captured_output.h"

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 #include "smooth/adaptive_subdivision.h"
 
 #include "smooth/adjacency.h"

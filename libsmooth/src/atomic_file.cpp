@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 #include "smooth/atomic_file.h"
 
 #include "smooth/errors.h"

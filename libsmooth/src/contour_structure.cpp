@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 #include "smooth/contour_structure.h"
 
 #include "smooth/errors.h"

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 #include "smooth/cross_slice.h"
 
 #include "detail/contour_profiles.h"

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 #include "smooth/feature_detection.h"
 
 #include "smooth/contour_structure.h"

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 #include "detail/smoothing_common.h"
 #include "smooth/normals.h"
 

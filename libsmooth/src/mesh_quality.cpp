@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 #include "smooth/mesh_quality.h"
 
 #include "smooth/errors.h"

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 #include "smooth/slice_neighbors.h"
 
 #include "smooth/errors.h"

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 #include "smooth/smooth.h"
 
 #include "smooth/adjacency.h"

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 #include "smooth/surface_metrics.h"
 
 #include "detail/parallel.h"

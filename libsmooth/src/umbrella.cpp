@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 #include "smooth/umbrella.h"
 
 #include "detail/ring_sum.h"

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 #include "bench_inputs.h"
 
 #include <pipelines/vtk_convert.h>

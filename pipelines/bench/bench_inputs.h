@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // Shared inputs of the benchmark programs: deterministic synthetic contour stacks that look like a
 // segmented CT study (bone-like tubes with sharp ridges, per-slice point counts, segmentation noise),
 // the meshes the project's tiler makes of them (with contour ids), and their VTK copies.

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // contourmesh_bench: every stage of ContourMesh and its VTK counterparts at 10k, 100k, 1M and 4M
 // vertices in one run, size by size, then the ratios between them and the speed targets of issue 6.
 //

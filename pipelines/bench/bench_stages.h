@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // The benchmark functions of each stage. bench_main.cpp registers every one of them at every size of
 // kSizes (state.range(0) is the target vertex count), size by size.
 #pragma once

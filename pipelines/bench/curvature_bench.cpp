@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // Curvature estimation: principal curvatures and directions by weighted quadric fitting (curvature.h).
 #include "bench_inputs.h"
 #include "bench_stages.h"

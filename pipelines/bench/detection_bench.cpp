@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // Feature detection by contour continuity (the paper's Algorithm 2, feature_detection.h), default options.
 #include "bench_inputs.h"
 #include "bench_stages.h"

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // The paper's method end to end (feature_smoothing.h, default options: detection by contour
 // continuity, up to 3 subdivision levels, 40 Taubin iterations, original resolution), with its peak
 // heap per input vertex and the library's own per-stage timings.

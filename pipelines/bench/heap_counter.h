@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // Live-heap accounting for the benchmark program: heap_counter.cpp replaces malloc, calloc, realloc,
 // free and the aligned allocators of this executable (glibc symbol interposition) with thin wrappers
 // that forward to glibc's allocator and count the usable size of every block. operator new (libstdc++),

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // contourmesh_route_bench: the contour route against the voxel route, stage by stage, from the volume
 // in memory to the mesh in memory, at one thread and at N threads, in one run (docs/benchmarks.md,
 // "Contour route against voxel route").

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // Connectivity and the two smoothing kernels: building the CSR adjacency, one umbrella pass (paper
 // eq. 7) and one Taubin lambda|mu iteration (eq. 6, two umbrella steps).
 #include "bench_inputs.h"

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // Adaptive subdivision around the detected feature vertices (adaptive_subdivision.h), as the full
 // method runs it: edge and corner labels selected, gamma from the detection, at most 3 levels.
 #include "bench_inputs.h"

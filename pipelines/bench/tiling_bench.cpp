@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // Tiling (libreconstruct tiling.h): the synthetic contour stack of each size into a closed mesh with
 // contour ids, default options (minimum-area dynamic programme, refined caps half a spacing out).
 #include "bench_inputs.h"

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // What a user would pick instead: VTK's smoothing filters and curvature filter, on the same meshes
 // (their vtkPolyData copies, built outside the timed region, as the ContourMesh stages get a Mesh).
 #include "bench_inputs.h"

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // Conventions shared by the contourmesh subcommands: exit codes, error reporting, JSON output.
 #pragma once
 

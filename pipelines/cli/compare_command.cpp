@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // contourmesh compare [--phantom NAME|all | IN [--truth SURFACE]] --out DIR: every smoothing method, VTK's
 // filters and 3D Slicer's voxel route on the same volume, measured against the truth over the surface,
 // in one or several noise regimes and seeds, with tables, plots, renders, verdicts and report.html

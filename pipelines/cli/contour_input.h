@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // The contour route of the CLI, shared by `reconstruct`, `run` and `contours`: what kind of input a
 // path is, the options of drawn contours, loading one or all ROIs of an RT Structure Set or a
 // contour-stack file, and naming one output per ROI.

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // contourmesh contours IN: what an RT Structure Set or a contour file holds (--list), and its contour
 // stacks written as contour files (--roi NAME|all -o OUT.json).
 #include "cli_common.h"

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // contourmesh detect IN -o labels.vtp: the feature labels of a method (the default preset's, the paper's)
 // on the input mesh, without writing a smoothed mesh: libsmooth's label_features(mesh, method, options).
 #include "cli_common.h"

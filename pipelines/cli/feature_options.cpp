@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 #include "feature_options.h"
 
 #include "cli_common.h"

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // Options and helpers shared by `smooth`, `run` and `detect` for the methods that detect features.
 #pragma once
 

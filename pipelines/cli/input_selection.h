@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // Options of the commands that read a volume and may pick part of it: labels of a label map or a
 // 3D Slicer segmentation (--label, --labels) instead of a threshold, and one DICOM series of a
 // directory that holds several (--series, --list-series).

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // Process control of the CLI (never of a library): run work that may abort the process in a child.
 #pragma once
 

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 #include "library_messages.h"
 
 #include <gdcmTrace.h>

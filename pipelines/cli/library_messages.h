@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // The messages ITK, GDCM and VTK print on their own: multi-line, with source file names and object
 // addresses. Without --verbose each becomes one line of the tool's own ("contourmesh COMMAND: warning:
 // ITK: ..."), or nothing where the command reports the problem itself; with --verbose they pass as

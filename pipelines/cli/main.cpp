@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // contourmesh: the command-line front end of ContourMesh.
 #include "cli_common.h"
 

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // Method selection shared by `smooth`, `run` and `detect`: --method, --preset, --iterations and the
 // per-family options (steps, boundary, the paper's subdivision), turned into libsmooth's method and
 // SmoothOptions. Only options given on the command line override the preset's or the method's defaults.

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // contourmesh phantom --shape NAME -o vol.mha: writes a synthetic CT volume of a built-in phantom
 // (SPEC 4) with partial-volume effect, blur and noise.
 #include "cli_common.h"

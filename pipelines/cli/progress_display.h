@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // Options every subcommand shares (--quiet, --threads) and the progress display on stderr.
 #pragma once
 

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // contourmesh reconstruct IN -o mesh.vtp: CT volume (file or DICOM directory) -> contours -> tiled mesh;
 // or drawn contours (an RT Structure Set with --roi, a contour-stack file) -> tiled mesh.
 #include "cli_common.h"

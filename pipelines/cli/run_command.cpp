@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // contourmesh run [IN] -o OUT: the whole chain, read (or generate) -> segment -> contours -> tile ->
 // smooth -> export. With no input it runs on a built-in phantom with noise, and reports accuracy
 // against the phantom's analytic surface.

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // contourmesh smooth IN -o OUT [--method M | --preset P]: any smoothing method of libsmooth on a mesh file,
 // through its one entry point smooth(mesh, method, options).
 #include "cli_common.h"

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 #include "tiling_options.h"
 
 #include <smooth/errors.h>

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // The tiler's options on the command line, shared by `reconstruct` and `run` (both routes): every field
 // of TilingOptions except the thread count and the limits, which --threads and --max-vertices set.
 #pragma once

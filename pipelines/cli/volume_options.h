@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // Options of the commands that read a CT volume (reconstruct, run, compare): what to do with unevenly
 // spaced DICOM slices and with NaN or infinite voxels.
 #pragma once

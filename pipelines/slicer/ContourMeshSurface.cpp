@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // ContourMeshSurface: a 3D Slicer command-line module (Slicer Execution Model). `--xml` prints the module
 // description; otherwise it is called as Slicer calls its CLI modules: flags from the description, then
 // the input volume and the output model as positional arguments. Progress goes to stdout as

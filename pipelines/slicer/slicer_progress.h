@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // Progress in the form 3D Slicer reads from a CLI module's standard output (Slicer Execution Model):
 // <filter-start>, <filter-progress> (overall fraction), <filter-stage-progress> and <filter-end>.
 #pragma once

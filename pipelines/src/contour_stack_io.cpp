@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 #include "pipelines/contour_stack_io.h"
 
 #include "pipelines/atomic_file.h"

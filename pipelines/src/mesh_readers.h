@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // Private: strict STL and OBJ parsers. VTK's readers accept a truncated binary STL without a word
 // (they read until the end of the file) and turn an OBJ coordinate "nan" into 0, so these formats are
 // parsed here, with errors that say where the file is wrong. Messages omit the file name (read_mesh

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 #include "mesh_writers.h"
 
 #include "pipelines/mesh_io.h"

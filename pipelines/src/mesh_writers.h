@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // Private: STL and OBJ writers. VTK's OBJ writer does not check its stream (a full disk gave a
 // truncated file and success) and its STL writer turns coordinates beyond float range into inf, so
 // these formats are written here, every write checked. Messages omit the file name (write_mesh adds it).

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 #include "pipelines/ply_io.h"
 
 #include <smooth/errors.h>

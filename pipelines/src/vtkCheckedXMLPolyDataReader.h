@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // Private: VTK's XML PolyData reader with the checks VTK 9.1 leaves out, so that a corrupt .vtp file
 // gives an error instead of a crash (found by tests/fuzz/fuzz_read_vtp.cpp, docs/robustness.md).
 // VTK allocates for the points and cells a piece announces before reading any data, and trusts the

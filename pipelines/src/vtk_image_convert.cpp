@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 #include "pipelines/vtk_image_convert.h"
 
 #include <smooth/errors.h>

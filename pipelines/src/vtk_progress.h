@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // Private helper of the VTK filters: libsmooth / libreconstruct progress reports -> vtkAlgorithm
 // progress, and the algorithm's abort flag -> cancellation.
 #pragma once

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // contourmesh_scan_render: side-by-side offscreen renders of meshes made from one CT volume and of the
 // voxel route a 3D Slicer user takes on it (threshold, vtkDiscreteFlyingEdges3D, then
 // vtkWindowedSincPolyDataFilter with Slicer's closed-surface settings), from one camera. Used by

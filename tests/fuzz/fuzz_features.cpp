@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // Fuzz target: feature detection and the paper's smoothing (smooth/feature_detection.h,
 // smooth/feature_smoothing.h) on random valid meshes. The bytes choose a shape (mostly a contour stack
 // over a random star-shaped curve, else an icosphere or a cube), perturb it (Gaussian noise, vertices

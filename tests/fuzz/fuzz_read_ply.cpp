@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // Fuzz target: read_mesh on a .ply file (see read_mesh_fuzzer.h).
 #include "read_mesh_fuzzer.h"
 

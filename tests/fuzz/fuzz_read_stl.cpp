@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // Fuzz target: read_mesh on a .stl file, binary or ASCII (told apart by content; see read_mesh_fuzzer.h).
 #include "read_mesh_fuzzer.h"
 

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // Helpers shared by the fuzz targets (tests/fuzz, docs/robustness.md): a reader that turns fuzz bytes
 // into bounded numbers, the failure report, a scratch file for the file readers, and the mesh checks
 // every target applies to what the library returns.

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // Fuzz target: the contour tiler (reconstruct/tiling.h). The bytes decode to a small contour stack,
 // mostly valid (star-shaped outer contours clear of each other, one hole inside each at most, in slices
 // of increasing w) or, with a flag, with invalid pieces (arbitrary polygons that may cross themselves or

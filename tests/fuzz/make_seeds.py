@@ -1,4 +1,5 @@
 #!/usr/bin/env python3
+# SPDX-License-Identifier: BSD-3-Clause
 """Writes the seed corpus of the fuzz targets (tests/fuzz/corpus/<target>/seed_*): small valid files of
 every mesh format and variant the readers accept, and byte strings that decode to typical contour
 stacks and meshes for the tiling and feature targets. Run again after changing it; the fuzz runs add

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // The body of the mesh-reader fuzz targets: the bytes go to a scratch file with the format's extension
 // and through read_mesh, the CLI's entry point, then through what every command does next (repair,
 // validation, the topology summary, the adjacency). read_mesh may only return a sane mesh or throw an

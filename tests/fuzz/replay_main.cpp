@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // Replays fuzz inputs through a fuzz target without libFuzzer, for the gcc builds: every file named on
 // the command line, and every file (sorted, recursively) in each directory named, goes through
 // LLVMFuzzerTestOneInput once. A broken promise aborts (fuzz_support.h), so the test fails on it.

@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: BSD-3-Clause
 # Packaging test (cmake -P): install the build tree into a scratch prefix, check the installed CLI runs,
 # then configure, build and run pipelines/examples/downstream against the installation with
 # find_package(ContourMesh), with the same generator, compilers and build type as the build tree.

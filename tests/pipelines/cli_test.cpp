@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // Runs the contourmesh executable as a user would and checks exit codes, JSON and outputs.
 #include <pipelines/mesh_io.h>
 #include <smooth/adjacency.h>
@@ -12,9 +13,6 @@
 #include <vtkPolyData.h>
 #include <vtkXMLPolyDataReader.h>
 
-#include <sys/wait.h>
-
-#include <array>
 #include <cmath>
 #include <map>
 #include <vector>
@@ -24,6 +22,7 @@
 #include <iterator>
 #include <string>
 
+#include "cli_runner.h"
 #include "test_support.h"
 
 namespace contourmesh {
@@ -31,27 +30,9 @@ namespace {
 
 namespace fs = std::filesystem;
 
-struct CliRun {
-  int code = -1;
-  std::string out;  // stdout; stderr is redirected to `err_file`
-  std::string err;
-};
+using test::CliRun;
 
-CliRun run_cli(const std::string& args, const fs::path& dir) {
-  const fs::path err_file = dir / "stderr.txt";
-  const std::string cmd = std::string(CONTOURMESH_CLI) + " " + args + " 2>" + err_file.string();
-  CliRun r;
-  FILE* pipe = popen(cmd.c_str(), "r");
-  if (!pipe) return r;
-  std::array<char, 4096> buf{};
-  std::size_t n = 0;
-  while ((n = fread(buf.data(), 1, buf.size(), pipe)) > 0) r.out.append(buf.data(), n);
-  const int status = pclose(pipe);
-  r.code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
-  std::ifstream in(err_file);
-  r.err.assign(std::istreambuf_iterator<char>(in), {});
-  return r;
-}
+CliRun run_cli(const std::string& args, const fs::path& dir) { return test::run_cli(CONTOURMESH_CLI, args, dir); }
 
 class Cli : public ::testing::Test {
  protected:

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // `contourmesh compare` end to end: the files, renders (under xvfb-run when there is no display), regimes,
 // seeds, variants, the summary and the Markdown page, exit codes and bad input.
 #include <pipelines/mesh_io.h>

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // Helpers shared by the tests of the evaluation harness: small fast comparisons, text and PNG checks,
 // and the contourmesh CLI run as a user would (under xvfb-run for the renders when there is no display).
 #pragma once
@@ -13,16 +14,13 @@
 #include <vtkNew.h>
 #include <vtkPNGReader.h>
 
-#include <sys/wait.h>
-#include <unistd.h>
-
-#include <array>
-#include <cstdio>
 #include <filesystem>
 #include <fstream>
 #include <sstream>
 #include <string>
 #include <vector>
+
+#include "cli_runner.h"
 
 namespace contourmesh::compare_test {
 
@@ -123,32 +121,14 @@ inline PngStats png_stats(const fs::path& path) {
   return s;
 }
 
-struct CliRun {
-  int code = -1;
-  std::string out;
-  std::string err;
-};
+using test::CliRun;
 
-// Runs `contourmesh args`; with `display`, under xvfb-run when no X display is reachable (its own
-// server number and authority file, so that parallel tests and other users' servers do not collide).
+// Runs `contourmesh args`; with `display`, under xvfb-run when no X display is reachable. `env` is a
+// prefix such as "env -u DISPLAY".
 inline CliRun run_cli(const std::string& args, const fs::path& dir, bool display = false, const std::string& env = "") {
-  std::string prefix = env.empty() ? "" : env + " ";
-  if (display && !rendering_available()) {
-    const int server = 200 + static_cast<int>(getpid() % 700);
-    prefix += "xvfb-run -a -n " + std::to_string(server) + " -f " + (dir / "xauthority").string() + " ";
-  }
-  const fs::path err_file = dir / "stderr.txt";
-  const std::string cmd = prefix + std::string(CONTOURMESH_CLI) + " " + args + " 2>" + err_file.string();
-  CliRun r;
-  FILE* pipe = popen(cmd.c_str(), "r");
-  if (!pipe) return r;
-  std::array<char, 4096> buf{};
-  std::size_t n = 0;
-  while ((n = fread(buf.data(), 1, buf.size(), pipe)) > 0) r.out.append(buf.data(), n);
-  const int status = pclose(pipe);
-  r.code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
-  r.err = read_text(err_file);
-  return r;
+  std::string prefix = env;
+  if (display && !rendering_available()) prefix += (prefix.empty() ? "" : " ") + test::xvfb_prefix(dir);
+  return test::run_cli(CONTOURMESH_CLI, args, dir, prefix);
 }
 
 inline const char* kSmallPhantom = "--spacing 1.5,1.5,3 --noise 100 --repeat 1";

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // The evaluation harness's method table and variants, noise regimes, seeds and means over them, and the
 // verdicts of the quality bars.
 #include <compare/method_table.h>

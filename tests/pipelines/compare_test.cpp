@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // The evaluation harness's comparison (contourmesh_compare): run_comparison on small noisy phantoms, with
 // a phantom, a reference surface or no truth; what it measures, the tables and the plot it writes.
 #include <compare/comparison.h>

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // The contour route of the contourmesh executable: `contours`, `reconstruct` and `run` on RT Structure
 // Sets and contour files, --roi all, --contours-out, and what they refuse.
 #include <pipelines/contour_stack_io.h>
@@ -6,13 +7,10 @@
 #include <gtest/gtest.h>
 #include <nlohmann/json.hpp>
 
-#include <sys/wait.h>
-
-#include <array>
-#include <cstdio>
 #include <filesystem>
 #include <fstream>
 
+#include "cli_runner.h"
 #include "reconstruct/rtstruct_writer.h"
 #include "test_support.h"
 
@@ -23,35 +21,12 @@ namespace fs = std::filesystem;
 
 const fs::path kBreast = fs::path(CONTOURMESH_SHARED_DATA) / "rtstruct_breast" / "rtss.dcm";
 
-struct CliRun {
-  int code = -1;
-  std::string out;
-  std::string err;
-};
+using test::CliRun;
 
-CliRun run_cli(const std::string& args, const fs::path& dir) {
-  const fs::path err_file = dir / "stderr.txt";
-  const std::string cmd = std::string(CONTOURMESH_CLI) + " " + args + " 2>" + err_file.string();
-  CliRun r;
-  FILE* pipe = popen(cmd.c_str(), "r");
-  if (!pipe) return r;
-  std::array<char, 4096> buf{};
-  std::size_t n = 0;
-  while ((n = fread(buf.data(), 1, buf.size(), pipe)) > 0) r.out.append(buf.data(), n);
-  const int status = pclose(pipe);
-  r.code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
-  std::ifstream in(err_file);
-  r.err.assign(std::istreambuf_iterator<char>(in), {});
-  return r;
-}
+CliRun run_cli(const std::string& args, const fs::path& dir) { return test::run_cli(CONTOURMESH_CLI, args, dir); }
 
 // The path quoted for the shell.
-std::string q(const fs::path& p) {
-  std::string s(1, '\'');  // (concatenating "'" + string trips a false -Wrestrict of gcc 12)
-  s.append(p.string());
-  s.push_back('\'');
-  return s;
-}
+std::string q(const fs::path& p) { return test::shell_quote(p.string()); }
 
 class ContoursCli : public ::testing::Test {
  protected:

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // Diverging runs, inconsistent meshes, failed writes, signals and resource limits (docs/robustness.md):
 // none may end with exit status 0 and a wrong or half-written file.
 #include <pipelines/mesh_io.h>

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // Damaged volumes and DICOM series (docs/robustness.md): each used to give a plausible mesh of the wrong
 // shape with exit status 0. Now each is refused with exit 2 and one line naming the file and the
 // problem (or, on request, repaired with a warning). The files are made by tests/damaged_inputs.h.

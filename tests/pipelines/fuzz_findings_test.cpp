@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // What the fuzz targets found in the mesh readers (tests/fuzz, docs/robustness.md "Fuzzing"), each
 // rebuilt by hand as a small file and fed through read_mesh: a clear InvalidInputError naming the
 // file, where there used to be undefined behaviour, a hang or a crash. The fuzzers' own reproducers

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 #include <pipelines/atomic_file.h>
 #include <pipelines/mesh_io.h>
 #include <smooth/errors.h>

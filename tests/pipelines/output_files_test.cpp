@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // Output files (smooth/atomic_file.h, write_mesh): whatever fails, an existing file is left as it was
 // and no temporary stays behind.
 #include <pipelines/mesh_io.h>

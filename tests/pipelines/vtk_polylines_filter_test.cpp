@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // vtkContourPolylinesToSurfaceFilter in VTK pipelines: the same mesh as build_contour_stack() +
 // reconstruct_from_contours(), slice ids per cell, per point or from positions, errors, abort,
 // clamping, and the chain into vtkContourFeatureSmoothingFilter.

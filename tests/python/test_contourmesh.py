@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: BSD-3-Clause
 """The contourmesh Python module against the command line and the analytic phantoms."""
 import json
 import threading

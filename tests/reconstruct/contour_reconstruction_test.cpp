@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // The contour route on hand-made stacks: one contour, two slices, a split, a hole appearing, repeated
 // points, both orientations, single-slice contours and cavities, drifting contours; and the
 // cross-section measure it is checked with.

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // Label maps and 3D Slicer segmentations (reconstruct/label_map.h): reading, selecting, and the
 // surface of each label against its voxel volume.
 #include <reconstruct/label_map.h>

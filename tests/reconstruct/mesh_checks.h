@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // Topology checks shared by the reconstruction tests.
 #pragma once
 

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // Properties of fit_off_slice_heights against analytic volumes: end faces and domes between the
 // slices, what it must not touch, and bad options.
 #include <reconstruct/off_slice_heights.h>

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // The phantoms shared by the phantom tests, built once per process and shape (ctest runs each test in
 // its own process, so a test builds only the shapes it uses).
 #pragma once

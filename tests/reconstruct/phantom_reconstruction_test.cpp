@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // The reconstruction chain on every built-in phantom without noise: the surface must be closed,
 // manifold, outward, of the right topology, with the right volume and close to the analytic surface.
 #include <reconstruct/phantom.h>

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // Rendering phantoms into CT-like volumes (render_phantom): geometry, partial volume, noise, blur,
 // contour noise, option checks and the topology of the voxelised shapes.
 #include "reconstruct/phantom.h"

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // The phantoms of the contour stacks' failure classes (tilted-box, in-slice-ridge, end-face-on-slice):
 // their volume, their sharp edges, the tilt of the tilted box's faces and the slice alignment that
 // each one claims for the default volume grid.

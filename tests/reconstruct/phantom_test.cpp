@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 #include "reconstruct/phantom.h"
 
 #include "reconstruct/phantom_cache.h"

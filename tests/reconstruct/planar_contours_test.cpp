@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // Drawn contours to ordered stacks: slice axis, slices, nesting, orientation, repairs and refusals.
 #include <reconstruct/contour_resampling.h>
 #include <reconstruct/planar_contours.h>

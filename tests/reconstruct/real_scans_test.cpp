@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // The reconstruction chain on the real scans in ../shared/data (skipped when they are absent).
 #include <reconstruct/reconstruction.h>
 #include <reconstruct/volume.h>

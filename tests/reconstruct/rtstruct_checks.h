@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // The checks every ROI with contours must pass: a closed, manifold, outward-oriented mesh, its volume
 // within 5 % of the slice-wise volume, and its unsmoothed cross-section with every slice plane within
 // 0.1 mm of the drawn contours.

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // RT Structure Sets: reading the shared breast structure set and small written ones, conversion of an
 // ROI to a contour stack, and the reconstruction of its light ROIs (the heavy ones, BODY, Lt Lung and
 // Breast, are in rtstruct_realscan_test.cpp).

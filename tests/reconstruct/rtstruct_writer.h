@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // Writes small RT Structure Sets for tests (GDCM): ROIs with contours of any geometric type, and
 // deliberately broken values.
 #pragma once

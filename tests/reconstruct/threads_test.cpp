@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 #include <reconstruct/phantom.h>
 #include <reconstruct/segmentation.h>
 #include <reconstruct/threads.h>

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // read_volume's checks that need the library itself: the resampling of an uneven DICOM series, and the
 // volume writer at a file size limit.
 #include "damaged_inputs.h"

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // The 3D Slicer CLI module run as Slicer runs it, and the LPS tag of written meshes.
 #include <pipelines/mesh_io.h>
 #include <reconstruct/phantom.h>
@@ -5,38 +6,23 @@
 #include <smooth/smooth.h>
 #include <smooth/topology.h>
 
+#include "cli_runner.h"
 #include "test_support.h"
 
 #include <gtest/gtest.h>
 
-#include <array>
-#include <cstdio>
 #include <fstream>
 #include <iterator>
 #include <regex>
 #include <string>
-#include <sys/wait.h>
 
 namespace contourmesh {
 namespace {
 
 namespace fs = std::filesystem;
 
-struct ModuleRun {
-  int code = -1;
-  std::string out;
-};
-
-ModuleRun run(const std::string& args, const fs::path& err_file) {
-  ModuleRun r;
-  FILE* pipe = popen((std::string(CONTOURMESH_SLICER_MODULE) + " " + args + " 2>" + err_file.string()).c_str(), "r");
-  if (!pipe) return r;
-  std::array<char, 4096> buf{};
-  std::size_t n = 0;
-  while ((n = fread(buf.data(), 1, buf.size(), pipe)) > 0) r.out.append(buf.data(), n);
-  const int status = pclose(pipe);
-  r.code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
-  return r;
+test::CliRun run(const std::string& args, const fs::path& dir) {
+  return test::run_program(CONTOURMESH_SLICER_MODULE, args, dir);
 }
 
 std::string read_file(const fs::path& p) {
@@ -58,10 +44,11 @@ class SlicerModule : public ::testing::Test {
 // Slicer passes the flags of the description, then the input image and the output model by index.
 TEST_F(SlicerModule, RunsAsSlicerCallsItAndReportsProgress) {
   const fs::path model = dir_ / "model.stl";
-  const ModuleRun r = run("--threshold 520 --method paper --iterations 10 --threads 1 " + (dir_ / "box.nrrd").string() +
-                        " " + model.string(),
-                    dir_ / "err.txt");
-  ASSERT_EQ(r.code, 0) << read_file(dir_ / "err.txt");
+  const test::CliRun r =
+      run("--threshold 520 --method paper --iterations 10 --threads 1 " + (dir_ / "box.nrrd").string() + " " +
+              model.string(),
+          dir_);
+  ASSERT_EQ(r.code, 0) << r.err;
   EXPECT_EQ(r.out.rfind("<filter-start><filter-name>ContourMesh Surface</filter-name>", 0), 0u) << r.out;
   const std::regex progress("<filter-progress>([0-9.e-]+)</filter-progress>");
   double last = -1.0;
@@ -83,26 +70,25 @@ TEST_F(SlicerModule, RunsAsSlicerCallsItAndReportsProgress) {
 
 // The module's default method, as Slicer shows it, is the library's default preset's (the command line's).
 TEST_F(SlicerModule, DefaultMethodIsTheLibrarysDefault) {
-  const ModuleRun r = run("--xml", dir_ / "err.txt");
-  ASSERT_EQ(r.code, 0) << read_file(dir_ / "err.txt");
+  const test::CliRun r = run("--xml", dir_);
+  ASSERT_EQ(r.code, 0) << r.err;
   std::smatch m;
   ASSERT_TRUE(std::regex_search(r.out, m, std::regex("<name>method</name>[\\s\\S]*?<default>([^<]*)</default>")))
       << r.out;
   EXPECT_EQ(m[1].str(), to_string(preset(Preset::Default).method));
   // And it runs: the iteration count Slicer always passes is ignored by a method that has none.
   const fs::path model = dir_ / "default.ply";
-  const ModuleRun d =
-      run("--threshold 520 --iterations 10 " + (dir_ / "box.nrrd").string() + " " + model.string(), dir_ / "err.txt");
-  ASSERT_EQ(d.code, 0) << read_file(dir_ / "err.txt");
+  const test::CliRun d =
+      run("--threshold 520 --iterations 10 " + (dir_ / "box.nrrd").string() + " " + model.string(), dir_);
+  ASSERT_EQ(d.code, 0) << d.err;
   EXPECT_TRUE(summarize_topology(read_mesh(model)).closed);
 }
 
 TEST_F(SlicerModule, BadInputIsOneLineAndExitTwoWithNothingWritten) {
   const fs::path model = dir_ / "model.stl";
-  const ModuleRun r = run("--threshold 5000 " + (dir_ / "box.nrrd").string() + " " + model.string(), dir_ / "err.txt");
+  const test::CliRun r = run("--threshold 5000 " + (dir_ / "box.nrrd").string() + " " + model.string(), dir_);
   EXPECT_EQ(r.code, 2);
-  const std::string err = read_file(dir_ / "err.txt");
-  EXPECT_NE(err.find("box.nrrd: no region at or above the threshold 5000"), std::string::npos) << err;
+  EXPECT_NE(r.err.find("box.nrrd: no region at or above the threshold 5000"), std::string::npos) << r.err;
   EXPECT_FALSE(fs::exists(model));
 }
 

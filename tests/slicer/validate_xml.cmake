@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: BSD-3-Clause
 # Validates the module description a Slicer CLI module prints with --xml against the Slicer Execution
 # Model schema (pipelines/slicer/schema/README.md says why a corrected copy is used).
 #   cmake -DMODULE=<executable> -DSCHEMA=<ModuleDescription.xsd> -DWORK_DIR=<dir> -P validate_xml.cmake

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // Consistency of contour ids with the mesh (SPEC 2), and their repair.
 #include <smooth/adjacency.h>
 #include <smooth/contour_structure.h>

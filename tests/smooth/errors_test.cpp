@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // rethrow_with_context: the one way to add context to a library error without losing its type.
 #include "smooth/errors.h"
 

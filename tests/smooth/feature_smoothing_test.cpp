@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 #include <smooth/errors.h>
 #include <smooth/feature_smoothing.h>
 #include <smooth/metrics.h>

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // The one input policy (prepare_input_mesh): what is refused, repaired or tolerated, and how contour
 // ids are made usable; and the divergence guard that stops a smoother whose result means nothing.
 #include <smooth/divergence.h>

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // Numerical corner cases of issue 7: degenerate 1-rings (collinear neighbours, valence 3), a sphere
 // (umbilic everywhere), flat regions (zero curvature), and meshes scaled by 1e-6 and 1e6. Curvatures,
 // umbrellas, labels and smoothed positions must stay finite, and the labels must not depend on the

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 #include <smooth/adjacency.h>
 #include <smooth/errors.h>
 #include <smooth/shapes.h>

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // smooth(mesh, method, options): one entry point that gives each method's own result, its default
 // iteration count, labels where the method has them, and the presets.
 #include "smooth/cross_slice.h"

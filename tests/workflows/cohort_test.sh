@@ -1,4 +1,5 @@
 #!/usr/bin/env bash
+# SPDX-License-Identifier: BSD-3-Clause
 # The cohort workflow run for real (snakemake --cores 2) on three small phantoms and one broken scan:
 # three meshes, a cohort table that lists the broken case as failed, and the index with four thumbnails.
 # Usage: cohort_test.sh CONTOURMESH WORKFLOW_DIR WORK_DIR

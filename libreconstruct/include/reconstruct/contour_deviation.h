@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // How far a surface is from drawn contours: the cross-section of a mesh with each slice plane compared
 // with the contours drawn in that plane. See docs/contours.md.
 #pragma once

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // The contour route: a stack of drawn contours (radiotherapy structures, contour files, VTK polylines)
 // -> resampling -> tiling -> a closed mesh with contour ids. The counterpart of reconstruct() for input
 // that is already contours. See docs/contours.md.

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // Resampling of drawn contours: evenly spaced points that keep the drawn shape within a tolerance.
 // See docs/contours.md.
 #pragma once

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // Ordered planar contours per slice: the output of segmentation and the input of tiling.
 #pragma once
 

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // Label maps and 3D Slicer segmentations: volumes whose voxels hold integer labels (NIfTI, NRRD,
 // MetaImage label maps; Slicer's .seg.nrrd, 3-D or 4-D with layers), and their surfaces, one closed
 // mesh per label (docs/reconstruction.md, "Label maps").

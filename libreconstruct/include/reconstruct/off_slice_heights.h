@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // Heights of the vertices that the tiler puts between the slices (end caps and their rims, the
 // intermediate contours of branchings and refined bands), taken from the image instead of a fixed rule.
 //

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // Synthetic CT phantoms with analytic ground truth (docs/reconstruction.md, "Phantoms"): bone-like solids given by
 // signed distance functions, rendered into CT-like volumes in Hounsfield units with partial-volume effect, blur and
 // noise. The evaluation compares reconstructed and smoothed meshes against the analytic surface.

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // Contours drawn elsewhere (radiotherapy structure sets, contour files, VTK polylines) turned into the
 // ordered, oriented contour stack the tiler takes: slice axis, slice grouping, nesting, orientation,
 // checks with messages that name the contour. See docs/contours.md.

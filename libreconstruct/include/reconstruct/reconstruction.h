@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // The reconstruction chain (docs/reconstruction.md): CT volume -> segmentation -> contours -> tiling -> mesh.
 #pragma once
 

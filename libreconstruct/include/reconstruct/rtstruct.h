@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // DICOM RT Structure Sets (RTSTRUCT): the regions of interest (ROIs) a radiotherapy planning system
 // or a clinician drew, as planar contours in patient coordinates, and their conversion into contour
 // stacks for tiling. Read with GDCM. See docs/contours.md.

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // Segmentation of a CT volume into ordered contours per slice (docs/reconstruction.md): optional
 // denoising, threshold in HU (or Otsu), connected components, per-slice hole handling, sub-pixel
 // contours by marching squares, orientation, and resampling to a target in-plane spacing.

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // How many threads the parallel stages of ContourMesh use: one setting for the whole process.
 #pragma once
 

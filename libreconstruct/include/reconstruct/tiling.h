@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // Tiling (docs/reconstruction.md, "Tiling"): stitching the contours of adjacent slices into a closed triangle mesh that
 // keeps, for every vertex, the slice and contour it came from.
 #pragma once

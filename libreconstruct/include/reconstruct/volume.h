@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // CT volumes: the image type of libreconstruct and reading / writing it with ITK.
 #pragma once
 

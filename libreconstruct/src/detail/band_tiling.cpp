@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 #include "detail/band_tiling.h"
 
 #include <smooth/limits.h>

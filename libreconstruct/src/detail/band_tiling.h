@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // Private: tiling one contour to one contour of an adjacent level (a band), and judging the band.
 #pragma once
 

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 #include "detail/branching.h"
 
 #include "detail/band_tiling.h"

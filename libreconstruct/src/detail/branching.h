@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // Private: the mid-plane composite of Meyers, Skinner and Sloan (1992), for the topology changes left
 // at the finest level of interpolation (or every one, with Branching::MidPlaneComposite).
 #pragma once

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 #include "detail/cap_refinement.h"
 
 #include "reconstruct/contours.h"

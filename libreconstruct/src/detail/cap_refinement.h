@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // Private: well-shaped cap triangulations. Ear clipping alone fans long thin triangles across a cap;
 // umbrella-based smoothing then drags the cap's rim towards its middle and rounds the object's ends.
 #pragma once

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // Private: closing contours that end (an object's end, a cavity's roof or floor).
 #pragma once
 

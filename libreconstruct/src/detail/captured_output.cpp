@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 #include "detail/captured_output.h"
 
 #include <gdcmTrace.h>

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // Private: the text ITK, GDCM, MetaIO and the NIfTI library print on their own while libreconstruct
 // reads or writes a volume. They print multi-line messages to std::cerr, stderr (C stdio) and ITK's
 // output window; libreconstruct reports what went wrong in its own words (one line naming the file),

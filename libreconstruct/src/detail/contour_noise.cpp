@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 #include "detail/contour_noise.h"
 
 #include <algorithm>

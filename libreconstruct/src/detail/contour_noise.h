@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // Private: the per-slice contour noise of render_phantom, the paper's noise model (a segmentation error
 // perturbs single contours). Each voxel slice gets its own displacement field f(x, y) in mm, positive
 // outward, of the contour along its normal within the slice: a few random plane waves of centimetres

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 #include "detail/correspondence.h"
 
 #include "contourmesh/internal/union_find.h"

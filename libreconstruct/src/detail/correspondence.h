@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // Private: which contours of two adjacent levels belong to the same piece of surface.
 #pragma once
 

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 #include "detail/dicom_series.h"
 
 #include <smooth/errors.h>

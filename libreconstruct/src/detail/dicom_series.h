@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // Private: a DICOM image series checked before it is stacked into a voxel grid. ITK's series reader
 // stacks what it is given: a duplicated position made the spacing 0.3 mm (volume -74 %), a file cut in
 // half was read as a slice of zeros, a missing slice was spread over a uniform spacing (slices

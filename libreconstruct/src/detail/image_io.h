@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // Private: ITK image IO set-up shared by the volume and label-map readers.
 #pragma once
 

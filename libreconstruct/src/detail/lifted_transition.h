@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // Private: joining two levels whose contours do not cross in the plane by a triangulated, lifted fill
 // of the region where exactly one of them has material.
 #pragma once

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 #include "detail/phantom_geometry.h"
 
 #include <algorithm>

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // Private: numerical tools on signed distance fields used to build the phantoms' truth: gradients,
 // volume integration, crease and feature-curve sampling, unions of primitives.
 #pragma once

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // The original seven phantoms: bone-like solids with ridges and corners, branching, several objects and
 // a cavity.
 #include "detail/phantom_shapes.h"

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // Private: the builders of the phantoms' analytic truth, one per PhantomShape.
 #pragma once
 

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // The phantoms of the failure classes of contour stacks: flat faces nearly parallel to the slices, sharp
 // ridges lying within a slice plane, and end faces on a slice centre or half-way between two. Where a
 // claim depends on the slice grid it is for render_phantom's default spacing (0.7, 0.7, 2) and margin

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 #include "detail/region_boundaries.h"
 
 #include <algorithm>

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // Private: the boundary loops of labelled regions in a slice, in the order and orientation of marching
 // squares (segmentation).
 #pragma once

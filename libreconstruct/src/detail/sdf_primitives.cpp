@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 #include "detail/sdf_primitives.h"
 
 #include <algorithm>

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // Private: exact signed distance functions of the primitives the phantoms are built from (negative
 // inside, millimetres).
 #pragma once

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 #include "detail/shape_interpolation.h"
 
 #include "reconstruct/contours.h"

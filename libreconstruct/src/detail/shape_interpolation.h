@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // Private: shape-based interpolation between the regions of two adjacent contour levels (Raya and
 // Udupa 1990; Herman, Zheng and Bucholtz 1992). Each level's region (outer contours minus holes) is
 // turned into a signed distance field on a common 2-D grid; the region between them at a fraction t is

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // Private: tiling the slab between two levels: correspondence, then for each group a band, a cap, or
 // intermediate contours by shape-based interpolation (docs/reconstruction.md, "Tiling").
 #pragma once

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // Private: connected components of a binary slice image, by runs and union-find (segmentation).
 #pragma once
 

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 #include "detail/stack_preparation.h"
 
 #include <smooth/errors.h>

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // Private: checking a contour stack and normalising it for tiling.
 #pragma once
 

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 #include "detail/tiling_types.h"
 
 #include "reconstruct/contours.h"

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // Private: the types the tiling phases share. A level is a set of contours on one plane w (a slice, or
 // an intermediate plane made by interpolation); a slab mesh collects what one slab's tiling adds.
 #pragma once

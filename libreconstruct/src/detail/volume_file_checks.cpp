@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 #include "detail/volume_file_checks.h"
 
 #include <smooth/errors.h>

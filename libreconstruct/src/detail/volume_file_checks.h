@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // Private: a volume file checked against what its header promises, before ITK reads it. ITK reads a
 // MetaImage whose data are shorter than DimSize (MetaIO only prints a message), a cut zlib stream, a
 // .nii.gz cut partway (the missing slices become zeros) and a NIfTI whose sform is sheared (it

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // Adaptive subdivision around feature vertices (Xu et al. 2006, section 4).
 #pragma once
 

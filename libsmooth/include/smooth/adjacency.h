@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // Compact (CSR) connectivity of a triangle mesh: vertex 1-rings, vertex-to-face incidence and
 // boundary flags. Built once, read by every hot loop.
 #pragma once

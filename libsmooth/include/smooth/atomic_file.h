@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // Output files that are either complete or absent: written to a temporary sibling, flushed to disk and
 // renamed over the destination. Shared by every writer of ContourMesh (meshes, volumes, reports), so
 // that they all follow the same rules (docs/robustness.md, "Writes"):

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // Nearest-point queries on a triangle mesh's surface and on a point set, through a uniform grid of
 // buckets. Used by the surface metrics (surface_metrics.h) and wherever a
 // point must be compared with a surface.

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // The contour structure of a tiled mesh (the ids of mesh.h), recovered from its vertex ids and connectivity:
 // each vertex's two neighbours along its own contour, windows of consecutive contour vertices, and
 // the slice axis.

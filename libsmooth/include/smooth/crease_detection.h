@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // Sharp features of a (smoothed) mesh: creases found from the spread of face normals around each vertex,
 // kept when they extend along a line, and widened to a band. The cross-slice smoother labels its
 // result with it (docs/results.md, "Feature labels of the paper's method").

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // Cross-slice smoothing: the project's default smoothing of contour meshes (docs/smoothing.md,
 // "Cross-slice smoothing"). It follows the paper's observation (Xu et al. 2006, section 3) that
 // segmentation errors perturb single contours while true shape continues from contour to contour:

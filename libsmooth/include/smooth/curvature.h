@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // Principal curvatures and directions by weighted quadric fitting (Milroy et al. 1997), as used by
 // Xu et al. 2006, section 3.1 (paper eqs. 9-13).
 #pragma once

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // Guards against diverged results: an iterative smoother run for too many iterations or with too large
 // a step grows high frequencies until the coordinates overflow. A result like that must be an error
 // (DivergenceError), never a mesh written with exit status 0.

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // How a contour-based mesh closes the ends of an object (docs/reconstruction.md, "Tiling").
 #pragma once
 

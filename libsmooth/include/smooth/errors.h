@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // Typed exceptions thrown by libsmooth. The CLI maps them to exit codes (InvalidInputError and its
 // subclasses -> 2 "bad input", CancelledError -> 2, or 128 + the signal when a signal cancelled the
 // run, anything else -> 3 "internal"; docs/cli.md).

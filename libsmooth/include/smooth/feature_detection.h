@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // Feature detection by contour continuity: the paper's Algorithm 2 (Xu et al. 2006, section 3.2). A vertex
 // whose umbrella is large is an edge when the in-slice curvatures of its own contour and of the two adjacent
 // contours agree where the feature line crosses them, noise when they do not; umbilic vertices vote with their

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // The paper's method end to end (Xu et al. 2006, Algorithm 1): detect features, subdivide
 // adaptively around them, smooth the adaptive mesh with a linear isotropic scheme, resume the
 // original resolution.

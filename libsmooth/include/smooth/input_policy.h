@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // The one input policy for meshes handed to ContourMesh from outside (a file, a VTK pipeline): what is
 // refused, what is repaired with a warning and what is tolerated, and how the contour ids are made
 // usable. The contourmesh CLI and vtkContourFeatureSmoothingFilter both call prepare_input_mesh, so

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // Resource limits: a cap on the vertices of any mesh read or produced and a memory budget checked
 // before the big allocations (tiling, adaptive subdivision), so oversized inputs fail with a clear
 // LimitError instead of an out-of-memory crash.

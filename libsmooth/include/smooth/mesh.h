@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // The triangle mesh type shared by every ContourMesh library: positions, triangles and the per-vertex
 // contour ids that the smoothing of Xu et al. 2006 reads (the slice c(i) of each vertex, paper section 3).
 #pragma once

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // Element quality of triangle meshes, for judging a tiling before any smoothing: the share of the area
 // in slivers, the area of faces parallel to the slice planes ("shelves"), and the share of vertices that
 // carry no contour id. docs/reconstruction.md ("Judging a tiling") says how these numbers are used.

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // Shape metrics for the evaluation protocol (the comparison of methods, docs/results.md): volume, area, volume
 // shrinking rate, distance to an analytic surface and normal error against an analytic normal field.
 #pragma once

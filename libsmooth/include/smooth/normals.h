@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // Face and vertex normals, face areas and edge-length statistics.
 #pragma once
 

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // Progress reporting and cancellation for long-running work.
 #pragma once
 

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // Meshes with a known analytic surface, for tests and benchmarks: icosphere, cube, and
 // contour stacks (prisms over a closed planar curve, tiled slice by slice, with contour ids) with
 // their signed distance functions; plus reproducible noise.

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // The split of each 1-ring by slice (the paper's notation, section 3; ids as in mesh.h): N1^c(i), N1^{c-1}(i),
 // N1^{c+1}(i).
 #pragma once

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // One entry point for every smoothing method of the library (docs/smoothing.md, "One entry point and
 // the presets"): the baselines of smoothing.h, the paper's method (feature_smoothing.h) and cross-slice
 // smoothing (cross_slice.h), each configured by its own sub-struct of one options struct; and the named

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // The baseline smoothers the paper compares with (Xu et al. 2006, section 6; SPEC 3.5):
 // Laplacian (eq. 5), Taubin lambda|mu (eq. 6), explicit mean curvature flow and MIN-DIST flow.
 // All update every vertex simultaneously (Jacobi style) from the positions of the previous step.

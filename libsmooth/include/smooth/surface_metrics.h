@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // Accuracy measured over surfaces, not at vertices (docs/reconstruction.md, "Judging a tiling"):
 // uniform samples on a mesh (their distance to the true surface) and on the true surface (their
 // distance to the mesh), two-sided RMS and Hausdorff distance, area-weighted normal error, each split

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // Topological summary of a triangle mesh: closedness, manifoldness, Euler characteristic, components.
 #pragma once
 

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // The umbrella operator of the paper (eq. 7): the discrete uniform Laplacian.
 #pragma once
 

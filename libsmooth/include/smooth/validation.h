@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // Mesh validation: every problem reported by kind and index, so a user can find it in their data.
 #pragma once
 

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // A uniform grid of buckets over a box, shared by the triangle and point locators: the cell of a point,
 // and a walk over the cells in growing shells (Chebyshev rings) around a query point.
 #pragma once

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 #include "detail/contour_profiles.h"
 
 #include "smooth/errors.h"

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // Profiles of a contour mesh's surface through a contour vertex (for the cross-slice smoother): across
 // the slices, where the plane through the vertex perpendicular to its contour cuts the corresponding
 // contours above and below; and along the vertex's own contour.

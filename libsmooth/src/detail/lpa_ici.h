@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // One-dimensional local polynomial approximation with adaptive windows chosen by the intersection of
 // confidence intervals (LPA-ICI; Goldenshluger & Nemirovski 1997, Katkovnik 1999), with directional
 // windows fused by their inverse variances (Katkovnik, Egiazarian & Astola 2002). Used by the

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // A minimal parallel loop on std::thread for libsmooth (which depends on Eigen only). Work is cut into
 // fixed chunks that do not depend on the number of threads, so a reduction over chunks in chunk order
 // gives the same result on any machine.

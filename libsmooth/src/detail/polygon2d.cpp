@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 #include "contourmesh/internal/polygon2d.h"
 
 #include <algorithm>

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // The one hot loop behind the umbrella operator and the umbrella smoothing steps.
 #pragma once
 

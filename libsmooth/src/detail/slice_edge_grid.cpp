@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 #include "detail/slice_edge_grid.h"
 
 #include <algorithm>

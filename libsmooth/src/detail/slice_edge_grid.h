@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // The contour edges of every slice in a 2-D bucket grid, for cuts of a plane with the contours of a
 // slice found by geometry alone: where the mesh's connectivity does not lead from one slice to the
 // next (branchings and caps join contours through vertices off the slices).

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // Offscreen VTK renders for the comparison report: flat-shaded meshes from one camera, and the
 // paper's labels as coloured points on the surface. Private to pipelines.
 #pragma once

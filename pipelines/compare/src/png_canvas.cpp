@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 #include "png_canvas.h"
 
 #include "pipelines/atomic_file.h"

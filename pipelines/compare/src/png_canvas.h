@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // A small RGB raster for plots written as PNG without OpenGL: anti-aliased lines, rectangles and
 // FreeType text (VTK's vtkFreeTypeTools), so that plots need no display. Private to pipelines.
 #pragma once

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 #include "compare/report.h"
 
 #include "comparison_render.h"

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // Private to the reports: the JSON and CSV forms of comparisons, method summaries and series.
 #pragma once
 

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // Private to the reports: number formatting for text, CSV, HTML and JSON, and the definitions paragraph.
 #pragma once
 

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // The files of one series (write_series, its report.html) and the summary of several (write_summary).
 #include "compare/report.h"
 

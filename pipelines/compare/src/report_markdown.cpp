@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // write_markdown: the page docs/results.md is made of.
 #include "compare/report.h"
 

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // Private to the reports: tables as rows of cells, rendered as Markdown or HTML, and the tables the
 // reports are made of (accuracy per series, methods x phantoms per regime, labels, timing, verdicts).
 #pragma once

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 #include "compare/series.h"
 
 #include <smooth/errors.h>

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // Private helper of the comparison: wall-clock timing of a method's stages over repeated runs.
 #pragma once
 

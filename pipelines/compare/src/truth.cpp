@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 #include "compare/comparison.h"
 
 #include <smooth/closest_point.h>

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // parse_variant: "NAME:key=value,..." -> a libsmooth method with some options changed. The key table
 // follows the options of smooth.h's families; keep it in step when an option is added there.
 #include "compare/method_table.h"

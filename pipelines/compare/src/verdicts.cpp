@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 #include "compare/verdicts.h"
 
 #include <smooth/errors.h>

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // Private to the comparison: VTK's smoothing filters as a VTK or 3D Slicer user configures them, and
 // 3D Slicer's voxel route (threshold, islands, flying edges, windowed sinc) on a CT volume.
 #pragma once

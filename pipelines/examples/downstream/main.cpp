@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // A downstream program built against an installed ContourMesh (see CMakeLists.txt next to it): renders
 // the ridge-box phantom as a noisy CT volume (libreconstruct), reconstructs a mesh with contour ids,
 // smooths it with the paper's method (libsmooth), writes it as STL and reads it back (ContourMesh::vtk),

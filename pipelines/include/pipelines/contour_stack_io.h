@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // The contour-stack file: a documented JSON form of a ContourStack, so that contours from any tool,
 // or written by hand, can be tiled, and the contours the image route found can be inspected. The
 // format is specified in docs/contours.md.

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // Mesh file I/O for ContourMesh: STL (binary, ASCII), PLY, VTP and OBJ. STL, OBJ and PLY go through the
 // project's own parsers and writers (strict: VTK's accept truncated files, read "nan" as 0 and do not
 // check their writes); VTP through VTK's XML reader (wrapped to check what it trusts) and writer.

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // PLY codec that keeps per-vertex contour ids as integer vertex properties. VTK's vtkPLYWriter writes
 // only colours, so the ids would be lost; this small codec reads ASCII and binary (both endians) PLY
 // with any scalar types and writes binary little-endian.

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // vtkContourFeatureSmoothingFilter: every smoothing method of libsmooth as a VTK filter (cross-slice
 // smoothing, the paper's feature-preserving smoothing of Xu et al. 2006, the baselines), through the
 // library's one entry point smooth(mesh, method, options), for use inside larger VTK applications. Gives

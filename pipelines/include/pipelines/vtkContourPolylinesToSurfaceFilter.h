@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // vtkContourPolylinesToSurfaceFilter: planar contours held as vtkPolyData polylines (the form in which
 // SlicerRT and VTK applications keep radiotherapy structures) in, the closed tiled surface with
 // contour ids out. Gives the same mesh as build_contour_stack() + reconstruct_from_contours() and as

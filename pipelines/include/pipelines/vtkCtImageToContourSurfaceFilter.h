@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // vtkCtImageToContourSurfaceFilter: libreconstruct's chain (segmentation -> contours -> tiling,
 // reconstruct()) as a VTK filter: a CT volume in, a closed tiled surface with contour ids out. Gives
 // the same mesh as reconstruct() and as `contourmesh reconstruct` with the same options.

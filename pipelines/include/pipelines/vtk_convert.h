@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // Conversion between contourmesh::Mesh and vtkPolyData.
 #pragma once
 

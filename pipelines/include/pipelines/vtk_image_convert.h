@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // Conversion between vtkImageData and the CT volume type of libreconstruct (itk::Image<float, 3>).
 #pragma once
 

@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: BSD-3-Clause
 """ContourMesh from Python: CT volumes and label maps to closed meshes with contour ids, and their
 feature-preserving smoothing, on numpy arrays.
 

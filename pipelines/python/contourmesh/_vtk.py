@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: BSD-3-Clause
 """numpy arrays -> vtkPolyData (VTK's Python package is imported only here)."""
 
 import numpy as np

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // Python bindings: volumes, label maps, reconstruction, phantoms.
 #include "bindings.h"
 #include "bridge.h"

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // Python bindings: smoothing (every method, through libsmooth's one entry point smooth()) and the paper's
 // feature detection.
 #include "bindings.h"

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // Private to the Python module: the binding groups module.cpp registers.
 #pragma once
 

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // Private to the Python module: numpy <-> ContourMesh types, progress callbacks that call back into
 // Python, and running library work without the GIL.
 #pragma once

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // The compiled part of the `contourmesh` Python package (_contourmesh): the library's exceptions as
 // Python exceptions, and the bindings. The public functions and their documentation are in
 // contourmesh/__init__.py, which wraps these.

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // One contour to one contour: the least-area band, its quality, and twisted bands.
 #include "detail/band_tiling.h"
 

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // The mid-plane composite and the nested fill left for the finest level of a topology change.
 #include "detail/branching.h"
 

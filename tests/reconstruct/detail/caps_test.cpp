@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // Caps on ending contours.
 #include "detail/caps.h"
 

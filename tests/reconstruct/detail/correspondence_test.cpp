@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // Which contours of adjacent levels belong together, and how a group changes.
 #include "detail/correspondence.h"
 

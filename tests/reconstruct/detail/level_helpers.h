@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // Helpers for the tests of the tiler's private phases: levels made from polygons, and slab meshes turned
 // into plain meshes.
 #pragma once

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // The lifted triangulation between levels whose contours do not cross.
 #include "detail/lifted_transition.h"
 

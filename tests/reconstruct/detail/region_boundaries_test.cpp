@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // Boundary tracing of segmentation: the same loops, in the same order and from the same first point, as
 // itk::ContourExtractor2DImageFilter run on each region on its own (region pixels above the contour
 // value, the rest below), and the marching-squares orientation.

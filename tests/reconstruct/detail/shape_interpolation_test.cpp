@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // The signed distance fields and the marching-squares levels of shape-based interpolation.
 #include "detail/shape_interpolation.h"
 

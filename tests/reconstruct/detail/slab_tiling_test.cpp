@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // One slab: bands, caps, refinement, and topology changes through interpolated levels.
 #include "detail/slab_tiling.h"
 

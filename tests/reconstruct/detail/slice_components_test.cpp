@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // The run-based labelling of segmentation against a plain flood fill (the definition of the numbering).
 #include "detail/slice_components.h"
 

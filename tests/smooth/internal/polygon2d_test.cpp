@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // The shared 2-D polygon module against closed-form values.
 #include "contourmesh/internal/polygon2d.h"
 

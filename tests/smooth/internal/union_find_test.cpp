@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // The one union-find of the project, against a plain relabelling and its root contract.
 #include "contourmesh/internal/union_find.h"
 

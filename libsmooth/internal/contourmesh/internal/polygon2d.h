@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // Private to ContourMesh (not installed): the 2-D polygon geometry that libsmooth (contour-stack
 // shapes) and libreconstruct (contours, tiling, phantoms) share. Compiled into libsmooth
 // (src/detail/polygon2d.cpp). A polygon is its vertices in order, closed implicitly (last -> first).

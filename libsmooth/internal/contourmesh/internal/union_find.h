@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // Private to ContourMesh (not installed): disjoint sets over the integers 0..size()-1, shared by
 // libsmooth and libreconstruct (mesh components, manifold fans, contour groups, pixel runs).
 #pragma once

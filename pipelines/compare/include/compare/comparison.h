@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // The evaluation harness (docs/results.md, docs/smoothing.md "How accuracy is measured"): on one CT
 // volume, reconstruct the contour mesh once and run every method of the method table on it (libsmooth's
 // methods, VTK's filters on the same mesh, 3D Slicer's voxel route on the same volume), then measure each

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // The methods a comparison runs, as one table: per method its key (libsmooth's SmoothingMethod for the
 // contour-route methods, ExternalMethod for VTK's filters and the voxel route), id, title, colour,
 // route, settings and how to run it. Ablation variants (a method with some options changed) are rows

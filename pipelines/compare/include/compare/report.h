@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // Writing comparisons: per series (one object in one regime, over seeds) metrics tables (CSV, JSON with
 // every seed's numbers), the volume-shrinking curve (CSV and a PNG plot, the paper's Figure 13),
 // flat-shaded renders of the methods from one camera (Figures 9-12), renders of the labels (Figure 6)

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // One object measured over noise regimes and seeds: the regimes (CT noise in HU, per-slice contour noise
 // in mm), seed lists, and a series of comparisons of one object in one regime with the means over its
 // seeds, the numbers the tables and verdicts are made of. Part of the contourmesh_compare target.

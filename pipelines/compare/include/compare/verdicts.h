@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // The quality bars of the default smoothing (docs/results.md, "Verdicts"), judged per phantom and regime
 // on the means over seeds:
 // 1. Do no harm (CT-noise regimes): two-sided RMS and feature-region RMS at most 1.05 x the unsmoothed

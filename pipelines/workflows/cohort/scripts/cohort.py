@@ -1,4 +1,5 @@
 #!/usr/bin/env python3
+# SPDX-License-Identifier: BSD-3-Clause
 """The cohort table (CSV, one row per case) and an HTML index with the thumbnails, from the cases'
 summaries."""
 import argparse

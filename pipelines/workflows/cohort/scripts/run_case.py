@@ -1,4 +1,5 @@
 #!/usr/bin/env python3
+# SPDX-License-Identifier: BSD-3-Clause
 """One case of the cohort workflow: `contourmesh run` on a scan, and a JSON summary that is written
 whatever happens (status "ok" with the run's facts, or "failed" with the error and exit code), so
 that a broken scan is reported in the cohort table instead of stopping the workflow."""

@@ -1,4 +1,5 @@
 #!/usr/bin/env python3
+# SPDX-License-Identifier: BSD-3-Clause
 """A thumbnail of a case's mesh, flat-shaded from a fixed oblique view, rendered offscreen with VTK
 (Debian's python3-vtk9). A failed case gets a grey card with the error. Debian's VTK draws through X even
 offscreen: without a display the script runs itself again under xvfb-run."""
