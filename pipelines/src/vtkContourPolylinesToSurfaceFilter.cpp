@@ -3,6 +3,7 @@
 
 #include "pipelines/vtk_convert.h"
 #include "vtk_progress.h"
+#include "vtk_tiling_properties.h"
 
 #include <reconstruct/contour_reconstruction.h>
 #include <reconstruct/planar_contours.h>
@@ -149,24 +150,7 @@ int vtkContourPolylinesToSurfaceFilter::RequestData(vtkInformation*, vtkInformat
     o.single_slice = this->SingleSliceContours == SINGLE_SLICE_DROP ? contourmesh::SingleSliceContours::Drop
                                                                     : contourmesh::SingleSliceContours::Slab;
     o.slab_thickness = this->SlabThickness;
-    o.tiling.end_caps = this->EndCaps == END_CAPS_AT_END_SLICE ? contourmesh::EndCaps::AtEndSlice
-                                                               : contourmesh::EndCaps::HalfSpacing;
-    o.tiling.cap_refinement = this->CapRefinement == CAP_REFINEMENT_EAR_CLIPPING
-                                  ? contourmesh::CapRefinement::EarClipping
-                                  : contourmesh::CapRefinement::Interior;
-    o.tiling.min_overlap_fraction = this->MinOverlapFraction;
-    o.tiling.full_dp_limit = static_cast<std::size_t>(this->FullDynamicProgrammingLimit);
-    o.tiling.band_fraction = this->BandFraction;
-    o.tiling.branching = this->Branching == BRANCHING_MID_PLANE ? contourmesh::Branching::MidPlaneComposite
-                                                                : contourmesh::Branching::Interpolated;
-    o.tiling.max_branching_depth = this->MaxBranchingDepth;
-    o.tiling.band_refinement = this->BandRefinement == BAND_REFINEMENT_NONE ? contourmesh::BandRefinement::None
-                                                                            : contourmesh::BandRefinement::Interpolated;
-    o.tiling.max_band_sliver_share = this->MaxBandSliverShare;
-    o.tiling.max_band_aspect = this->MaxBandAspect;
-    o.tiling.max_intermediate_contours = this->MaxIntermediateContours;
-    o.tiling.interpolation_grid = this->InterpolationGrid;
-    o.tiling.min_overlap_of_larger = this->MinOverlapOfLarger;
+    o.tiling = filter_detail::tiling_options(*this);
 
     filter_detail::StageProgress stages(
         this, [](vtkAlgorithm* a) { return static_cast<vtkContourPolylinesToSurfaceFilter*>(a)->AbortRequested(); });

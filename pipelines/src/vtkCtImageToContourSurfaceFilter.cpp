@@ -4,6 +4,7 @@
 #include "pipelines/vtk_convert.h"
 #include "pipelines/vtk_image_convert.h"
 #include "vtk_progress.h"
+#include "vtk_tiling_properties.h"
 
 #include <reconstruct/reconstruction.h>
 #include <smooth/errors.h>
@@ -101,26 +102,9 @@ int vtkCtImageToContourSurfaceFilter::RequestData(vtkInformation*, vtkInformatio
     seg.fill_holes = this->FillHoles != 0;
     seg.sampling = this->Sampling;
     seg.min_contour_length = this->MinContourLength;
-    o.tiling.end_caps = this->EndCaps == END_CAPS_AT_END_SLICE ? contourmesh::EndCaps::AtEndSlice
-                                                               : contourmesh::EndCaps::HalfSpacing;
-    o.tiling.cap_refinement = this->CapRefinement == CAP_REFINEMENT_EAR_CLIPPING
-                                  ? contourmesh::CapRefinement::EarClipping
-                                  : contourmesh::CapRefinement::Interior;
+    o.tiling = filter_detail::tiling_options(*this);
     o.off_slice.placement = this->OffSlicePlacement == OFF_SLICE_TILED ? contourmesh::OffSlicePlacement::Tiled
                                                                        : contourmesh::OffSlicePlacement::ImageCrossing;
-    o.tiling.min_overlap_fraction = this->MinOverlapFraction;
-    o.tiling.full_dp_limit = static_cast<std::size_t>(this->FullDynamicProgrammingLimit);
-    o.tiling.band_fraction = this->BandFraction;
-    o.tiling.branching = this->Branching == BRANCHING_MID_PLANE ? contourmesh::Branching::MidPlaneComposite
-                                                                : contourmesh::Branching::Interpolated;
-    o.tiling.max_branching_depth = this->MaxBranchingDepth;
-    o.tiling.band_refinement = this->BandRefinement == BAND_REFINEMENT_NONE ? contourmesh::BandRefinement::None
-                                                                            : contourmesh::BandRefinement::Interpolated;
-    o.tiling.max_band_sliver_share = this->MaxBandSliverShare;
-    o.tiling.max_band_aspect = this->MaxBandAspect;
-    o.tiling.max_intermediate_contours = this->MaxIntermediateContours;
-    o.tiling.interpolation_grid = this->InterpolationGrid;
-    o.tiling.min_overlap_of_larger = this->MinOverlapOfLarger;
     o.min_component_voxels = this->MinComponentVoxels;
 
     filter_detail::StageProgress stages(
