@@ -165,6 +165,7 @@ OffSliceResult fit_off_slice_heights(Mesh mesh, const CtImage& image, double thr
   for (int round = 0; round < 8; ++round) {
     bool any = false;
     for (const Triangle& t : mesh.triangles) {
+      if (d[t[0]] == 0.0 && d[t[1]] == 0.0 && d[t[2]] == 0.0) continue;  // unmoved: it cannot have turned
       const Eigen::Vector3d n0 = face_normal(before, t), n1 = face_normal(mesh.positions, t);
       if (n0.squaredNorm() < 1e-24 || n0.dot(n1) > 0.17 * n0.norm() * n1.norm()) continue;
       for (Index v : t) {
