@@ -240,6 +240,7 @@ Setup make_setup(const CompareArgs& a) {
   o.detection_radius = a.detection_radius;
   o.timing_repeats = a.repeat;
   o.reconstruction.tiling.limits.max_vertices = a.max_vertices;
+  o.reconstruction.off_slice.placement = off_slice_placement(a.volume);
   o.limits.max_vertices = a.max_vertices;
   o.methods.iterations = a.iterations;
   o.methods.only = split_list(a.methods);

@@ -174,6 +174,14 @@ TEST(CompareCli, VolumeWithAndWithoutAReferenceSurface) {
   EXPECT_TRUE(m["mean"][0]["rms_mm"].is_number());
   EXPECT_TRUE(m["mean"][0]["normal_error_degrees"].is_null());
   EXPECT_EQ(m["regime"]["name"], "input");
+  // --off-slice reaches the reconstruction: the unsmoothed mesh's distance to the reference changes.
+  const double image_rms = m["mean"][0]["rms_mm"].get<double>();
+  r = run_cli("compare " + volume.string() + " --truth " + reference.string() +
+                  " --threshold 520 --off-slice tiled --methods none --no-render --no-curves --out " +
+                  (tmp.path() / "tiled").string() + " --json",
+              tmp.path());
+  ASSERT_EQ(r.code, 0) << r.err;
+  EXPECT_NE(nlohmann::json::parse(r.out)["comparisons"][0]["metrics"]["mean"][0]["rms_mm"].get<double>(), image_rms);
 
   r = run_cli("compare " + volume.string() + " --threshold 520 --methods none,taubin --no-render --no-curves --out " +
                   (tmp.path() / "without").string() + " --json",
@@ -227,7 +235,8 @@ TEST(CompareCli, BadInputExitsWithTwoAndAClearMessage) {
            {"--methods none,slicer", "slicer"},
            {"--variant x:colour=red", "colour"},
            {"--render-methods cross-slice,foo", "foo"},
-           {"--iterations 0", "--iterations"}}) {
+           {"--iterations 0", "--iterations"},
+           {"--off-slice sideways", "--off-slice"}}) {
     r = run_cli("compare --phantom ridge-box " + option + out, tmp.path());
     EXPECT_EQ(r.code, 2) << option;
     EXPECT_NE(r.err.find(fragment), std::string::npos) << option << ": " << r.err;
