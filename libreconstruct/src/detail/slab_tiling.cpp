@@ -7,6 +7,7 @@
 #include "detail/correspondence.h"
 #include "detail/lifted_transition.h"
 #include "detail/shape_interpolation.h"
+#include "detail/slab_remeshing.h"
 
 #include <algorithm>
 #include <cmath>
@@ -171,6 +172,11 @@ class Interpolation {
   DistancePair fields_;
   std::map<double, Extracted> levels_;
 };
+
+// Flips that remove slivers may move the surface by at most this share of the slab's thickness.
+constexpr double kMaxFlipDeviation = 0.25;
+// ... and split edges longer than this many contour spacings.
+constexpr double kMinSplitLength = 0.5;
 
 // A candidate tiling whose flat and sliver area (TilingDefects::score) is at most this share of its area
 // is kept without trying the costlier ones.
@@ -418,6 +424,7 @@ class SlabTiler {
 
 void tile_slab(const Level& lower, const Level& upper, const TilingOptions& options, SlabMesh& out) {
   SlabTiler(options).tile(lower, upper, {}, 0, true, true, out);
+  improve_slab_faces(out, kMaxFlipDeviation * (upper.w - lower.w), kMinSplitLength * mean_spacing(lower, upper));
 }
 
 }  // namespace contourmesh::detail

@@ -1,0 +1,33 @@
+// SPDX-License-Identifier: BSD-3-Clause
+// Private: improving the shape of a slab's faces after it is tiled, without moving its boundary (the
+// contours of the two slices, shared with the neighbouring slabs) or its vertices.
+#pragma once
+
+#include "detail/tiling_types.h"
+
+#include <cstddef>
+
+namespace contourmesh::detail {
+
+/// What improve_slab_faces did.
+struct SlabRemeshing {
+  std::size_t flips = 0;
+  std::size_t splits = 0;
+};
+
+/// Removes slivers (faces whose smallest angle is under 10 degrees) from a slab's tiling, where bands
+/// between very different contours (composites, intermediate contours, a contour and its copy) fan
+/// long thin faces:
+/// - edge flips that raise the smaller of the two faces' smallest angles (the max-min angle criterion
+///   of Delaunay triangulations, applied on the surface), only where the four corners lie within
+///   `max_deviation` (mm) of one plane, so that the surface moves by at most that much;
+/// - splits of a sliver's longest edge at its midpoint (a vertex on the surface, without ids: the
+///   surface does not move) while that edge is longer than `min_split_length` (mm), followed by flips.
+/// Only edges with two faces of the same role in the slab are flipped or split: the edges on the slab's
+/// boundary (the slice contours) and their vertices, with their ids, stay as they are. A flip never
+/// joins two vertices the tiler placed on one plane (a chord across a contour would lie in its plane),
+/// never creates an edge that exists and never turns a face over. Does nothing when the slab has no
+/// slivers. Faces keep their roles.
+SlabRemeshing improve_slab_faces(SlabMesh& mesh, double max_deviation, double min_split_length);
+
+}  // namespace contourmesh::detail
