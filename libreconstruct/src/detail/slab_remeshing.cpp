@@ -8,36 +8,42 @@
 #include <deque>
 #include <numbers>
 #include <unordered_map>
+#include <unordered_set>
 #include <vector>
 
 namespace contourmesh::detail {
 
 namespace {
 
-const double kSliverAngle = 10.0 * std::numbers::pi / 180.0;
+// A face whose smallest angle is under 10 degrees is a sliver.
+const double kSliverCosine = std::cos(10.0 * std::numbers::pi / 180.0);
 // A face whose longest edge is at least this share of the sum of the other two is flat, not thin.
 constexpr double kFlatRatio = 0.97;
 
-// Smallest angle of a triangle, radians (0 for a degenerate one).
-double min_angle(const Eigen::Vector3d& a, const Eigen::Vector3d& b, const Eigen::Vector3d& c) {
-  const Eigen::Vector3d p[3] = {a, b, c};
-  double best = std::numbers::pi;
-  for (int k = 0; k < 3; ++k) {
-    const Eigen::Vector3d u = p[(k + 1) % 3] - p[k], v = p[(k + 2) % 3] - p[k];
-    best = std::min(best, std::atan2(u.cross(v).norm(), u.dot(v)));
-  }
-  return best;
+// Cosine of the smallest angle of a triangle (the angle opposite its shortest edge), in [0.5, 1]: a
+// measure of shape that falls as the smallest angle grows, without trigonometry. 1 for a degenerate one.
+double sharpness(const Eigen::Vector3d& a, const Eigen::Vector3d& b, const Eigen::Vector3d& c) {
+  double e[3] = {(b - c).squaredNorm(), (c - a).squaredNorm(), (a - b).squaredNorm()};
+  std::sort(e, e + 3);
+  const double denominator = 2.0 * std::sqrt(e[1] * e[2]);
+  if (!(denominator > 0.0)) return 1.0;
+  return std::clamp((e[1] + e[2] - e[0]) / denominator, -1.0, 1.0);
 }
 
 // The slab's faces over compact vertex indices, with a map from each directed edge to its face.
 class SurfacePatch {
  public:
-  explicit SurfacePatch(SlabMesh& mesh) : mesh_(mesh) {
-    faces_.reserve(mesh.triangles.size());
-    for (const Triangle& t : mesh.triangles) {
+  // The faces `which` of `mesh`.
+  SurfacePatch(SlabMesh& mesh, const std::vector<int>& which) : mesh_(mesh) {
+    faces_.reserve(which.size());
+    index_.reserve(which.size());
+    for (const int w : which) {
+      const Triangle& t = mesh.triangles[static_cast<std::size_t>(w)];
       std::array<int, 3> f{};
       for (int k = 0; k < 3; ++k) f[k] = compact(t[k]);
       faces_.push_back(f);
+      roles_.push_back(mesh.roles[static_cast<std::size_t>(w)]);
+      origin_.push_back(w);
     }
     original_vertices_ = static_cast<int>(points_.size());
     edges_.reserve(3 * faces_.size());
@@ -51,9 +57,9 @@ class SurfacePatch {
   // False when a directed edge occurs twice (a slab that is not an oriented surface): nothing is changed.
   [[nodiscard]] bool valid() const { return valid_; }
   [[nodiscard]] std::size_t size() const { return faces_.size(); }
-  [[nodiscard]] double angle(int f) const {
+  [[nodiscard]] double sharp(int f) const {
     const auto& t = faces_[static_cast<std::size_t>(f)];
-    return min_angle(points_[t[0]], points_[t[1]], points_[t[2]]);
+    return sharpness(points_[t[0]], points_[t[1]], points_[t[2]]);
   }
 
   // The face across edge k of face f (from corner k to corner k + 1), or -1 on the slab's boundary or
@@ -62,12 +68,11 @@ class SurfacePatch {
     const auto& t = faces_[static_cast<std::size_t>(f)];
     const auto it = edges_.find(key(t[(k + 1) % 3], t[k]));
     if (it == edges_.end()) return -1;
-    return mesh_.roles[static_cast<std::size_t>(it->second)] == mesh_.roles[static_cast<std::size_t>(f)] ? it->second
-                                                                                                          : -1;
+    return roles_[static_cast<std::size_t>(it->second)] == roles_[static_cast<std::size_t>(f)] ? it->second : -1;
   }
 
   // Flips edge k of face f when that raises the two faces' smallest angle and is allowed (see
-  // improve_slab_faces); returns the gain in radians (0: not flipped, or only when `apply`).
+  // improve_slab_faces); returns by how much the larger sharpness falls (0: no flip; flipped only when `apply`).
   double flip(int f, int k, double max_deviation, bool apply) {
     const int g = across(f, k);
     if (g < 0) return 0.0;
@@ -79,9 +84,9 @@ class SurfacePatch {
     // A chord between two vertices the tiler put on one plane would lie in that plane, across a contour.
     if (c < original_vertices_ && d < original_vertices_ && std::abs(C.z() - D.z()) <= 1e-9 * (1.0 + std::abs(C.z())))
       return 0.0;
-    const double before = std::min(min_angle(A, B, C), min_angle(B, A, D));
-    const double after = std::min(min_angle(C, A, D), min_angle(D, B, C));
-    if (!(after > before + 1e-6)) return 0.0;
+    const double before = std::max(sharpness(A, B, C), sharpness(B, A, D));
+    const double after = std::max(sharpness(C, A, D), sharpness(D, B, C));
+    if (!(after < before - 1e-9)) return 0.0;
     // The surface moves by the distance between the old and the new diagonal.
     const Eigen::Vector3d n = (B - A).cross(D - C);
     if (!(n.norm() > 0.0) || std::abs((C - A).dot(n)) > max_deviation * n.norm()) return 0.0;
@@ -97,7 +102,7 @@ class SurfacePatch {
       link(f);
       link(g);
     }
-    return after - before;
+    return before - after;
   }
 
   // Splits edge k of face f at its midpoint; returns the faces made or changed (empty when the edge is
@@ -124,10 +129,12 @@ class SurfacePatch {
     faces_[static_cast<std::size_t>(g)] = {b, m, d};
     const int f2 = static_cast<int>(faces_.size());
     faces_.push_back({m, b, c});
-    mesh_.roles.push_back(mesh_.roles[static_cast<std::size_t>(f)]);
+    roles_.push_back(roles_[static_cast<std::size_t>(f)]);
+    origin_.push_back(-1);
     const int g2 = static_cast<int>(faces_.size());
     faces_.push_back({m, a, d});
-    mesh_.roles.push_back(mesh_.roles[static_cast<std::size_t>(g)]);
+    roles_.push_back(roles_[static_cast<std::size_t>(g)]);
+    origin_.push_back(-1);
     for (int h : {f, g, f2, g2}) link(h);
     return {f, g, f2, g2};
   }
@@ -137,11 +144,16 @@ class SurfacePatch {
     return (points_[t[(k + 1) % 3]] - points_[t[k]]).norm();
   }
 
-  // Writes the faces back to the slab mesh.
+  // Writes the faces back to the slab mesh: changed faces in place, new ones at the end.
   void store() {
-    mesh_.triangles.resize(faces_.size());
     for (std::size_t f = 0; f < faces_.size(); ++f) {
-      for (int k = 0; k < 3; ++k) mesh_.triangles[f][k] = refs_[faces_[f][k]];
+      const Triangle t{refs_[faces_[f][0]], refs_[faces_[f][1]], refs_[faces_[f][2]]};
+      if (origin_[f] >= 0) {
+        mesh_.triangles[static_cast<std::size_t>(origin_[f])] = t;
+      } else {
+        mesh_.triangles.push_back(t);
+        mesh_.roles.push_back(roles_[f]);
+      }
     }
   }
 
@@ -178,6 +190,8 @@ class SurfacePatch {
   std::vector<Eigen::Vector3d> points_;
   std::vector<VertexRef> refs_;
   std::vector<std::array<int, 3>> faces_;
+  std::vector<FaceRole> roles_;
+  std::vector<int> origin_;  // the face of the slab mesh, -1 for a face a split added
   std::unordered_map<std::uint64_t, int> edges_;
   int original_vertices_ = 0;
   bool valid_ = true;
@@ -187,21 +201,36 @@ class SurfacePatch {
 
 SlabRemeshing improve_slab_faces(SlabMesh& mesh, double max_deviation, double min_split_length) {
   SlabRemeshing done;
-  std::deque<int> work;
+  std::vector<int> slivers;
   for (std::size_t f = 0; f < mesh.triangles.size(); ++f) {
     const Triangle& t = mesh.triangles[f];
-    if (is_sliver(mesh.position(t[0]), mesh.position(t[1]), mesh.position(t[2]))) work.push_back(static_cast<int>(f));
+    if (is_sliver(mesh.position(t[0]), mesh.position(t[1]), mesh.position(t[2]))) slivers.push_back(static_cast<int>(f));
   }
-  if (work.empty()) return done;
-  SurfacePatch patch(mesh);
+  if (slivers.empty()) return done;
+  // The patch: the faces around the slivers' corners (a fan's faces all share its apex). Its edges to
+  // the faces outside stay as they are.
+  std::unordered_set<VertexRef> corners;
+  corners.reserve(3 * slivers.size());
+  for (const int f : slivers) corners.insert(mesh.triangles[static_cast<std::size_t>(f)].begin(),
+                                             mesh.triangles[static_cast<std::size_t>(f)].end());
+  std::vector<int> which;
+  for (std::size_t f = 0; f < mesh.triangles.size(); ++f) {
+    const Triangle& t = mesh.triangles[f];
+    if (corners.count(t[0]) || corners.count(t[1]) || corners.count(t[2])) which.push_back(static_cast<int>(f));
+  }
+  SurfacePatch patch(mesh, which);
   if (!patch.valid()) return done;
+  std::deque<int> work;
+  for (std::size_t f = 0; f < patch.size(); ++f) {
+    if (patch.sharp(static_cast<int>(f)) > kSliverCosine) work.push_back(static_cast<int>(f));
+  }
   // Each sliver may be split a few times over (a fan across a wide band needs a row of vertices per few
   // contour spacings); the cap only stops a runaway.
   const std::size_t max_splits = 8 * work.size() + 64;
   while (!work.empty()) {
     const int f = work.front();
     work.pop_front();
-    if (!(patch.angle(f) < kSliverAngle)) continue;
+    if (!(patch.sharp(f) > kSliverCosine)) continue;
     // The flip that gains most, if any.
     int best_k = -1;
     double best_gain = 0.0;
