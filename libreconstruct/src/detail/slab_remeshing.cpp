@@ -204,7 +204,9 @@ SlabRemeshing improve_slab_faces(SlabMesh& mesh, double max_deviation, double mi
   std::vector<int> slivers;
   for (std::size_t f = 0; f < mesh.triangles.size(); ++f) {
     const Triangle& t = mesh.triangles[f];
-    if (is_sliver(mesh.position(t[0]), mesh.position(t[1]), mesh.position(t[2]))) slivers.push_back(static_cast<int>(f));
+    if (is_sliver(mesh.position(t[0]), mesh.position(t[1]), mesh.position(t[2]))) {
+      slivers.push_back(static_cast<int>(f));
+    }
   }
   if (slivers.empty()) return done;
   // The patch: the faces around the slivers' corners (a fan's faces all share its apex). Its edges to
