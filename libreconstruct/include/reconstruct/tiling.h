@@ -46,9 +46,13 @@ enum class BandRefinement {
   /// spacings apart in the plane) is tiled again through intermediate contours from the same
   /// interpolation, about `max_band_aspect` contour spacings apart, and, where the contours are nested
   /// in the plane, as a lifted triangulation of the region between them; the tiling with less flat and
-  /// sliver area is kept. Default.
+  /// sliver area is kept. Then, in each slab, the edges around the remaining slivers are flipped (where
+  /// the surface is nearly planar) or split at their midpoints (new vertices without ids); contour
+  /// vertices, their ids and the slices' contour edges stay (docs/reconstruction.md, "Face quality").
+  /// Default.
   Interpolated,
-  /// Every one-to-one pair is one band of the minimum-area tiling, however thin its triangles.
+  /// Every one-to-one pair is one band of the minimum-area tiling, however thin its triangles, and no
+  /// face is flipped or split afterwards.
   None,
 };
 

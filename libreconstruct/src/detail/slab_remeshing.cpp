@@ -204,13 +204,13 @@ SlabRemeshing improve_slab_faces(SlabMesh& mesh, double max_deviation, double mi
   std::vector<int> slivers;
   for (std::size_t f = 0; f < mesh.triangles.size(); ++f) {
     const Triangle& t = mesh.triangles[f];
-    if (is_sliver(mesh.position(t[0]), mesh.position(t[1]), mesh.position(t[2]))) {
+    if (mesh.roles[f] != FaceRole::Cap && is_sliver(mesh.position(t[0]), mesh.position(t[1]), mesh.position(t[2]))) {
       slivers.push_back(static_cast<int>(f));
     }
   }
   if (slivers.empty()) return done;
-  // The patch: the faces around the slivers' corners (a fan's faces all share its apex). Its edges to
-  // the faces outside stay as they are.
+  // The patch: the faces around the slivers' corners (a fan's faces all share its apex), caps left out
+  // (they are planar and triangulated as CapRefinement asks). Its edges to the faces outside stay.
   std::unordered_set<VertexRef> corners;
   corners.reserve(3 * slivers.size());
   for (const int f : slivers) corners.insert(mesh.triangles[static_cast<std::size_t>(f)].begin(),
@@ -218,7 +218,9 @@ SlabRemeshing improve_slab_faces(SlabMesh& mesh, double max_deviation, double mi
   std::vector<int> which;
   for (std::size_t f = 0; f < mesh.triangles.size(); ++f) {
     const Triangle& t = mesh.triangles[f];
-    if (corners.count(t[0]) || corners.count(t[1]) || corners.count(t[2])) which.push_back(static_cast<int>(f));
+    if (mesh.roles[f] != FaceRole::Cap && (corners.count(t[0]) || corners.count(t[1]) || corners.count(t[2]))) {
+      which.push_back(static_cast<int>(f));
+    }
   }
   SurfacePatch patch(mesh, which);
   if (!patch.valid()) return done;

@@ -23,12 +23,12 @@ struct SlabRemeshing {
 ///   `max_deviation` (mm) of one plane, so that the surface moves by at most that much;
 /// - splits of a sliver's longest edge at its midpoint (a vertex on the surface, without ids: the
 ///   surface does not move) while that edge is longer than `min_split_length` (mm), followed by flips.
-/// Only the faces that share a corner with a sliver take part, and only edges with two such faces of
-/// the same role are flipped or split: the edges on the slab's boundary (the slice contours) and their
-/// vertices, with their ids, stay as they are. A flip never
-/// joins two vertices the tiler placed on one plane (a chord across a contour would lie in its plane),
-/// never creates an edge that exists and never turns a face over. Does nothing when the slab has no
-/// slivers. Faces keep their roles.
+/// Only faces that share a corner with a sliver take part, caps excepted (planar, and triangulated as
+/// CapRefinement asks), and only edges between two such faces of the same role are flipped or split:
+/// the edges on the slab's boundary (the slice contours) and their vertices, with their ids, stay as
+/// they are. A flip never joins two vertices the tiler placed on one plane (a chord across a contour
+/// would lie in its plane), never creates an edge that exists and never turns a face over. Does
+/// nothing when the slab has no slivers. Faces keep their roles.
 SlabRemeshing improve_slab_faces(SlabMesh& mesh, double max_deviation, double min_split_length);
 
 }  // namespace contourmesh::detail

@@ -424,7 +424,9 @@ class SlabTiler {
 
 void tile_slab(const Level& lower, const Level& upper, const TilingOptions& options, SlabMesh& out) {
   SlabTiler(options).tile(lower, upper, {}, 0, true, true, out);
-  improve_slab_faces(out, kMaxFlipDeviation * (upper.w - lower.w), kMinSplitLength * mean_spacing(lower, upper));
+  if (options.band_refinement == BandRefinement::Interpolated) {
+    improve_slab_faces(out, kMaxFlipDeviation * (upper.w - lower.w), kMinSplitLength * mean_spacing(lower, upper));
+  }
 }
 
 }  // namespace contourmesh::detail
