@@ -22,7 +22,8 @@ void add_tiling_options(CLI::App* cmd, TilingArgs& args) {
                   "Times a slab whose topology changes is halved through interpolated contours, >= 0")
       ->capture_default_str();
   cmd->add_option("--band-refinement", args.band_refinement,
-                  "Bands made of slivers: interpolated (tiled again through intermediate contours) | none")
+                  "Bands made of slivers: interpolated (tiled again through intermediate contours, then slivers "
+                  "flipped or split) | none")
       ->capture_default_str();
   cmd->add_option("--max-band-sliver-share", args.max_band_sliver_share,
                   "A band is refined when faces under 10 degrees hold more than this share of its area, 0 to 1")
