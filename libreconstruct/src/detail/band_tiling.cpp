@@ -48,25 +48,38 @@ std::vector<std::uint8_t> least_cost_path(const std::vector<Eigen::Vector3d>& P,
   std::vector<std::uint8_t> from_lower(row_start[m + 1], 0);
   auto at = [&](int i, int j) { return row_start[i] + static_cast<std::size_t>(j - lo[i]); };
   cost[at(0, 0)] = 0.0;
-  for (int i = 0; i <= m; ++i) {
-    for (int j = lo[i]; j <= hi[i]; ++j) {
-      if (i == 0 && j == 0) continue;
-      if ((i == 0 && j > 0) || (i == m && j == 0) || (j == n && i < m)) continue;
+  // Row by row through pointers, the two triangle areas written out: the same arithmetic as
+  // triangle_area (the same values, so the same path), but no call and no index arithmetic per cell.
+  // Row 0 holds only the start; (m, 0) and (i < m, n) stay unreachable.
+  for (int i = 1; i <= m; ++i) {
+    const int l = lo[i], pl = lo[i - 1], ph = hi[i - 1];
+    const int jb = i == m ? std::max(l, 1) : l;
+    const int je = i < m ? std::min(hi[i], n - 1) : hi[i];
+    double* row = cost.data() + row_start[i];
+    std::uint8_t* row_from = from_lower.data() + row_start[i];
+    const double* prev = cost.data() + row_start[i - 1];
+    const Eigen::Vector3d& p0 = P[i - 1];
+    const Eigen::Vector3d& p1 = P[i];
+    const Eigen::Vector3d along = p1 - p0;
+    Eigen::Vector3d to_previous = Q[std::max(jb - 1, 0)] - p1;  // Q[j - 1] - P[i]
+    for (int j = jb; j <= je; ++j) {
+      const Eigen::Vector3d to_q = Q[j] - p1;
       double c = inf;
       std::uint8_t fl = 0;
-      if (i > 0 && j >= lo[i - 1] && j <= hi[i - 1] && cost[at(i - 1, j)] < inf) {
-        c = cost[at(i - 1, j)] + triangle_area(P[i - 1], P[i], Q[j]);
+      if (j >= pl && j <= ph && prev[j - pl] < inf) {
+        c = prev[j - pl] + 0.5 * along.cross(Q[j] - p0).norm();  // triangle P[i-1] P[i] Q[j]
         fl = 1;
       }
-      if (j > lo[i] && cost[at(i, j - 1)] < inf) {
-        const double c2 = cost[at(i, j - 1)] + triangle_area(P[i], Q[j], Q[j - 1]);
+      if (j > l && row[j - 1 - l] < inf) {
+        const double c2 = row[j - 1 - l] + 0.5 * to_q.cross(to_previous).norm();  // triangle P[i] Q[j] Q[j-1]
         if (c2 < c) {
           c = c2;
           fl = 0;
         }
       }
-      cost[at(i, j)] = c + (span_weight > 0.0 && c < inf ? span_weight * (P[i] - Q[j]).squaredNorm() : 0.0);
-      from_lower[at(i, j)] = fl;
+      row[j - l] = c + (span_weight > 0.0 && c < inf ? span_weight * (p1 - Q[j]).squaredNorm() : 0.0);
+      row_from[j - l] = fl;
+      to_previous = to_q;
     }
   }
   std::vector<std::uint8_t> moves;
