@@ -194,8 +194,9 @@ std::vector<Polygon> zero_level(const DistancePair& fields, double t, double lev
     const Eigen::Vector2d pa = fields.origin + fields.h * Eigen::Vector2d(i, j);
     return pa + s * fields.h * (vertical ? Eigen::Vector2d(0, 1) : Eigen::Vector2d(1, 0));
   };
-  std::vector<std::int64_t> next(2 * count, -1);
-  std::vector<std::size_t> starts;
+  // (edge, next edge) for every crossing where the level leaves a cell's inside: a few per cell the level
+  // passes, so nothing is kept per node of the grid.
+  std::vector<std::pair<std::size_t, std::size_t>> links;
   for (int j = 0; j + 1 < ny; ++j) {
     for (int i = 0; i + 1 < nx; ++i) {
       const std::size_t c0 = static_cast<std::size_t>(j) * nx + i;
@@ -217,21 +218,26 @@ std::vector<Polygon> zero_level(const DistancePair& fields, double t, double lev
             if (!neg[e] && neg[(e + 1) % 4]) partner = e;
           }
         }
-        next[edge[k]] = static_cast<std::int64_t>(edge[partner]);
-        starts.push_back(edge[k]);
+        links.emplace_back(edge[k], edge[partner]);
       }
     }
   }
-  std::sort(starts.begin(), starts.end());
-  std::vector<std::uint8_t> used(2 * count, 0);
-  for (std::size_t s : starts) {
+  // Each edge starts one link at most (the cell where the level leaves across it): sorted by edge, the
+  // links are the starts in order, and the link leaving edge e is found by binary search.
+  std::sort(links.begin(), links.end());
+  std::vector<std::uint8_t> used(links.size(), 0);
+  auto find = [&](std::size_t e) -> std::size_t {
+    const auto it =
+        std::lower_bound(links.begin(), links.end(), e,
+                         [](const std::pair<std::size_t, std::size_t>& a, std::size_t x) { return a.first < x; });
+    return it != links.end() && it->first == e ? static_cast<std::size_t>(it - links.begin()) : links.size();
+  };
+  for (std::size_t s = 0; s < links.size(); ++s) {
     if (used[s]) continue;
     Polygon loop;
-    std::size_t e = s;
-    while (!used[e] && next[e] >= 0) {
-      used[e] = 1;
-      loop.push_back(crossing(e));
-      e = static_cast<std::size_t>(next[e]);
+    for (std::size_t k = s; k < links.size() && !used[k]; k = find(links[k].second)) {
+      used[k] = 1;
+      loop.push_back(crossing(links[k].first));
     }
     if (loop.size() >= 3) loops.push_back(std::move(loop));
   }
