@@ -308,6 +308,8 @@ std::vector<BandTriangle> untwisted_band(const Polygon& lower, double wl, const 
   double best_edge = q.longest_cross_edge, untwisted_area = std::numeric_limits<double>::infinity();
   const int m = static_cast<int>(lower.size());
   for (int k = 0; k < 5; ++k) {
+    // A start four quarters round is the first band's own start: that band is known, and twisted.
+    if (k < 4 && (k + 1) * m / 4 % m == 0) continue;
     std::vector<BandTriangle> band = k < 4 ? minimum_area_band(lower, wl, upper, wu, options, (k + 1) * m / 4 % m)
                                            : minimum_area_band(lower, wl, upper, wu, options, 0, 1.0);
     q = band_quality(lower, wl, upper, wu, band);
