@@ -5,7 +5,7 @@
 #include "detail/caps.h"
 #include "detail/correspondence.h"
 #include "detail/outline.h"
-#include "reconstruct/contours.h"
+#include "contourmesh/reconstruct/contours.h"
 
 #include "contourmesh/internal/union_find.h"
 

@@ -5,7 +5,7 @@
 #include "detail/caps.h"
 #include "detail/outline.h"
 
-#include <smooth/mesh_quality.h>
+#include <contourmesh/smooth/mesh_quality.h>
 
 #include <gtest/gtest.h>
 
