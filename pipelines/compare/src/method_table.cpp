@@ -191,6 +191,11 @@ std::string cross_slice_settings(const SmoothOptions& o) {
                                                       : " only")
     << ", LPA-ICI windows (gamma " << c.gamma << ") for a noise level "
     << (c.noise_across ? number(*c.noise_across) + " mm" : std::string("estimated from the mesh"))
+    << (c.off_slice.filter == OffSliceFilter::BilateralNormals
+            ? "; vertices between the slices fitted to bilaterally filtered normals (" +
+                  std::to_string(c.off_slice.normal_iterations) + " iterations, " +
+                  number(c.off_slice.sigma_angle_degrees) + " degrees)"
+            : std::string())
     << "; labels: creases of the result (radius " << c.features.radius << " mm, band " << c.features.band << " mm)";
   return s.str();
 }

@@ -188,6 +188,24 @@ MethodConfig method_config(const py::object& method_arg, Options& o, Mesh& mesh)
       else if (s == "across-only") co.stages = CrossSliceStages::AcrossOnly;
       else throw InvalidInputError("stages must be 'across-then-along' or 'across-only', got '" + s + "'");
     });
+    OffSliceFilterOptions& fo = co.off_slice;
+    o.take("off_slice_filter", [&](const py::object& v) {
+      const std::string s = as_string(v, "off_slice_filter");
+      if (s == "bilateral") fo.filter = OffSliceFilter::BilateralNormals;
+      else if (s == "none") fo.filter = OffSliceFilter::None;
+      else throw InvalidInputError("off_slice_filter must be 'bilateral' or 'none', got '" + s + "'");
+    });
+    o.take("off_slice_motion", [&](const py::object& v) {
+      const std::string s = as_string(v, "off_slice_motion");
+      if (s == "free") fo.motion = OffSliceMotion::Free;
+      else if (s == "axis") fo.motion = OffSliceMotion::AlongAxis;
+      else throw InvalidInputError("off_slice_motion must be 'free' or 'axis', got '" + s + "'");
+    });
+    o.take_int("normal_iterations", fo.normal_iterations);
+    o.take_double("normal_sigma", fo.sigma_angle_degrees);
+    o.take_int("vertex_iterations", fo.vertex_iterations);
+    o.take_double("max_move", fo.max_move);
+    o.take_double("contour_max_move", fo.contour_max_move);
   } else if (m != SmoothingMethod::None) {
     SmoothingOptions& bo = so.baseline;
     o.take_double("lambda", bo.lambda);
