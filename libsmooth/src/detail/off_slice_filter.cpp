@@ -154,10 +154,13 @@ void update_vertices(const ContourFrame& frame, const std::vector<Triangle>& tri
   Eigen::Matrix3Xd centroids(3, static_cast<Index>(triangles.size()));
   Eigen::Matrix3Xd updated(3, static_cast<Index>(region.vertices.size()));
   for (int it = 0; it < options.vertex_iterations; ++it) {
-    for (Index f : region.faces) {
-      const Triangle& t = triangles[static_cast<std::size_t>(f)];
-      centroids.col(f) = (positions.col(t[0]) + positions.col(t[1]) + positions.col(t[2])) / 3.0;
-    }
+    parallel_chunks(region.faces.size(), 4096, [&](std::size_t, std::size_t begin, std::size_t end) {
+      for (std::size_t k = begin; k < end; ++k) {
+        const Index f = region.faces[k];
+        const Triangle& t = triangles[static_cast<std::size_t>(f)];
+        centroids.col(f) = (positions.col(t[0]) + positions.col(t[1]) + positions.col(t[2])) / 3.0;
+      }
+    });
     parallel_chunks(region.vertices.size(), 2048, [&](std::size_t, std::size_t begin, std::size_t end) {
       for (std::size_t k = begin; k < end; ++k) {
         const Index i = region.vertices[k];
