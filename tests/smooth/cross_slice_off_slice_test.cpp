@@ -1,10 +1,10 @@
 // SPDX-License-Identifier: BSD-3-Clause
 // Cross-slice smoothing's last stage: the vertices between the slices follow the bilaterally filtered
 // normals of their faces (OffSliceFilterOptions).
-#include "smooth/cross_slice.h"
-#include "smooth/errors.h"
-#include "smooth/shapes.h"
-#include "smooth/surface_metrics.h"
+#include "contourmesh/smooth/cross_slice.h"
+#include "contourmesh/smooth/errors.h"
+#include "contourmesh/smooth/shapes.h"
+#include "contourmesh/smooth/surface_metrics.h"
 
 #include <gtest/gtest.h>
 

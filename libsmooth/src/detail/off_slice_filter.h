@@ -6,7 +6,7 @@
 #pragma once
 
 #include "detail/contour_profiles.h"
-#include "smooth/cross_slice.h"
+#include "contourmesh/smooth/cross_slice.h"
 
 #include <Eigen/Core>
 
