@@ -279,25 +279,48 @@ void chained_profile(const ContourFrame& f, const Eigen::Matrix3Xd& x, const Nex
   std::array<std::array<double, 2 * kMaxProfile>, 2> side;  // as in cross_slice_profile: not zeroed
   std::array<int, 2> count{0, 0};
   reach = std::min(reach, kMaxProfile / 2 - 1);
-  for (int dir = 0; dir < 2; ++dir) {
-    const std::vector<EdgePoint>& next = dir == 1 ? cuts.up : cuts.down;
-    EdgePoint at = next[static_cast<std::size_t>(i)];
-    if (!at.valid()) continue;
-    Eigen::Vector3d point = at.on(x);
-    for (int k = 1; k <= reach; ++k) {
+  // The chains below (dir 0) and above (dir 1) are independent: they advance in turn, step by step, so
+  // that the processor overlaps one's dependent loads and divisions with the other's.
+  struct Chain {
+    EdgePoint at;
+    Eigen::Vector3d point = Eigen::Vector3d::Zero();
+    bool going = false;
+  };
+  std::array<Chain, 2> chain;
+  for (std::size_t dir = 0; dir < 2; ++dir) {
+    chain[dir].at = (dir == 1 ? cuts.up : cuts.down)[static_cast<std::size_t>(i)];
+    chain[dir].going = chain[dir].at.valid();
+    if (chain[dir].going) chain[dir].point = chain[dir].at.on(x);
+  }
+  for (int k = 1; k <= reach && (chain[0].going || chain[1].going); ++k) {
+    for (std::size_t dir = 0; dir < 2; ++dir) {
+      Chain& ch = chain[dir];
+      if (!ch.going) continue;
+      const std::vector<EdgePoint>& next = dir == 1 ? cuts.up : cuts.down;
+      EdgePoint& at = ch.at;
+      Eigen::Vector3d& point = ch.point;
       const Eigen::Vector3d r = point - v;
-      if ((r - r.dot(f.axis) * f.axis).squaredNorm() > max_offset2) break;
-      auto& s = side[static_cast<std::size_t>(dir)];
-      const int c = count[static_cast<std::size_t>(dir)]++;
+      if ((r - r.dot(f.axis) * f.axis).squaredNorm() > max_offset2) {
+        ch.going = false;
+        continue;
+      }
+      auto& s = side[dir];
+      const int c = count[dir]++;
       s[static_cast<std::size_t>(2 * c)] = r.dot(f.axis) / f.slice_spacing;
       s[static_cast<std::size_t>(2 * c + 1)] = r.dot(m);
-      if (k == reach) break;
+      if (k == reach) {
+        ch.going = false;
+        continue;
+      }
       // The next point: the edge's ends' own next cuts lead to the next contour; there the vertex's own
       // plane is cut, from the nearer of the two (a step or two along the contour), so the chain does
       // not drift along the contours. Where that fails, the interpolation of the two cuts serves.
       const EdgePoint& from_a = next[static_cast<std::size_t>(at.a)];
       const EdgePoint& from_b = next[static_cast<std::size_t>(at.b)];
-      if (!from_a.valid() && !from_b.valid()) break;
+      if (!from_a.valid() && !from_b.valid()) {
+        ch.going = false;
+        continue;
+      }
       const EdgePoint& nearer = !from_b.valid() || (from_a.valid() && at.t < 0.5) ? from_a : from_b;
       const std::array<Index, 2> starts{nearer.a, nearer.b};
       Eigen::Vector3d cut = Eigen::Vector3d::Zero();
