@@ -9,8 +9,9 @@
 //
 // With repetitions, the ratios and targets use each stage's median.
 //
-// Benchmarks are named stage/size/process_time[/manual_time]. Everything runs on one thread (VTK's SMP tools
-// run on their sequential backend), so the ratios compare per-core costs. See docs/benchmarks.md.
+// Benchmarks are named stage/size/process_time[/manual_time]. Everything but default_method runs on one
+// thread (VTK's SMP tools run on their sequential backend); default_method counts the CPU time of all its
+// threads, so the ratios compare total work. See docs/benchmarks.md.
 #include "bench_inputs.h"
 #include "bench_stages.h"
 
