@@ -2,8 +2,8 @@
 // White-box tests of the cross-slice smoother's profiles (libsmooth/src/detail/contour_profiles.h).
 #include "detail/contour_profiles.h"
 
-#include "smooth/normals.h"
-#include "smooth/shapes.h"
+#include "contourmesh/smooth/normals.h"
+#include "contourmesh/smooth/shapes.h"
 
 #include <gtest/gtest.h>
 
