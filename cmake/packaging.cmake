@@ -1,6 +1,6 @@
 # SPDX-License-Identifier: BSD-3-Clause
 # The ContourMesh CMake package: `cmake --install <build> --prefix <prefix>` puts
-#   <prefix>/include/{smooth,reconstruct,pipelines}/*.h   public headers
+#   <prefix>/include/contourmesh/{smooth,reconstruct,vtk}/*.h   public headers
 #   <prefix>/lib/libcontourmesh_*.a                       the libraries (static by default)
 #   <prefix>/bin/contourmesh                              the CLI
 #   <prefix>/lib/cmake/ContourMesh/                       ContourMeshConfig.cmake, version file, targets

@@ -5,7 +5,7 @@
 // the tools do with each.
 #pragma once
 
-#include <reconstruct/volume.h>
+#include <contourmesh/reconstruct/volume.h>
 
 #include <cstdint>
 #include <filesystem>

@@ -2,7 +2,7 @@
 // Helpers shared by the test suites: a per-test scratch directory and a small noisy contour stack.
 #pragma once
 
-#include <smooth/shapes.h>
+#include <contourmesh/smooth/shapes.h>
 
 #include <gtest/gtest.h>
 

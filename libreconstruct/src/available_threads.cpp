@@ -1,7 +1,7 @@
 // SPDX-License-Identifier: BSD-3-Clause
 // available_threads() on its own, without ITK: the tiler needs it, and the fuzz build (clang, which
 // Debian's ITK headers refuse) compiles the tiler without the rest of threads.cpp.
-#include "reconstruct/threads.h"
+#include "contourmesh/reconstruct/threads.h"
 
 #include <tbb/global_control.h>
 #include <tbb/task_arena.h>

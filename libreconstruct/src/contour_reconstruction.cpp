@@ -1,11 +1,11 @@
 // SPDX-License-Identifier: BSD-3-Clause
-#include "reconstruct/contour_reconstruction.h"
+#include "contourmesh/reconstruct/contour_reconstruction.h"
 
-#include "reconstruct/contour_deviation.h"
-#include "reconstruct/contour_resampling.h"
-#include "reconstruct/planar_contours.h"
+#include "contourmesh/reconstruct/contour_deviation.h"
+#include "contourmesh/reconstruct/contour_resampling.h"
+#include "contourmesh/reconstruct/planar_contours.h"
 
-#include <smooth/errors.h>
+#include <contourmesh/smooth/errors.h>
 
 #include "contourmesh/internal/polygon2d.h"
 

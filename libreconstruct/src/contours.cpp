@@ -1,7 +1,7 @@
 // SPDX-License-Identifier: BSD-3-Clause
-#include "reconstruct/contours.h"
+#include "contourmesh/reconstruct/contours.h"
 
-#include <smooth/errors.h>
+#include <contourmesh/smooth/errors.h>
 
 #include "contourmesh/internal/polygon2d.h"
 

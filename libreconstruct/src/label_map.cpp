@@ -5,12 +5,12 @@
 #include <itkMetaDataObject.h>
 #include <itkVectorImage.h>
 
-#include "reconstruct/label_map.h"
+#include "contourmesh/reconstruct/label_map.h"
 
 #include "detail/image_io.h"
 
-#include <smooth/errors.h>
-#include <smooth/limits.h>
+#include <contourmesh/smooth/errors.h>
+#include <contourmesh/smooth/limits.h>
 
 #include <algorithm>
 #include <array>

@@ -1,9 +1,9 @@
 // SPDX-License-Identifier: BSD-3-Clause
-#include "reconstruct/off_slice_heights.h"
+#include "contourmesh/reconstruct/off_slice_heights.h"
 
-#include <smooth/adjacency.h>
-#include <smooth/errors.h>
-#include <smooth/normals.h>
+#include <contourmesh/smooth/adjacency.h>
+#include <contourmesh/smooth/errors.h>
+#include <contourmesh/smooth/normals.h>
 
 #include <Eigen/Core>
 

@@ -1,9 +1,9 @@
 // SPDX-License-Identifier: BSD-3-Clause
-#include "reconstruct/phantom.h"
+#include "contourmesh/reconstruct/phantom.h"
 
 #include "detail/phantom_shapes.h"
 
-#include <smooth/errors.h>
+#include <contourmesh/smooth/errors.h>
 
 #include <array>
 #include <cmath>

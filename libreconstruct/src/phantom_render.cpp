@@ -1,14 +1,14 @@
 // SPDX-License-Identifier: BSD-3-Clause
 // render_phantom: a phantom's solid sampled into a CT-like volume (partial volume by supersampling, blur,
 // noise).
-#include "reconstruct/phantom.h"
+#include "contourmesh/reconstruct/phantom.h"
 
-#include "reconstruct/volume.h"
+#include "contourmesh/reconstruct/volume.h"
 
 #include "detail/contour_noise.h"
 
-#include <smooth/errors.h>
-#include <smooth/limits.h>
+#include <contourmesh/smooth/errors.h>
+#include <contourmesh/smooth/limits.h>
 
 #include <itkDiscreteGaussianImageFilter.h>
 

@@ -1,7 +1,7 @@
 // SPDX-License-Identifier: BSD-3-Clause
-#include "reconstruct/planar_contours.h"
+#include "contourmesh/reconstruct/planar_contours.h"
 
-#include <smooth/errors.h>
+#include <contourmesh/smooth/errors.h>
 
 #include <Eigen/Geometry>
 

@@ -1,8 +1,8 @@
 // SPDX-License-Identifier: BSD-3-Clause
-#include "reconstruct/reconstruction.h"
+#include "contourmesh/reconstruct/reconstruction.h"
 
-#include <smooth/errors.h>
-#include <smooth/topology.h>
+#include <contourmesh/smooth/errors.h>
+#include <contourmesh/smooth/topology.h>
 
 #include <chrono>
 #include <sstream>

@@ -1,8 +1,8 @@
 // SPDX-License-Identifier: BSD-3-Clause
-#include "reconstruct/segmentation.h"
+#include "contourmesh/reconstruct/segmentation.h"
 
-#include <smooth/errors.h>
-#include <smooth/limits.h>
+#include <contourmesh/smooth/errors.h>
+#include <contourmesh/smooth/limits.h>
 
 #include "detail/region_boundaries.h"
 #include "detail/slice_components.h"

@@ -1,7 +1,7 @@
 // SPDX-License-Identifier: BSD-3-Clause
-#include "reconstruct/threads.h"
+#include "contourmesh/reconstruct/threads.h"
 
-#include <smooth/errors.h>
+#include <contourmesh/smooth/errors.h>
 
 #include <itkMultiThreaderBase.h>
 #include <tbb/global_control.h>

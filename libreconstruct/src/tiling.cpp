@@ -1,13 +1,13 @@
 // SPDX-License-Identifier: BSD-3-Clause
-#include "reconstruct/tiling.h"
+#include "contourmesh/reconstruct/tiling.h"
 
 #include "detail/correspondence.h"
 #include "detail/slab_tiling.h"
 #include "detail/stack_preparation.h"
 #include "detail/tiling_types.h"
-#include "reconstruct/threads.h"
+#include "contourmesh/reconstruct/threads.h"
 
-#include <smooth/errors.h>
+#include <contourmesh/smooth/errors.h>
 
 #include <algorithm>
 #include <cmath>

@@ -1,13 +1,13 @@
 // SPDX-License-Identifier: BSD-3-Clause
-#include "reconstruct/volume.h"
+#include "contourmesh/reconstruct/volume.h"
 
 #include "detail/captured_output.h"
 #include "detail/image_io.h"
 #include "detail/dicom_series.h"
 #include "detail/volume_file_checks.h"
 
-#include <smooth/atomic_file.h>
-#include <smooth/errors.h>
+#include <contourmesh/smooth/atomic_file.h>
+#include <contourmesh/smooth/errors.h>
 
 #include <itkGDCMImageIO.h>
 #include <itkGDCMImageIOFactory.h>
@@ -24,7 +24,7 @@
 #include <itkNrrdImageIOFactory.h>
 
 // After ITK: its IO headers bring ITK's own Eigen, which must come before the system one.
-#include <smooth/limits.h>
+#include <contourmesh/smooth/limits.h>
 
 #include <Eigen/Core>
 #include <Eigen/LU>

@@ -1,10 +1,10 @@
 // SPDX-License-Identifier: BSD-3-Clause
-#include "smooth/adaptive_subdivision.h"
+#include "contourmesh/smooth/adaptive_subdivision.h"
 
-#include "smooth/adjacency.h"
-#include "smooth/errors.h"
-#include "smooth/normals.h"
-#include "smooth/umbrella.h"
+#include "contourmesh/smooth/adjacency.h"
+#include "contourmesh/smooth/errors.h"
+#include "contourmesh/smooth/normals.h"
+#include "contourmesh/smooth/umbrella.h"
 
 #include <algorithm>
 #include <string>

@@ -1,7 +1,7 @@
 // SPDX-License-Identifier: BSD-3-Clause
-#include "smooth/adjacency.h"
+#include "contourmesh/smooth/adjacency.h"
 
-#include "smooth/errors.h"
+#include "contourmesh/smooth/errors.h"
 
 #include <algorithm>
 #include <limits>

@@ -1,7 +1,7 @@
 // SPDX-License-Identifier: BSD-3-Clause
-#include "smooth/atomic_file.h"
+#include "contourmesh/smooth/atomic_file.h"
 
-#include "smooth/errors.h"
+#include "contourmesh/smooth/errors.h"
 
 #include <fcntl.h>
 #include <sys/stat.h>

@@ -1,8 +1,8 @@
 // SPDX-License-Identifier: BSD-3-Clause
-#include "smooth/closest_point.h"
+#include "contourmesh/smooth/closest_point.h"
 
 #include "detail/bucket_grid.h"
-#include "smooth/errors.h"
+#include "contourmesh/smooth/errors.h"
 
 #include <algorithm>
 #include <cmath>

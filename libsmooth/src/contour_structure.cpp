@@ -1,7 +1,7 @@
 // SPDX-License-Identifier: BSD-3-Clause
-#include "smooth/contour_structure.h"
+#include "contourmesh/smooth/contour_structure.h"
 
-#include "smooth/errors.h"
+#include "contourmesh/smooth/errors.h"
 
 #include "contourmesh/internal/union_find.h"
 

@@ -1,9 +1,9 @@
 // SPDX-License-Identifier: BSD-3-Clause
-#include "smooth/crease_detection.h"
+#include "contourmesh/smooth/crease_detection.h"
 
 #include "detail/parallel.h"
-#include "smooth/errors.h"
-#include "smooth/normals.h"
+#include "contourmesh/smooth/errors.h"
+#include "contourmesh/smooth/normals.h"
 
 #include <Eigen/Eigenvalues>
 

@@ -1,11 +1,11 @@
 // SPDX-License-Identifier: BSD-3-Clause
-#include "smooth/cross_slice.h"
+#include "contourmesh/smooth/cross_slice.h"
 
 #include "detail/contour_profiles.h"
 #include "detail/lpa_ici.h"
 #include "detail/parallel.h"
-#include "smooth/errors.h"
-#include "smooth/normals.h"
+#include "contourmesh/smooth/errors.h"
+#include "contourmesh/smooth/normals.h"
 
 #include <chrono>
 #include <cmath>

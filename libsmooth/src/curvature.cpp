@@ -1,8 +1,8 @@
 // SPDX-License-Identifier: BSD-3-Clause
-#include "smooth/curvature.h"
+#include "contourmesh/smooth/curvature.h"
 
-#include "smooth/errors.h"
-#include "smooth/normals.h"
+#include "contourmesh/smooth/errors.h"
+#include "contourmesh/smooth/normals.h"
 
 #include <Eigen/Dense>
 

@@ -1,10 +1,10 @@
 // SPDX-License-Identifier: BSD-3-Clause
-#include "smooth/feature_detection.h"
+#include "contourmesh/smooth/feature_detection.h"
 
-#include "smooth/contour_structure.h"
-#include "smooth/errors.h"
-#include "smooth/smoothing.h"
-#include "smooth/umbrella.h"
+#include "contourmesh/smooth/contour_structure.h"
+#include "contourmesh/smooth/errors.h"
+#include "contourmesh/smooth/smoothing.h"
+#include "contourmesh/smooth/umbrella.h"
 
 #include <Eigen/Dense>
 

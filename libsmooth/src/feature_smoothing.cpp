@@ -1,8 +1,8 @@
 // SPDX-License-Identifier: BSD-3-Clause
-#include "smooth/feature_smoothing.h"
+#include "contourmesh/smooth/feature_smoothing.h"
 
-#include "smooth/adjacency.h"
-#include "smooth/errors.h"
+#include "contourmesh/smooth/adjacency.h"
+#include "contourmesh/smooth/errors.h"
 
 #include <chrono>
 

@@ -1,9 +1,9 @@
 // SPDX-License-Identifier: BSD-3-Clause
-#include "smooth/input_policy.h"
+#include "contourmesh/smooth/input_policy.h"
 
-#include "smooth/adjacency.h"
-#include "smooth/contour_structure.h"
-#include "smooth/errors.h"
+#include "contourmesh/smooth/adjacency.h"
+#include "contourmesh/smooth/contour_structure.h"
+#include "contourmesh/smooth/errors.h"
 
 #include <Eigen/Eigenvalues>
 #include <Eigen/Geometry>

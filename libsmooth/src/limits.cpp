@@ -1,7 +1,7 @@
 // SPDX-License-Identifier: BSD-3-Clause
-#include "smooth/limits.h"
+#include "contourmesh/smooth/limits.h"
 
-#include "smooth/errors.h"
+#include "contourmesh/smooth/errors.h"
 
 #include <cstdio>
 #include <fstream>

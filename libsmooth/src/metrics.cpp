@@ -1,8 +1,8 @@
 // SPDX-License-Identifier: BSD-3-Clause
-#include "smooth/metrics.h"
+#include "contourmesh/smooth/metrics.h"
 
-#include "smooth/errors.h"
-#include "smooth/limits.h"
+#include "contourmesh/smooth/errors.h"
+#include "contourmesh/smooth/limits.h"
 
 #include <algorithm>
 #include <cmath>

@@ -1,6 +1,6 @@
 // SPDX-License-Identifier: BSD-3-Clause
 #include "detail/smoothing_common.h"
-#include "smooth/normals.h"
+#include "contourmesh/smooth/normals.h"
 
 namespace contourmesh {
 

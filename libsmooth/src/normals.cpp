@@ -1,5 +1,5 @@
 // SPDX-License-Identifier: BSD-3-Clause
-#include "smooth/normals.h"
+#include "contourmesh/smooth/normals.h"
 
 namespace contourmesh {
 

@@ -1,8 +1,8 @@
 // SPDX-License-Identifier: BSD-3-Clause
-#include "smooth/shapes.h"
+#include "contourmesh/smooth/shapes.h"
 
-#include "smooth/errors.h"
-#include "smooth/normals.h"
+#include "contourmesh/smooth/errors.h"
+#include "contourmesh/smooth/normals.h"
 
 #include "contourmesh/internal/polygon2d.h"
 

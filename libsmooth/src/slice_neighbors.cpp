@@ -1,7 +1,7 @@
 // SPDX-License-Identifier: BSD-3-Clause
-#include "smooth/slice_neighbors.h"
+#include "contourmesh/smooth/slice_neighbors.h"
 
-#include "smooth/errors.h"
+#include "contourmesh/smooth/errors.h"
 
 namespace contourmesh {
 

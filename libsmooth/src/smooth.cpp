@@ -1,9 +1,9 @@
 // SPDX-License-Identifier: BSD-3-Clause
-#include "smooth/smooth.h"
+#include "contourmesh/smooth/smooth.h"
 
-#include "smooth/adjacency.h"
-#include "smooth/divergence.h"
-#include "smooth/errors.h"
+#include "contourmesh/smooth/adjacency.h"
+#include "contourmesh/smooth/divergence.h"
+#include "contourmesh/smooth/errors.h"
 
 #include <chrono>
 #include <string>

@@ -1,7 +1,7 @@
 // SPDX-License-Identifier: BSD-3-Clause
-#include "smooth/smoothing.h"
+#include "contourmesh/smooth/smoothing.h"
 
-#include "smooth/errors.h"
+#include "contourmesh/smooth/errors.h"
 
 #include <cmath>
 #include <string>

@@ -1,9 +1,9 @@
 // SPDX-License-Identifier: BSD-3-Clause
-#include "smooth/surface_metrics.h"
+#include "contourmesh/smooth/surface_metrics.h"
 
 #include "detail/parallel.h"
-#include "smooth/closest_point.h"
-#include "smooth/errors.h"
+#include "contourmesh/smooth/closest_point.h"
+#include "contourmesh/smooth/errors.h"
 
 #include <algorithm>
 #include <array>

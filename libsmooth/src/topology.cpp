@@ -1,8 +1,8 @@
 // SPDX-License-Identifier: BSD-3-Clause
-#include "smooth/topology.h"
+#include "contourmesh/smooth/topology.h"
 
-#include "smooth/adjacency.h"
-#include "smooth/validation.h"
+#include "contourmesh/smooth/adjacency.h"
+#include "contourmesh/smooth/validation.h"
 
 #include "contourmesh/internal/union_find.h"
 

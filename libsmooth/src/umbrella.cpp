@@ -1,8 +1,8 @@
 // SPDX-License-Identifier: BSD-3-Clause
-#include "smooth/umbrella.h"
+#include "contourmesh/smooth/umbrella.h"
 
 #include "detail/ring_sum.h"
-#include "smooth/errors.h"
+#include "contourmesh/smooth/errors.h"
 
 namespace contourmesh {
 

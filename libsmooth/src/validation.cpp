@@ -1,8 +1,8 @@
 // SPDX-License-Identifier: BSD-3-Clause
-#include "smooth/validation.h"
+#include "contourmesh/smooth/validation.h"
 
-#include "smooth/adjacency.h"
-#include "smooth/errors.h"
+#include "contourmesh/smooth/adjacency.h"
+#include "contourmesh/smooth/errors.h"
 
 #include "contourmesh/internal/union_find.h"
 

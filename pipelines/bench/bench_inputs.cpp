@@ -1,8 +1,8 @@
 // SPDX-License-Identifier: BSD-3-Clause
 #include "bench_inputs.h"
 
-#include <pipelines/vtk_convert.h>
-#include <reconstruct/tiling.h>
+#include <contourmesh/vtk/vtk_convert.h>
+#include <contourmesh/reconstruct/tiling.h>
 
 #include <algorithm>
 #include <cmath>

@@ -4,8 +4,8 @@
 // the meshes the project's tiler makes of them (with contour ids), and their VTK copies.
 #pragma once
 
-#include <reconstruct/contours.h>
-#include <smooth/mesh.h>
+#include <contourmesh/reconstruct/contours.h>
+#include <contourmesh/smooth/mesh.h>
 
 #include <benchmark/benchmark.h>
 

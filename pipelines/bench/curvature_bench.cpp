@@ -3,8 +3,8 @@
 #include "bench_inputs.h"
 #include "bench_stages.h"
 
-#include <smooth/adjacency.h>
-#include <smooth/curvature.h>
+#include <contourmesh/smooth/adjacency.h>
+#include <contourmesh/smooth/curvature.h>
 
 namespace contourmesh::bench {
 

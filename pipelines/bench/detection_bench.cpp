@@ -3,8 +3,8 @@
 #include "bench_inputs.h"
 #include "bench_stages.h"
 
-#include <smooth/adjacency.h>
-#include <smooth/feature_detection.h>
+#include <contourmesh/smooth/adjacency.h>
+#include <contourmesh/smooth/feature_detection.h>
 
 namespace contourmesh::bench {
 

@@ -6,8 +6,8 @@
 #include "bench_stages.h"
 #include "heap_counter.h"
 
-#include <smooth/cross_slice.h>
-#include <smooth/feature_smoothing.h>
+#include <contourmesh/smooth/cross_slice.h>
+#include <contourmesh/smooth/feature_smoothing.h>
 
 #include <optional>
 

@@ -13,12 +13,12 @@
 // vtkDiscreteFlyingEdges3D, then vtkWindowedSincPolyDataFilter (20 iterations, pass band 0.01). The two
 // routes alternate within each repetition, so both see the same load. Times are wall clock (threads);
 // the process CPU time of each stage is printed too.
-#include <pipelines/vtk_image_convert.h>
-#include <reconstruct/phantom.h>
-#include <reconstruct/reconstruction.h>
-#include <reconstruct/threads.h>
-#include <reconstruct/volume.h>
-#include <smooth/feature_smoothing.h>
+#include <contourmesh/vtk/vtk_image_convert.h>
+#include <contourmesh/reconstruct/phantom.h>
+#include <contourmesh/reconstruct/reconstruction.h>
+#include <contourmesh/reconstruct/threads.h>
+#include <contourmesh/reconstruct/volume.h>
+#include <contourmesh/smooth/feature_smoothing.h>
 
 #include <vtkDiscreteFlyingEdges3D.h>
 #include <vtkImageConnectivityFilter.h>

@@ -4,9 +4,9 @@
 #include "bench_inputs.h"
 #include "bench_stages.h"
 
-#include <smooth/adjacency.h>
-#include <smooth/smoothing.h>
-#include <smooth/umbrella.h>
+#include <contourmesh/smooth/adjacency.h>
+#include <contourmesh/smooth/smoothing.h>
+#include <contourmesh/smooth/umbrella.h>
 
 #include <ctime>
 

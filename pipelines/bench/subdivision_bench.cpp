@@ -4,9 +4,9 @@
 #include "bench_inputs.h"
 #include "bench_stages.h"
 
-#include <smooth/adaptive_subdivision.h>
-#include <smooth/adjacency.h>
-#include <smooth/feature_detection.h>
+#include <contourmesh/smooth/adaptive_subdivision.h>
+#include <contourmesh/smooth/adjacency.h>
+#include <contourmesh/smooth/feature_detection.h>
 
 namespace contourmesh::bench {
 

@@ -4,7 +4,7 @@
 #include "bench_inputs.h"
 #include "bench_stages.h"
 
-#include <reconstruct/tiling.h>
+#include <contourmesh/reconstruct/tiling.h>
 
 namespace contourmesh::bench {
 

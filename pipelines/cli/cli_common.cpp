@@ -1,9 +1,9 @@
 // SPDX-License-Identifier: BSD-3-Clause
 #include "cli_common.h"
 
-#include <reconstruct/phantom.h>
-#include <smooth/atomic_file.h>
-#include <smooth/errors.h>
+#include <contourmesh/reconstruct/phantom.h>
+#include <contourmesh/smooth/atomic_file.h>
+#include <contourmesh/smooth/errors.h>
 
 #include <CLI/CLI.hpp>
 

@@ -2,7 +2,7 @@
 // Conventions shared by the contourmesh subcommands: exit codes, error reporting, JSON output.
 #pragma once
 
-#include <smooth/mesh.h>
+#include <contourmesh/smooth/mesh.h>
 
 #include <Eigen/Core>
 #include <nlohmann/json.hpp>

@@ -12,12 +12,12 @@
 #include <compare/report.h>
 #include <compare/series.h>
 #include <compare/verdicts.h>
-#include <pipelines/atomic_file.h>
-#include <pipelines/mesh_io.h>
-#include <reconstruct/phantom.h>
-#include <reconstruct/volume.h>
-#include <smooth/errors.h>
-#include <smooth/limits.h>
+#include <contourmesh/vtk/atomic_file.h>
+#include <contourmesh/vtk/mesh_io.h>
+#include <contourmesh/reconstruct/phantom.h>
+#include <contourmesh/reconstruct/volume.h>
+#include <contourmesh/smooth/errors.h>
+#include <contourmesh/smooth/limits.h>
 
 #include <CLI/CLI.hpp>
 

@@ -3,10 +3,10 @@
 
 #include "cli_common.h"
 
-#include <pipelines/atomic_file.h>
-#include <pipelines/contour_stack_io.h>
-#include <reconstruct/rtstruct.h>
-#include <smooth/errors.h>
+#include <contourmesh/vtk/atomic_file.h>
+#include <contourmesh/vtk/contour_stack_io.h>
+#include <contourmesh/reconstruct/rtstruct.h>
+#include <contourmesh/smooth/errors.h>
 
 #include <CLI/CLI.hpp>
 

@@ -4,11 +4,11 @@
 // contour-stack file, and naming one output per ROI.
 #pragma once
 
-#include <reconstruct/contour_reconstruction.h>
-#include <reconstruct/contours.h>
-#include <reconstruct/planar_contours.h>
-#include <smooth/end_caps.h>
-#include <smooth/mesh.h>
+#include <contourmesh/reconstruct/contour_reconstruction.h>
+#include <contourmesh/reconstruct/contours.h>
+#include <contourmesh/reconstruct/planar_contours.h>
+#include <contourmesh/smooth/end_caps.h>
+#include <contourmesh/smooth/mesh.h>
 
 #include <nlohmann/json.hpp>
 

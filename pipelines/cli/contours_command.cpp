@@ -5,11 +5,11 @@
 #include "contour_input.h"
 #include "progress_display.h"
 
-#include <pipelines/atomic_file.h>
-#include <pipelines/contour_stack_io.h>
-#include <reconstruct/planar_contours.h>
-#include <reconstruct/rtstruct.h>
-#include <smooth/errors.h>
+#include <contourmesh/vtk/atomic_file.h>
+#include <contourmesh/vtk/contour_stack_io.h>
+#include <contourmesh/reconstruct/planar_contours.h>
+#include <contourmesh/reconstruct/rtstruct.h>
+#include <contourmesh/smooth/errors.h>
 
 #include <CLI/CLI.hpp>
 

@@ -6,12 +6,12 @@
 #include "feature_options.h"
 #include "method_options.h"
 
-#include <pipelines/atomic_file.h>
-#include <pipelines/mesh_io.h>
-#include <smooth/errors.h>
-#include <smooth/feature_detection.h>
-#include <smooth/smooth.h>
-#include <smooth/limits.h>
+#include <contourmesh/vtk/atomic_file.h>
+#include <contourmesh/vtk/mesh_io.h>
+#include <contourmesh/smooth/errors.h>
+#include <contourmesh/smooth/feature_detection.h>
+#include <contourmesh/smooth/smooth.h>
+#include <contourmesh/smooth/limits.h>
 
 #include <CLI/CLI.hpp>
 

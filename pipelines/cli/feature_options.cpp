@@ -3,7 +3,7 @@
 
 #include "cli_common.h"
 
-#include <smooth/errors.h>
+#include <contourmesh/smooth/errors.h>
 
 #include <CLI/CLI.hpp>
 

@@ -2,11 +2,11 @@
 // Options and helpers shared by `smooth`, `run` and `detect` for the methods that detect features.
 #pragma once
 
-#include <pipelines/mesh_io.h>
-#include <smooth/adjacency.h>
-#include <smooth/feature_detection.h>
-#include <smooth/input_policy.h>
-#include <smooth/mesh.h>
+#include <contourmesh/vtk/mesh_io.h>
+#include <contourmesh/smooth/adjacency.h>
+#include <contourmesh/smooth/feature_detection.h>
+#include <contourmesh/smooth/input_policy.h>
+#include <contourmesh/smooth/mesh.h>
 
 #include <optional>
 #include <string>
@@ -42,7 +42,7 @@ void apply_detection_args(const FeatureArgs& args, DetectionOptions& options);
 /// The slice axis of --slice-axis (x, y or z), unset when not given; InvalidInputError otherwise.
 [[nodiscard]] std::optional<Eigen::Vector3d> slice_axis_option(const FeatureArgs& args);
 
-/// Runs the one input policy (prepare_input_mesh, smooth/input_policy.h; the VTK filter runs the same)
+/// Runs the one input policy (prepare_input_mesh, contourmesh/smooth/input_policy.h; the VTK filter runs the same)
 /// on a mesh read from `path`: each warning is one line "contourmesh COMMAND: warning: PATH: ...", and
 /// an error is rethrown naming `path` (exit 2). `use` says whether the contour ids are needed (then they
 /// are made usable: see ContourIdUse::Detection; --slice-axis recovers missing or unusable ids), and

@@ -4,8 +4,8 @@
 // directory that holds several (--series, --list-series).
 #pragma once
 
-#include <reconstruct/label_map.h>
-#include <reconstruct/volume.h>
+#include <contourmesh/reconstruct/label_map.h>
+#include <contourmesh/reconstruct/volume.h>
 
 #include <filesystem>
 #include <string>

@@ -6,7 +6,7 @@
 
 #include "feature_options.h"
 
-#include <smooth/smooth.h>
+#include <contourmesh/smooth/smooth.h>
 
 #include <optional>
 #include <string>

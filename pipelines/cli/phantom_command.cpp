@@ -4,10 +4,10 @@
 #include "cli_common.h"
 #include "progress_display.h"
 
-#include <pipelines/atomic_file.h>
-#include <reconstruct/phantom.h>
-#include <reconstruct/volume.h>
-#include <smooth/errors.h>
+#include <contourmesh/vtk/atomic_file.h>
+#include <contourmesh/reconstruct/phantom.h>
+#include <contourmesh/reconstruct/volume.h>
+#include <contourmesh/smooth/errors.h>
 
 #include <CLI/CLI.hpp>
 

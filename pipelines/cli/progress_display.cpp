@@ -4,9 +4,9 @@
 #include "cli_common.h"
 #include "library_messages.h"
 
-#include <reconstruct/threads.h>
-#include <smooth/errors.h>
-#include <smooth/limits.h>
+#include <contourmesh/reconstruct/threads.h>
+#include <contourmesh/smooth/errors.h>
+#include <contourmesh/smooth/limits.h>
 
 #include <CLI/CLI.hpp>
 #include <itkMultiThreaderBase.h>

@@ -2,7 +2,7 @@
 // Options every subcommand shares (--quiet, --threads) and the progress display on stderr.
 #pragma once
 
-#include <smooth/progress.h>
+#include <contourmesh/smooth/progress.h>
 
 #include <chrono>
 #include <string>

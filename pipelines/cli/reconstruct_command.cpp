@@ -8,20 +8,20 @@
 #include "tiling_options.h"
 #include "volume_options.h"
 
-#include <pipelines/atomic_file.h>
-#include <pipelines/contour_stack_io.h>
-#include <pipelines/mesh_io.h>
-#include <reconstruct/contour_deviation.h>
-#include <reconstruct/contour_reconstruction.h>
-#include <reconstruct/label_map.h>
-#include <reconstruct/reconstruction.h>
-#include <reconstruct/threads.h>
-#include <reconstruct/volume.h>
-#include <smooth/errors.h>
-#include <smooth/limits.h>
-#include <smooth/mesh_quality.h>
-#include <smooth/metrics.h>
-#include <smooth/topology.h>
+#include <contourmesh/vtk/atomic_file.h>
+#include <contourmesh/vtk/contour_stack_io.h>
+#include <contourmesh/vtk/mesh_io.h>
+#include <contourmesh/reconstruct/contour_deviation.h>
+#include <contourmesh/reconstruct/contour_reconstruction.h>
+#include <contourmesh/reconstruct/label_map.h>
+#include <contourmesh/reconstruct/reconstruction.h>
+#include <contourmesh/reconstruct/threads.h>
+#include <contourmesh/reconstruct/volume.h>
+#include <contourmesh/smooth/errors.h>
+#include <contourmesh/smooth/limits.h>
+#include <contourmesh/smooth/mesh_quality.h>
+#include <contourmesh/smooth/metrics.h>
+#include <contourmesh/smooth/topology.h>
 
 #include <CLI/CLI.hpp>
 

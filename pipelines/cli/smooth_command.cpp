@@ -6,13 +6,13 @@
 #include "feature_options.h"
 #include "method_options.h"
 
-#include <pipelines/atomic_file.h>
-#include <pipelines/mesh_io.h>
-#include <smooth/adjacency.h>
-#include <smooth/errors.h>
-#include <smooth/limits.h>
-#include <smooth/metrics.h>
-#include <smooth/smooth.h>
+#include <contourmesh/vtk/atomic_file.h>
+#include <contourmesh/vtk/mesh_io.h>
+#include <contourmesh/smooth/adjacency.h>
+#include <contourmesh/smooth/errors.h>
+#include <contourmesh/smooth/limits.h>
+#include <contourmesh/smooth/metrics.h>
+#include <contourmesh/smooth/smooth.h>
 
 #include <CLI/CLI.hpp>
 

@@ -3,7 +3,7 @@
 // of TilingOptions except the thread count and the limits, which --threads and --max-vertices set.
 #pragma once
 
-#include <reconstruct/tiling.h>
+#include <contourmesh/reconstruct/tiling.h>
 
 #include <cstddef>
 #include <string>

@@ -5,7 +5,7 @@
 #include "progress_display.h"
 
 #include <CLI/CLI.hpp>
-#include <smooth/errors.h>
+#include <contourmesh/smooth/errors.h>
 
 #include <iostream>
 

@@ -3,8 +3,8 @@
 // spaced DICOM slices and with NaN or infinite voxels.
 #pragma once
 
-#include <reconstruct/off_slice_heights.h>
-#include <reconstruct/volume.h>
+#include <contourmesh/reconstruct/off_slice_heights.h>
+#include <contourmesh/reconstruct/volume.h>
 
 #include <string>
 

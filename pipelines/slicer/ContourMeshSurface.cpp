@@ -5,13 +5,13 @@
 // <filter-progress> lines, errors to stderr as one line with exit code 2 (docs/slicer.md).
 #include "slicer_progress.h"
 
-#include <pipelines/mesh_io.h>
-#include <reconstruct/label_map.h>
-#include <reconstruct/reconstruction.h>
-#include <reconstruct/threads.h>
-#include <reconstruct/volume.h>
-#include <smooth/errors.h>
-#include <smooth/smooth.h>
+#include <contourmesh/vtk/mesh_io.h>
+#include <contourmesh/reconstruct/label_map.h>
+#include <contourmesh/reconstruct/reconstruction.h>
+#include <contourmesh/reconstruct/threads.h>
+#include <contourmesh/reconstruct/volume.h>
+#include <contourmesh/smooth/errors.h>
+#include <contourmesh/smooth/smooth.h>
 
 #include <CLI/CLI.hpp>
 

@@ -3,7 +3,7 @@
 // <filter-start>, <filter-progress> (overall fraction), <filter-stage-progress> and <filter-end>.
 #pragma once
 
-#include <smooth/progress.h>
+#include <contourmesh/smooth/progress.h>
 
 #include <chrono>
 #include <string>

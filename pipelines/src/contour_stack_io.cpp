@@ -1,9 +1,9 @@
 // SPDX-License-Identifier: BSD-3-Clause
-#include "pipelines/contour_stack_io.h"
+#include "contourmesh/vtk/contour_stack_io.h"
 
-#include "pipelines/atomic_file.h"
+#include "contourmesh/vtk/atomic_file.h"
 
-#include <smooth/errors.h>
+#include <contourmesh/smooth/errors.h>
 
 #include <nlohmann/json.hpp>
 

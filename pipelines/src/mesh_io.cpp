@@ -1,15 +1,15 @@
 // SPDX-License-Identifier: BSD-3-Clause
-#include "pipelines/mesh_io.h"
+#include "contourmesh/vtk/mesh_io.h"
 
-#include "pipelines/atomic_file.h"
-#include "pipelines/ply_io.h"
-#include "pipelines/vtk_convert.h"
+#include "contourmesh/vtk/atomic_file.h"
+#include "contourmesh/vtk/ply_io.h"
+#include "contourmesh/vtk/vtk_convert.h"
 
 #include "mesh_readers.h"
 #include "mesh_writers.h"
 #include "vtkCheckedXMLPolyDataReader.h"
 
-#include <smooth/errors.h>
+#include <contourmesh/smooth/errors.h>
 
 #include <vtkAlgorithm.h>
 #include <vtkLogger.h>

@@ -5,7 +5,7 @@
 // adds it).
 #pragma once
 
-#include <smooth/mesh.h>
+#include <contourmesh/smooth/mesh.h>
 
 #include <string>
 

@@ -1,9 +1,9 @@
 // SPDX-License-Identifier: BSD-3-Clause
 #include "mesh_writers.h"
 
-#include "pipelines/mesh_io.h"
+#include "contourmesh/vtk/mesh_io.h"
 
-#include <smooth/errors.h>
+#include <contourmesh/smooth/errors.h>
 
 #include <algorithm>
 #include <array>

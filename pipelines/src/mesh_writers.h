@@ -4,7 +4,7 @@
 // these formats are written here, every write checked. Messages omit the file name (write_mesh adds it).
 #pragma once
 
-#include <smooth/mesh.h>
+#include <contourmesh/smooth/mesh.h>
 
 #include <filesystem>
 

@@ -1,7 +1,7 @@
 // SPDX-License-Identifier: BSD-3-Clause
-#include "pipelines/ply_io.h"
+#include "contourmesh/vtk/ply_io.h"
 
-#include <smooth/errors.h>
+#include <contourmesh/smooth/errors.h>
 
 #include <bit>
 #include <cmath>

@@ -1,14 +1,14 @@
 // SPDX-License-Identifier: BSD-3-Clause
-#include "pipelines/vtkContourFeatureSmoothingFilter.h"
+#include "contourmesh/vtk/vtkContourFeatureSmoothingFilter.h"
 
-#include "pipelines/vtk_convert.h"
+#include "contourmesh/vtk/vtk_convert.h"
 #include "vtk_progress.h"
 
-#include <smooth/adjacency.h>
-#include <smooth/errors.h>
-#include <smooth/feature_detection.h>
-#include <smooth/input_policy.h>
-#include <smooth/smooth.h>
+#include <contourmesh/smooth/adjacency.h>
+#include <contourmesh/smooth/errors.h>
+#include <contourmesh/smooth/feature_detection.h>
+#include <contourmesh/smooth/input_policy.h>
+#include <contourmesh/smooth/smooth.h>
 
 #include <vtkAbstractArray.h>
 #include <vtkDataArray.h>
@@ -205,7 +205,7 @@ int vtkContourFeatureSmoothingFilter::Execute(vtkPolyData* input, vtkPolyData* o
   // The paper's detection runs for its method, and for labels of a method that has none of its own.
   const bool detect = method == SmoothingMethod::FeaturePreserving || (this->GenerateLabels && !produces_labels(method));
 
-  // The one input policy, as `contourmesh smooth` runs it (smooth/input_policy.h): refusals, repairs,
+  // The one input policy, as `contourmesh smooth` runs it (contourmesh/smooth/input_policy.h): refusals, repairs,
   // orientation, and contour ids made usable for the detection or for cross-slice smoothing, which
   // cannot do without them.
   InputPolicyOptions policy;

@@ -1,13 +1,13 @@
 // SPDX-License-Identifier: BSD-3-Clause
-#include "pipelines/vtkContourPolylinesToSurfaceFilter.h"
+#include "contourmesh/vtk/vtkContourPolylinesToSurfaceFilter.h"
 
-#include "pipelines/vtk_convert.h"
+#include "contourmesh/vtk/vtk_convert.h"
 #include "vtk_progress.h"
 #include "vtk_tiling_properties.h"
 
-#include <reconstruct/contour_reconstruction.h>
-#include <reconstruct/planar_contours.h>
-#include <smooth/errors.h>
+#include <contourmesh/reconstruct/contour_reconstruction.h>
+#include <contourmesh/reconstruct/planar_contours.h>
+#include <contourmesh/smooth/errors.h>
 
 #include <vtkCellArray.h>
 #include <vtkCellData.h>

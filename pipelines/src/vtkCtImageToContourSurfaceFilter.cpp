@@ -1,13 +1,13 @@
 // SPDX-License-Identifier: BSD-3-Clause
-#include "pipelines/vtkCtImageToContourSurfaceFilter.h"
+#include "contourmesh/vtk/vtkCtImageToContourSurfaceFilter.h"
 
-#include "pipelines/vtk_convert.h"
-#include "pipelines/vtk_image_convert.h"
+#include "contourmesh/vtk/vtk_convert.h"
+#include "contourmesh/vtk/vtk_image_convert.h"
 #include "vtk_progress.h"
 #include "vtk_tiling_properties.h"
 
-#include <reconstruct/reconstruction.h>
-#include <smooth/errors.h>
+#include <contourmesh/reconstruct/reconstruction.h>
+#include <contourmesh/smooth/errors.h>
 
 #include <vtkDataArray.h>
 #include <vtkDataObject.h>

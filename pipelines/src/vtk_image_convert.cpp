@@ -1,7 +1,7 @@
 // SPDX-License-Identifier: BSD-3-Clause
-#include "pipelines/vtk_image_convert.h"
+#include "contourmesh/vtk/vtk_image_convert.h"
 
-#include <smooth/errors.h>
+#include <contourmesh/smooth/errors.h>
 
 #include <vtkDataArray.h>
 #include <vtkFloatArray.h>

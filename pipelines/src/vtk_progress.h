@@ -3,7 +3,7 @@
 // progress, and the algorithm's abort flag -> cancellation.
 #pragma once
 
-#include <smooth/progress.h>
+#include <contourmesh/smooth/progress.h>
 
 #include <vtkAlgorithm.h>
 #include <vtkVersionMacros.h>

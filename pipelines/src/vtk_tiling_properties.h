@@ -4,7 +4,7 @@
 // once, so that an option added to the tiler reaches both filters through one place.
 #pragma once
 
-#include <reconstruct/tiling.h>
+#include <contourmesh/reconstruct/tiling.h>
 
 #include <cstddef>
 

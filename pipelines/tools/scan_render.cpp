@@ -6,11 +6,11 @@
 //
 //   contourmesh_scan_render VOLUME --threshold T --mesh a.vtp "title a" [--mesh b.vtp "title b" ...]
 //       --focus x,y,z --distance D [--azimuth A] [--elevation E] [--size 1800x600] [--color-levels N] -o out.png
-#include <pipelines/mesh_io.h>
-#include <pipelines/vtk_convert.h>
-#include <reconstruct/volume.h>
-#include <smooth/errors.h>
-#include <smooth/metrics.h>
+#include <contourmesh/vtk/mesh_io.h>
+#include <contourmesh/vtk/vtk_convert.h>
+#include <contourmesh/reconstruct/volume.h>
+#include <contourmesh/smooth/errors.h>
+#include <contourmesh/smooth/metrics.h>
 
 #include <CLI/CLI.hpp>
 

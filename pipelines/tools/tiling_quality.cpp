@@ -13,13 +13,13 @@
 // whose normal is within 10 degrees of the slice axis); the share of the area in faces whose smallest
 // angle is under 10 degrees; the share of vertices without ids. Real scans (with --data): the same mesh
 // measures, at the thresholds of the tiling targets.
-#include <reconstruct/phantom.h>
-#include <reconstruct/reconstruction.h>
-#include <reconstruct/volume.h>
-#include <smooth/errors.h>
-#include <smooth/mesh_quality.h>
-#include <smooth/surface_metrics.h>
-#include <smooth/topology.h>
+#include <contourmesh/reconstruct/phantom.h>
+#include <contourmesh/reconstruct/reconstruction.h>
+#include <contourmesh/reconstruct/volume.h>
+#include <contourmesh/smooth/errors.h>
+#include <contourmesh/smooth/mesh_quality.h>
+#include <contourmesh/smooth/surface_metrics.h>
+#include <contourmesh/smooth/topology.h>
 
 #include <CLI/CLI.hpp>
 

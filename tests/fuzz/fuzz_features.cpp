@@ -1,6 +1,6 @@
 // SPDX-License-Identifier: BSD-3-Clause
-// Fuzz target: feature detection and the paper's smoothing (smooth/feature_detection.h,
-// smooth/feature_smoothing.h) on random valid meshes. The bytes choose a shape (mostly a contour stack
+// Fuzz target: feature detection and the paper's smoothing (contourmesh/smooth/feature_detection.h,
+// contourmesh/smooth/feature_smoothing.h) on random valid meshes. The bytes choose a shape (mostly a contour stack
 // over a random star-shaped curve, else an icosphere or a cube), perturb it (Gaussian noise, vertices
 // pushed off their place, vertices collapsed onto a neighbour: zero-area triangles), scale it by
 // 10^-6 .. 10^6, optionally damage or drop the contour ids (then recovered as the CLI does), and pick
@@ -8,13 +8,13 @@
 // numbers and positions, or throw a typed exception with a one-line message; never crash or hang.
 #include "fuzz_support.h"
 
-#include <smooth/adjacency.h>
-#include <smooth/contour_structure.h>
-#include <smooth/errors.h>
-#include <smooth/feature_detection.h>
-#include <smooth/feature_smoothing.h>
-#include <smooth/input_policy.h>
-#include <smooth/shapes.h>
+#include <contourmesh/smooth/adjacency.h>
+#include <contourmesh/smooth/contour_structure.h>
+#include <contourmesh/smooth/errors.h>
+#include <contourmesh/smooth/feature_detection.h>
+#include <contourmesh/smooth/feature_smoothing.h>
+#include <contourmesh/smooth/input_policy.h>
+#include <contourmesh/smooth/shapes.h>
 
 #include <cmath>
 #include <cstdint>

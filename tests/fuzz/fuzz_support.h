@@ -4,7 +4,7 @@
 // every target applies to what the library returns.
 #pragma once
 
-#include <smooth/mesh.h>
+#include <contourmesh/smooth/mesh.h>
 
 #include <cmath>
 #include <cstddef>

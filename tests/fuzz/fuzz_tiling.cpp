@@ -1,5 +1,5 @@
 // SPDX-License-Identifier: BSD-3-Clause
-// Fuzz target: the contour tiler (reconstruct/tiling.h). The bytes decode to a small contour stack,
+// Fuzz target: the contour tiler (contourmesh/reconstruct/tiling.h). The bytes decode to a small contour stack,
 // mostly valid (star-shaped outer contours clear of each other, one hole inside each at most, in slices
 // of increasing w) or, with a flag, with invalid pieces (arbitrary polygons that may cross themselves or
 // their neighbours, overlapping contours and holes, repeated points, non-finite or huge coordinates,
@@ -8,9 +8,9 @@
 // consistently oriented, edge-manifold mesh with finite coordinates and ids in range.
 #include "fuzz_support.h"
 
-#include <reconstruct/tiling.h>
-#include <smooth/errors.h>
-#include <smooth/metrics.h>
+#include <contourmesh/reconstruct/tiling.h>
+#include <contourmesh/smooth/errors.h>
+#include <contourmesh/smooth/metrics.h>
 
 #include <Eigen/Geometry>
 

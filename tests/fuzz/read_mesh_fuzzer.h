@@ -7,11 +7,11 @@
 
 #include "fuzz_support.h"
 
-#include <pipelines/mesh_io.h>
-#include <smooth/adjacency.h>
-#include <smooth/errors.h>
-#include <smooth/topology.h>
-#include <smooth/validation.h>
+#include <contourmesh/vtk/mesh_io.h>
+#include <contourmesh/smooth/adjacency.h>
+#include <contourmesh/smooth/errors.h>
+#include <contourmesh/smooth/topology.h>
+#include <contourmesh/smooth/validation.h>
 
 #include <exception>
 #include <new>

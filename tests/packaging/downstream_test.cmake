@@ -39,8 +39,8 @@ endfunction()
 step(install "${CMAKE_COMMAND}" --install "${BUILD_DIR}" --prefix "${prefix}" --config "${CONFIG}")
 
 foreach(path IN ITEMS
-    ${INCLUDEDIR}/smooth/feature_smoothing.h ${INCLUDEDIR}/reconstruct/reconstruction.h
-    ${INCLUDEDIR}/pipelines/mesh_io.h
+    ${INCLUDEDIR}/contourmesh/smooth/feature_smoothing.h ${INCLUDEDIR}/contourmesh/reconstruct/reconstruction.h
+    ${INCLUDEDIR}/contourmesh/vtk/mesh_io.h
     ${LIBDIR}/cmake/ContourMesh/ContourMeshConfig.cmake ${LIBDIR}/cmake/ContourMesh/ContourMeshConfigVersion.cmake
     ${LIBDIR}/cmake/ContourMesh/ContourMeshTargets.cmake ${BINDIR}/contourmesh)
   if(NOT EXISTS "${prefix}/${path}")

@@ -7,8 +7,8 @@
 // The support header first: it includes ITK, whose bundled Eigen must not follow the system one.
 #include "bad_input_support.h"
 
-#include <pipelines/mesh_io.h>
-#include <pipelines/vtk_convert.h>
+#include <contourmesh/vtk/mesh_io.h>
+#include <contourmesh/vtk/vtk_convert.h>
 
 #include <gtest/gtest.h>
 #include <vtkNew.h>

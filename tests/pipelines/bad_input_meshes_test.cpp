@@ -7,9 +7,9 @@
 // The support header first: it includes ITK, whose bundled Eigen must not follow the system one.
 #include "bad_input_support.h"
 
-#include <pipelines/mesh_io.h>
-#include <smooth/adjacency.h>
-#include <smooth/shapes.h>
+#include <contourmesh/vtk/mesh_io.h>
+#include <contourmesh/smooth/adjacency.h>
+#include <contourmesh/smooth/shapes.h>
 
 #include <gtest/gtest.h>
 #include <nlohmann/json.hpp>

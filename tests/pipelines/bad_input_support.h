@@ -8,9 +8,9 @@
 #include <itkImageFileWriter.h>
 #include <itkMetaDataObject.h>
 
-#include <pipelines/mesh_io.h>
-#include <reconstruct/volume.h>
-#include <smooth/mesh.h>
+#include <contourmesh/vtk/mesh_io.h>
+#include <contourmesh/reconstruct/volume.h>
+#include <contourmesh/smooth/mesh.h>
 
 #include <gtest/gtest.h>
 #include <nlohmann/json.hpp>

@@ -7,8 +7,8 @@
 // The support header first: it includes ITK, whose bundled Eigen must not follow the system one.
 #include "bad_input_support.h"
 
-#include <pipelines/mesh_io.h>
-#include <reconstruct/volume.h>
+#include <contourmesh/vtk/mesh_io.h>
+#include <contourmesh/reconstruct/volume.h>
 
 #include <gtest/gtest.h>
 #include <nlohmann/json.hpp>

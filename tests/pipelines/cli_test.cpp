@@ -1,8 +1,8 @@
 // SPDX-License-Identifier: BSD-3-Clause
 // Runs the contourmesh executable as a user would and checks exit codes, JSON and outputs.
-#include <pipelines/mesh_io.h>
-#include <smooth/adjacency.h>
-#include <smooth/shapes.h>
+#include <contourmesh/vtk/mesh_io.h>
+#include <contourmesh/smooth/adjacency.h>
+#include <contourmesh/smooth/shapes.h>
 
 #include <gtest/gtest.h>
 #include <nlohmann/json.hpp>

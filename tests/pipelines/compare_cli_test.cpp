@@ -1,10 +1,10 @@
 // SPDX-License-Identifier: BSD-3-Clause
 // `contourmesh compare` end to end: the files, renders (under xvfb-run when there is no display), regimes,
 // seeds, variants, the summary and the Markdown page, exit codes and bad input.
-#include <pipelines/mesh_io.h>
-#include <reconstruct/phantom.h>
-#include <reconstruct/volume.h>
-#include <smooth/shapes.h>
+#include <contourmesh/vtk/mesh_io.h>
+#include <contourmesh/reconstruct/phantom.h>
+#include <contourmesh/reconstruct/volume.h>
+#include <contourmesh/smooth/shapes.h>
 
 #include <gtest/gtest.h>
 #include <nlohmann/json.hpp>

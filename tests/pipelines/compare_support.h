@@ -5,8 +5,8 @@
 
 #include <compare/comparison.h>
 #include <compare/report.h>
-#include <reconstruct/phantom.h>
-#include <reconstruct/volume.h>
+#include <contourmesh/reconstruct/phantom.h>
+#include <contourmesh/reconstruct/volume.h>
 
 #include <gtest/gtest.h>
 

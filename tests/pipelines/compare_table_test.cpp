@@ -5,7 +5,7 @@
 #include <compare/report.h>
 #include <compare/series.h>
 #include <compare/verdicts.h>
-#include <smooth/errors.h>
+#include <contourmesh/smooth/errors.h>
 
 #include <gtest/gtest.h>
 #include <nlohmann/json.hpp>

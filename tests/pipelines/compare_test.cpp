@@ -4,9 +4,9 @@
 #include <compare/comparison.h>
 #include <compare/report.h>
 #include <compare/series.h>
-#include <smooth/errors.h>
-#include <smooth/metrics.h>
-#include <smooth/shapes.h>
+#include <contourmesh/smooth/errors.h>
+#include <contourmesh/smooth/metrics.h>
+#include <contourmesh/smooth/shapes.h>
 
 #include <gtest/gtest.h>
 #include <nlohmann/json.hpp>

@@ -1,8 +1,8 @@
 // SPDX-License-Identifier: BSD-3-Clause
 // The contour route of the contourmesh executable: `contours`, `reconstruct` and `run` on RT Structure
 // Sets and contour files, --roi all, --contours-out, and what they refuse.
-#include <pipelines/contour_stack_io.h>
-#include <pipelines/mesh_io.h>
+#include <contourmesh/vtk/contour_stack_io.h>
+#include <contourmesh/vtk/mesh_io.h>
 
 #include <gtest/gtest.h>
 #include <nlohmann/json.hpp>

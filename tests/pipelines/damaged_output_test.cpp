@@ -1,11 +1,11 @@
 // SPDX-License-Identifier: BSD-3-Clause
 // Diverging runs, inconsistent meshes, failed writes, signals and resource limits (docs/robustness.md):
 // none may end with exit status 0 and a wrong or half-written file.
-#include <pipelines/mesh_io.h>
-#include <pipelines/vtkContourFeatureSmoothingFilter.h>
-#include <pipelines/vtk_convert.h>
-#include <smooth/errors.h>
-#include <smooth/metrics.h>
+#include <contourmesh/vtk/mesh_io.h>
+#include <contourmesh/vtk/vtkContourFeatureSmoothingFilter.h>
+#include <contourmesh/vtk/vtk_convert.h>
+#include <contourmesh/smooth/errors.h>
+#include <contourmesh/smooth/metrics.h>
 
 #include "cli_runner.h"
 #include "test_support.h"

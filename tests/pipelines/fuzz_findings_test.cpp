@@ -3,10 +3,10 @@
 // rebuilt by hand as a small file and fed through read_mesh: a clear InvalidInputError naming the
 // file, where there used to be undefined behaviour, a hang or a crash. The fuzzers' own reproducers
 // are replayed by the FuzzReplay.* tests (tests/fuzz/regressions).
-#include <pipelines/mesh_io.h>
-#include <pipelines/vtk_convert.h>
-#include <smooth/errors.h>
-#include <smooth/shapes.h>
+#include <contourmesh/vtk/mesh_io.h>
+#include <contourmesh/vtk/vtk_convert.h>
+#include <contourmesh/smooth/errors.h>
+#include <contourmesh/smooth/shapes.h>
 
 #include <gtest/gtest.h>
 

@@ -1,8 +1,8 @@
 // SPDX-License-Identifier: BSD-3-Clause
-#include <pipelines/atomic_file.h>
-#include <pipelines/mesh_io.h>
-#include <smooth/errors.h>
-#include <smooth/shapes.h>
+#include <contourmesh/vtk/atomic_file.h>
+#include <contourmesh/vtk/mesh_io.h>
+#include <contourmesh/smooth/errors.h>
+#include <contourmesh/smooth/shapes.h>
 
 #include <gtest/gtest.h>
 

@@ -1,9 +1,9 @@
 // SPDX-License-Identifier: BSD-3-Clause
-// Output files (smooth/atomic_file.h, write_mesh): whatever fails, an existing file is left as it was
+// Output files (contourmesh/smooth/atomic_file.h, write_mesh): whatever fails, an existing file is left as it was
 // and no temporary stays behind.
-#include <pipelines/mesh_io.h>
-#include <smooth/atomic_file.h>
-#include <smooth/errors.h>
+#include <contourmesh/vtk/mesh_io.h>
+#include <contourmesh/smooth/atomic_file.h>
+#include <contourmesh/smooth/errors.h>
 
 #include "cli_runner.h"
 #include "test_support.h"

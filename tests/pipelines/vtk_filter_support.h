@@ -3,11 +3,11 @@
 // point arrays, and the VtkFilters fixture (a noisy ridge stack, a coarse femur phantom, a scratch folder).
 #pragma once
 
-#include <pipelines/mesh_io.h>
-#include <reconstruct/phantom.h>
-#include <reconstruct/volume.h>
-#include <smooth/mesh.h>
-#include <smooth/shapes.h>
+#include <contourmesh/vtk/mesh_io.h>
+#include <contourmesh/reconstruct/phantom.h>
+#include <contourmesh/reconstruct/volume.h>
+#include <contourmesh/smooth/mesh.h>
+#include <contourmesh/smooth/shapes.h>
 
 #include <gtest/gtest.h>
 

@@ -2,12 +2,12 @@
 // vtkContourPolylinesToSurfaceFilter in VTK pipelines: the same mesh as build_contour_stack() +
 // reconstruct_from_contours(), slice ids per cell, per point or from positions, errors, abort,
 // clamping, and the chain into vtkContourFeatureSmoothingFilter.
-#include <pipelines/vtkContourFeatureSmoothingFilter.h>
-#include <pipelines/vtkContourPolylinesToSurfaceFilter.h>
-#include <pipelines/vtk_convert.h>
-#include <reconstruct/contour_reconstruction.h>
-#include <reconstruct/planar_contours.h>
-#include <smooth/topology.h>
+#include <contourmesh/vtk/vtkContourFeatureSmoothingFilter.h>
+#include <contourmesh/vtk/vtkContourPolylinesToSurfaceFilter.h>
+#include <contourmesh/vtk/vtk_convert.h>
+#include <contourmesh/reconstruct/contour_reconstruction.h>
+#include <contourmesh/reconstruct/planar_contours.h>
+#include <contourmesh/smooth/topology.h>
 
 #include <gtest/gtest.h>
 

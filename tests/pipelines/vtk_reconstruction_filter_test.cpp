@@ -2,23 +2,23 @@
 // vtkCtImageToContourSurfaceFilter gives exactly what reconstruct() gives, for every option; the image
 // conversion keeps physical positions; image -> surface -> smoothing chains and the contourmesh CLI agree
 // with the filters.
-#include <pipelines/mesh_io.h>
-#include <pipelines/vtkContourFeatureSmoothingFilter.h>
-#include <pipelines/vtkCtImageToContourSurfaceFilter.h>
-#include <pipelines/vtk_convert.h>
-#include <pipelines/vtk_image_convert.h>
-#include <reconstruct/phantom.h>
-#include <reconstruct/reconstruction.h>
-#include <reconstruct/volume.h>
-#include <smooth/adjacency.h>
-#include <smooth/cross_slice.h>
-#include <smooth/errors.h>
-#include <smooth/feature_detection.h>
-#include <smooth/feature_smoothing.h>
-#include <smooth/shapes.h>
-#include <smooth/smooth.h>
-#include <smooth/smoothing.h>
-#include <smooth/topology.h>
+#include <contourmesh/vtk/mesh_io.h>
+#include <contourmesh/vtk/vtkContourFeatureSmoothingFilter.h>
+#include <contourmesh/vtk/vtkCtImageToContourSurfaceFilter.h>
+#include <contourmesh/vtk/vtk_convert.h>
+#include <contourmesh/vtk/vtk_image_convert.h>
+#include <contourmesh/reconstruct/phantom.h>
+#include <contourmesh/reconstruct/reconstruction.h>
+#include <contourmesh/reconstruct/volume.h>
+#include <contourmesh/smooth/adjacency.h>
+#include <contourmesh/smooth/cross_slice.h>
+#include <contourmesh/smooth/errors.h>
+#include <contourmesh/smooth/feature_detection.h>
+#include <contourmesh/smooth/feature_smoothing.h>
+#include <contourmesh/smooth/shapes.h>
+#include <contourmesh/smooth/smooth.h>
+#include <contourmesh/smooth/smoothing.h>
+#include <contourmesh/smooth/topology.h>
 
 #include <gtest/gtest.h>
 

@@ -1,22 +1,22 @@
 // SPDX-License-Identifier: BSD-3-Clause
 // vtkContourFeatureSmoothingFilter as documented: aborts from a progress observer, missing contour ids,
 // option clamping, locked vertices, diverging runs and presets.
-#include <pipelines/mesh_io.h>
-#include <pipelines/vtkContourFeatureSmoothingFilter.h>
-#include <pipelines/vtkCtImageToContourSurfaceFilter.h>
-#include <pipelines/vtk_convert.h>
-#include <pipelines/vtk_image_convert.h>
-#include <reconstruct/reconstruction.h>
-#include <reconstruct/volume.h>
-#include <smooth/adjacency.h>
-#include <smooth/cross_slice.h>
-#include <smooth/errors.h>
-#include <smooth/feature_detection.h>
-#include <smooth/feature_smoothing.h>
-#include <smooth/shapes.h>
-#include <smooth/smooth.h>
-#include <smooth/smoothing.h>
-#include <smooth/topology.h>
+#include <contourmesh/vtk/mesh_io.h>
+#include <contourmesh/vtk/vtkContourFeatureSmoothingFilter.h>
+#include <contourmesh/vtk/vtkCtImageToContourSurfaceFilter.h>
+#include <contourmesh/vtk/vtk_convert.h>
+#include <contourmesh/vtk/vtk_image_convert.h>
+#include <contourmesh/reconstruct/reconstruction.h>
+#include <contourmesh/reconstruct/volume.h>
+#include <contourmesh/smooth/adjacency.h>
+#include <contourmesh/smooth/cross_slice.h>
+#include <contourmesh/smooth/errors.h>
+#include <contourmesh/smooth/feature_detection.h>
+#include <contourmesh/smooth/feature_smoothing.h>
+#include <contourmesh/smooth/shapes.h>
+#include <contourmesh/smooth/smooth.h>
+#include <contourmesh/smooth/smoothing.h>
+#include <contourmesh/smooth/topology.h>
 
 #include <gtest/gtest.h>
 

@@ -1,18 +1,18 @@
 // SPDX-License-Identifier: BSD-3-Clause
 // vtkContourFeatureSmoothingFilter inside real VTK pipelines gives exactly what the libsmooth calls give:
 // positions for every method and option, chains of filters, and the FeatureLabel array.
-#include <pipelines/mesh_io.h>
-#include <pipelines/vtkContourFeatureSmoothingFilter.h>
-#include <pipelines/vtk_convert.h>
-#include <smooth/adjacency.h>
-#include <smooth/cross_slice.h>
-#include <smooth/errors.h>
-#include <smooth/feature_detection.h>
-#include <smooth/feature_smoothing.h>
-#include <smooth/shapes.h>
-#include <smooth/smooth.h>
-#include <smooth/smoothing.h>
-#include <smooth/topology.h>
+#include <contourmesh/vtk/mesh_io.h>
+#include <contourmesh/vtk/vtkContourFeatureSmoothingFilter.h>
+#include <contourmesh/vtk/vtk_convert.h>
+#include <contourmesh/smooth/adjacency.h>
+#include <contourmesh/smooth/cross_slice.h>
+#include <contourmesh/smooth/errors.h>
+#include <contourmesh/smooth/feature_detection.h>
+#include <contourmesh/smooth/feature_smoothing.h>
+#include <contourmesh/smooth/shapes.h>
+#include <contourmesh/smooth/smooth.h>
+#include <contourmesh/smooth/smoothing.h>
+#include <contourmesh/smooth/topology.h>
 
 #include <gtest/gtest.h>
 

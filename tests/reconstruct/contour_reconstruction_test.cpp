@@ -2,11 +2,11 @@
 // The contour route on hand-made stacks: one contour, two slices, a split, a hole appearing, repeated
 // points, both orientations, single-slice contours and cavities, drifting contours; and the
 // cross-section measure it is checked with.
-#include <reconstruct/contour_deviation.h>
-#include <reconstruct/contour_reconstruction.h>
-#include <reconstruct/planar_contours.h>
-#include <smooth/errors.h>
-#include <smooth/metrics.h>
+#include <contourmesh/reconstruct/contour_deviation.h>
+#include <contourmesh/reconstruct/contour_reconstruction.h>
+#include <contourmesh/reconstruct/planar_contours.h>
+#include <contourmesh/smooth/errors.h>
+#include <contourmesh/smooth/metrics.h>
 
 #include <gtest/gtest.h>
 

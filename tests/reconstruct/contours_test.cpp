@@ -1,6 +1,6 @@
 // SPDX-License-Identifier: BSD-3-Clause
-#include <reconstruct/contours.h>
-#include <smooth/errors.h>
+#include <contourmesh/reconstruct/contours.h>
+#include <contourmesh/smooth/errors.h>
 
 #include <gtest/gtest.h>
 

@@ -1,11 +1,11 @@
 // SPDX-License-Identifier: BSD-3-Clause
-// Label maps and 3D Slicer segmentations (reconstruct/label_map.h): reading, selecting, and the
+// Label maps and 3D Slicer segmentations (contourmesh/reconstruct/label_map.h): reading, selecting, and the
 // surface of each label against its voxel volume.
-#include <reconstruct/label_map.h>
-#include <reconstruct/volume.h>
-#include <smooth/errors.h>
-#include <smooth/metrics.h>
-#include <smooth/topology.h>
+#include <contourmesh/reconstruct/label_map.h>
+#include <contourmesh/reconstruct/volume.h>
+#include <contourmesh/smooth/errors.h>
+#include <contourmesh/smooth/metrics.h>
+#include <contourmesh/smooth/topology.h>
 
 #include "test_support.h"
 

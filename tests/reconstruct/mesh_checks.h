@@ -2,7 +2,7 @@
 // Topology checks shared by the reconstruction tests.
 #pragma once
 
-#include <smooth/topology.h>
+#include <contourmesh/smooth/topology.h>
 
 namespace contourmesh::test {
 

@@ -1,9 +1,9 @@
 // SPDX-License-Identifier: BSD-3-Clause
 // Properties of fit_off_slice_heights against analytic volumes: end faces and domes between the
 // slices, what it must not touch, and bad options.
-#include <reconstruct/off_slice_heights.h>
-#include <reconstruct/reconstruction.h>
-#include <smooth/errors.h>
+#include <contourmesh/reconstruct/off_slice_heights.h>
+#include <contourmesh/reconstruct/reconstruction.h>
+#include <contourmesh/smooth/errors.h>
 
 #include <gtest/gtest.h>
 

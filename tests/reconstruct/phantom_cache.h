@@ -3,7 +3,7 @@
 // its own process, so a test builds only the shapes it uses).
 #pragma once
 
-#include "reconstruct/phantom.h"
+#include "contourmesh/reconstruct/phantom.h"
 
 #include <array>
 #include <cstddef>

@@ -1,9 +1,9 @@
 // SPDX-License-Identifier: BSD-3-Clause
 // Contour noise of render_phantom: each slice's boundary is displaced along its normal by the slice's own
 // random field, with the requested RMS over the true boundary, independently from slice to slice.
-#include "reconstruct/phantom.h"
+#include "contourmesh/reconstruct/phantom.h"
 
-#include <smooth/errors.h>
+#include <contourmesh/smooth/errors.h>
 
 #include <gtest/gtest.h>
 

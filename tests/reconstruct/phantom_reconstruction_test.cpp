@@ -1,10 +1,10 @@
 // SPDX-License-Identifier: BSD-3-Clause
 // The reconstruction chain on every built-in phantom without noise: the surface must be closed,
 // manifold, outward, of the right topology, with the right volume and close to the analytic surface.
-#include <reconstruct/phantom.h>
-#include <reconstruct/reconstruction.h>
-#include <smooth/adjacency.h>
-#include <smooth/metrics.h>
+#include <contourmesh/reconstruct/phantom.h>
+#include <contourmesh/reconstruct/reconstruction.h>
+#include <contourmesh/smooth/adjacency.h>
+#include <contourmesh/smooth/metrics.h>
 
 #include <gtest/gtest.h>
 

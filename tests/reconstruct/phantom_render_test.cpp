@@ -1,11 +1,11 @@
 // SPDX-License-Identifier: BSD-3-Clause
 // Rendering phantoms into CT-like volumes (render_phantom): geometry, partial volume, noise, blur,
 // contour noise, option checks and the topology of the voxelised shapes.
-#include "reconstruct/phantom.h"
+#include "contourmesh/reconstruct/phantom.h"
 
 #include "reconstruct/phantom_cache.h"
 
-#include <smooth/errors.h>
+#include <contourmesh/smooth/errors.h>
 
 #include <Eigen/Geometry>
 #include <gtest/gtest.h>

@@ -2,7 +2,7 @@
 // The phantoms of the contour stacks' failure classes (tilted-box, in-slice-ridge, end-face-on-slice):
 // their volume, their sharp edges, the tilt of the tilted box's faces and the slice alignment that
 // each one claims for the default volume grid.
-#include "reconstruct/phantom.h"
+#include "contourmesh/reconstruct/phantom.h"
 
 #include <Eigen/Geometry>
 #include <gtest/gtest.h>

@@ -1,9 +1,9 @@
 // SPDX-License-Identifier: BSD-3-Clause
-#include "reconstruct/phantom.h"
+#include "contourmesh/reconstruct/phantom.h"
 
 #include "reconstruct/phantom_cache.h"
 
-#include <smooth/errors.h>
+#include <contourmesh/smooth/errors.h>
 
 #include <Eigen/Geometry>
 #include <gtest/gtest.h>

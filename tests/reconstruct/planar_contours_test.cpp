@@ -1,8 +1,8 @@
 // SPDX-License-Identifier: BSD-3-Clause
 // Drawn contours to ordered stacks: slice axis, slices, nesting, orientation, repairs and refusals.
-#include <reconstruct/contour_resampling.h>
-#include <reconstruct/planar_contours.h>
-#include <smooth/errors.h>
+#include <contourmesh/reconstruct/contour_resampling.h>
+#include <contourmesh/reconstruct/planar_contours.h>
+#include <contourmesh/smooth/errors.h>
 
 #include <Eigen/Geometry>
 #include <gtest/gtest.h>

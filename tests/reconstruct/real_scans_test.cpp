@@ -1,7 +1,7 @@
 // SPDX-License-Identifier: BSD-3-Clause
 // The reconstruction chain on the real scans in ../shared/data (skipped when they are absent).
-#include <reconstruct/reconstruction.h>
-#include <reconstruct/volume.h>
+#include <contourmesh/reconstruct/reconstruction.h>
+#include <contourmesh/reconstruct/volume.h>
 
 #include <gtest/gtest.h>
 

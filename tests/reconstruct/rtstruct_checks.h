@@ -4,11 +4,11 @@
 // 0.1 mm of the drawn contours.
 #pragma once
 
-#include <reconstruct/contour_deviation.h>
-#include <reconstruct/contour_reconstruction.h>
-#include <reconstruct/rtstruct.h>
-#include <smooth/metrics.h>
-#include <smooth/topology.h>
+#include <contourmesh/reconstruct/contour_deviation.h>
+#include <contourmesh/reconstruct/contour_reconstruction.h>
+#include <contourmesh/reconstruct/rtstruct.h>
+#include <contourmesh/smooth/metrics.h>
+#include <contourmesh/smooth/topology.h>
 
 #include <gtest/gtest.h>
 

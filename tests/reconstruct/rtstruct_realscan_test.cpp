@@ -1,7 +1,7 @@
 // SPDX-License-Identifier: BSD-3-Clause
 // The heavy ROIs of the breast structure set (BODY: 430k vertices, 10 s; Lt Lung: 165 contours with
 // 37 holes, up to 7 a slice; Breast): the checks of rtstruct_checks.h. Label "realscan".
-#include <reconstruct/rtstruct.h>
+#include <contourmesh/reconstruct/rtstruct.h>
 
 #include <gtest/gtest.h>
 

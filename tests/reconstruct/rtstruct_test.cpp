@@ -2,11 +2,11 @@
 // RT Structure Sets: reading the shared breast structure set and small written ones, conversion of an
 // ROI to a contour stack, and the reconstruction of its light ROIs (the heavy ones, BODY, Lt Lung and
 // Breast, are in rtstruct_realscan_test.cpp).
-#include <reconstruct/contour_deviation.h>
-#include <reconstruct/contour_reconstruction.h>
-#include <reconstruct/rtstruct.h>
-#include <smooth/errors.h>
-#include <smooth/metrics.h>
+#include <contourmesh/reconstruct/contour_deviation.h>
+#include <contourmesh/reconstruct/contour_reconstruction.h>
+#include <contourmesh/reconstruct/rtstruct.h>
+#include <contourmesh/smooth/errors.h>
+#include <contourmesh/smooth/metrics.h>
 
 #include <gtest/gtest.h>
 

@@ -1,10 +1,10 @@
 // SPDX-License-Identifier: BSD-3-Clause
-#include <reconstruct/contours.h>
-#include <reconstruct/reconstruction.h>
-#include <reconstruct/segmentation.h>
-#include <reconstruct/tiling.h>
-#include <smooth/errors.h>
-#include <smooth/metrics.h>
+#include <contourmesh/reconstruct/contours.h>
+#include <contourmesh/reconstruct/reconstruction.h>
+#include <contourmesh/reconstruct/segmentation.h>
+#include <contourmesh/reconstruct/tiling.h>
+#include <contourmesh/smooth/errors.h>
+#include <contourmesh/smooth/metrics.h>
 
 #include <gtest/gtest.h>
 

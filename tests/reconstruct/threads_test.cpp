@@ -1,8 +1,8 @@
 // SPDX-License-Identifier: BSD-3-Clause
-#include <reconstruct/phantom.h>
-#include <reconstruct/segmentation.h>
-#include <reconstruct/threads.h>
-#include <smooth/errors.h>
+#include <contourmesh/reconstruct/phantom.h>
+#include <contourmesh/reconstruct/segmentation.h>
+#include <contourmesh/reconstruct/threads.h>
+#include <contourmesh/smooth/errors.h>
 
 #include <itkMultiThreaderBase.h>
 

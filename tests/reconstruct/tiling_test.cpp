@@ -1,9 +1,9 @@
 // SPDX-License-Identifier: BSD-3-Clause
-#include <reconstruct/tiling.h>
-#include <smooth/adjacency.h>
-#include <smooth/errors.h>
-#include <smooth/mesh_quality.h>
-#include <smooth/metrics.h>
+#include <contourmesh/reconstruct/tiling.h>
+#include <contourmesh/smooth/adjacency.h>
+#include <contourmesh/smooth/errors.h>
+#include <contourmesh/smooth/mesh_quality.h>
+#include <contourmesh/smooth/metrics.h>
 
 #include <gtest/gtest.h>
 

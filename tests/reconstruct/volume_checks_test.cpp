@@ -4,8 +4,8 @@
 #include "damaged_inputs.h"
 #include "test_support.h"
 
-#include <reconstruct/volume.h>
-#include <smooth/errors.h>
+#include <contourmesh/reconstruct/volume.h>
+#include <contourmesh/smooth/errors.h>
 
 #include <gtest/gtest.h>
 

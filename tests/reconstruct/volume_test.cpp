@@ -1,7 +1,7 @@
 // SPDX-License-Identifier: BSD-3-Clause
-#include "reconstruct/volume.h"
+#include "contourmesh/reconstruct/volume.h"
 
-#include <smooth/errors.h>
+#include <contourmesh/smooth/errors.h>
 
 #include <itkGDCMImageIO.h>
 #include <itkImageFileWriter.h>

@@ -1,10 +1,10 @@
 // SPDX-License-Identifier: BSD-3-Clause
 // The 3D Slicer CLI module run as Slicer runs it, and the LPS tag of written meshes.
-#include <pipelines/mesh_io.h>
-#include <reconstruct/phantom.h>
-#include <reconstruct/volume.h>
-#include <smooth/smooth.h>
-#include <smooth/topology.h>
+#include <contourmesh/vtk/mesh_io.h>
+#include <contourmesh/reconstruct/phantom.h>
+#include <contourmesh/reconstruct/volume.h>
+#include <contourmesh/smooth/smooth.h>
+#include <contourmesh/smooth/topology.h>
 
 #include "cli_runner.h"
 #include "test_support.h"

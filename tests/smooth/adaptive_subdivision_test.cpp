@@ -1,11 +1,11 @@
 // SPDX-License-Identifier: BSD-3-Clause
-#include <smooth/adaptive_subdivision.h>
-#include <smooth/adjacency.h>
-#include <smooth/errors.h>
-#include <smooth/metrics.h>
-#include <smooth/shapes.h>
-#include <smooth/topology.h>
-#include <smooth/umbrella.h>
+#include <contourmesh/smooth/adaptive_subdivision.h>
+#include <contourmesh/smooth/adjacency.h>
+#include <contourmesh/smooth/errors.h>
+#include <contourmesh/smooth/metrics.h>
+#include <contourmesh/smooth/shapes.h>
+#include <contourmesh/smooth/topology.h>
+#include <contourmesh/smooth/umbrella.h>
 
 #include <gtest/gtest.h>
 

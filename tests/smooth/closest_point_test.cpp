@@ -1,7 +1,7 @@
 // SPDX-License-Identifier: BSD-3-Clause
-#include "smooth/closest_point.h"
-#include "smooth/errors.h"
-#include "smooth/shapes.h"
+#include "contourmesh/smooth/closest_point.h"
+#include "contourmesh/smooth/errors.h"
+#include "contourmesh/smooth/shapes.h"
 
 #include <gtest/gtest.h>
 

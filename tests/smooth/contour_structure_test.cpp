@@ -1,8 +1,8 @@
 // SPDX-License-Identifier: BSD-3-Clause
 // Consistency of contour ids with the mesh (SPEC 2), and their repair.
-#include <smooth/adjacency.h>
-#include <smooth/contour_structure.h>
-#include <smooth/shapes.h>
+#include <contourmesh/smooth/adjacency.h>
+#include <contourmesh/smooth/contour_structure.h>
+#include <contourmesh/smooth/shapes.h>
 
 #include <gtest/gtest.h>
 

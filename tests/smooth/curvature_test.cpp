@@ -1,7 +1,7 @@
 // SPDX-License-Identifier: BSD-3-Clause
-#include <smooth/adjacency.h>
-#include <smooth/curvature.h>
-#include <smooth/shapes.h>
+#include <contourmesh/smooth/adjacency.h>
+#include <contourmesh/smooth/curvature.h>
+#include <contourmesh/smooth/shapes.h>
 
 #include <gtest/gtest.h>
 

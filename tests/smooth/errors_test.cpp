@@ -1,6 +1,6 @@
 // SPDX-License-Identifier: BSD-3-Clause
 // rethrow_with_context: the one way to add context to a library error without losing its type.
-#include "smooth/errors.h"
+#include "contourmesh/smooth/errors.h"
 
 #include <gtest/gtest.h>
 

@@ -1,10 +1,10 @@
 // SPDX-License-Identifier: BSD-3-Clause
-#include <smooth/adjacency.h>
-#include <smooth/contour_structure.h>
-#include <smooth/errors.h>
-#include <smooth/feature_detection.h>
-#include <smooth/shapes.h>
-#include <smooth/validation.h>
+#include <contourmesh/smooth/adjacency.h>
+#include <contourmesh/smooth/contour_structure.h>
+#include <contourmesh/smooth/errors.h>
+#include <contourmesh/smooth/feature_detection.h>
+#include <contourmesh/smooth/shapes.h>
+#include <contourmesh/smooth/validation.h>
 
 #include <gtest/gtest.h>
 

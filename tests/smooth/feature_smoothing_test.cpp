@@ -1,9 +1,9 @@
 // SPDX-License-Identifier: BSD-3-Clause
-#include <smooth/errors.h>
-#include <smooth/feature_smoothing.h>
-#include <smooth/metrics.h>
-#include <smooth/shapes.h>
-#include <smooth/topology.h>
+#include <contourmesh/smooth/errors.h>
+#include <contourmesh/smooth/feature_smoothing.h>
+#include <contourmesh/smooth/metrics.h>
+#include <contourmesh/smooth/shapes.h>
+#include <contourmesh/smooth/topology.h>
 
 #include <gtest/gtest.h>
 

@@ -1,12 +1,12 @@
 // SPDX-License-Identifier: BSD-3-Clause
 // The one input policy (prepare_input_mesh): what is refused, repaired or tolerated, and how contour
 // ids are made usable; and the divergence guard that stops a smoother whose result means nothing.
-#include <smooth/divergence.h>
-#include <smooth/errors.h>
-#include <smooth/input_policy.h>
-#include <smooth/metrics.h>
-#include <smooth/shapes.h>
-#include <smooth/smoothing.h>
+#include <contourmesh/smooth/divergence.h>
+#include <contourmesh/smooth/errors.h>
+#include <contourmesh/smooth/input_policy.h>
+#include <contourmesh/smooth/metrics.h>
+#include <contourmesh/smooth/shapes.h>
+#include <contourmesh/smooth/smoothing.h>
 
 #include <gtest/gtest.h>
 

@@ -1,6 +1,6 @@
 // SPDX-License-Identifier: BSD-3-Clause
-#include <smooth/errors.h>
-#include <smooth/limits.h>
+#include <contourmesh/smooth/errors.h>
+#include <contourmesh/smooth/limits.h>
 
 #include <gtest/gtest.h>
 

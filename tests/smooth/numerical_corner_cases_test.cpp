@@ -3,12 +3,12 @@
 // (umbilic everywhere), flat regions (zero curvature), and meshes scaled by 1e-6 and 1e6. Curvatures,
 // umbrellas, labels and smoothed positions must stay finite, and the labels must not depend on the
 // mesh's scale. fuzz_features (tests/fuzz) explores the same ground at random.
-#include <smooth/adjacency.h>
-#include <smooth/curvature.h>
-#include <smooth/feature_detection.h>
-#include <smooth/feature_smoothing.h>
-#include <smooth/shapes.h>
-#include <smooth/umbrella.h>
+#include <contourmesh/smooth/adjacency.h>
+#include <contourmesh/smooth/curvature.h>
+#include <contourmesh/smooth/feature_detection.h>
+#include <contourmesh/smooth/feature_smoothing.h>
+#include <contourmesh/smooth/shapes.h>
+#include <contourmesh/smooth/umbrella.h>
 
 #include <gtest/gtest.h>
 

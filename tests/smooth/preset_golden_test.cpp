@@ -1,7 +1,7 @@
 // SPDX-License-Identifier: BSD-3-Clause
 // The `xu2006` preset pinned on a fixed mesh: labels and positions equal to what the paper's
 // configuration gave before the preset existed (tests/data/xu2006/README.md).
-#include "smooth/smooth.h"
+#include "contourmesh/smooth/smooth.h"
 
 #include <gtest/gtest.h>
 

@@ -1,8 +1,8 @@
 // SPDX-License-Identifier: BSD-3-Clause
-#include <smooth/adjacency.h>
-#include <smooth/metrics.h>
-#include <smooth/shapes.h>
-#include <smooth/validation.h>
+#include <contourmesh/smooth/adjacency.h>
+#include <contourmesh/smooth/metrics.h>
+#include <contourmesh/smooth/shapes.h>
+#include <contourmesh/smooth/validation.h>
 
 #include <gtest/gtest.h>
 

@@ -1,8 +1,8 @@
 // SPDX-License-Identifier: BSD-3-Clause
-#include <smooth/adjacency.h>
-#include <smooth/errors.h>
-#include <smooth/shapes.h>
-#include <smooth/slice_neighbors.h>
+#include <contourmesh/smooth/adjacency.h>
+#include <contourmesh/smooth/errors.h>
+#include <contourmesh/smooth/shapes.h>
+#include <contourmesh/smooth/slice_neighbors.h>
 
 #include <gtest/gtest.h>
 

@@ -1,11 +1,11 @@
 // SPDX-License-Identifier: BSD-3-Clause
 // smooth(mesh, method, options): one entry point that gives each method's own result, its default
 // iteration count, labels where the method has them, and the presets.
-#include "smooth/cross_slice.h"
-#include "smooth/errors.h"
-#include "smooth/feature_smoothing.h"
-#include "smooth/shapes.h"
-#include "smooth/smooth.h"
+#include "contourmesh/smooth/cross_slice.h"
+#include "contourmesh/smooth/errors.h"
+#include "contourmesh/smooth/feature_smoothing.h"
+#include "contourmesh/smooth/shapes.h"
+#include "contourmesh/smooth/smooth.h"
 
 #include <gtest/gtest.h>
 

@@ -1,9 +1,9 @@
 // SPDX-License-Identifier: BSD-3-Clause
-#include <smooth/adjacency.h>
-#include <smooth/errors.h>
-#include <smooth/metrics.h>
-#include <smooth/shapes.h>
-#include <smooth/smoothing.h>
+#include <contourmesh/smooth/adjacency.h>
+#include <contourmesh/smooth/errors.h>
+#include <contourmesh/smooth/metrics.h>
+#include <contourmesh/smooth/shapes.h>
+#include <contourmesh/smooth/smoothing.h>
 
 #include <gtest/gtest.h>
 

@@ -1,8 +1,8 @@
 // SPDX-License-Identifier: BSD-3-Clause
-#include "smooth/surface_metrics.h"
-#include "smooth/closest_point.h"
-#include "smooth/errors.h"
-#include "smooth/shapes.h"
+#include "contourmesh/smooth/surface_metrics.h"
+#include "contourmesh/smooth/closest_point.h"
+#include "contourmesh/smooth/errors.h"
+#include "contourmesh/smooth/shapes.h"
 
 #include <gtest/gtest.h>
 

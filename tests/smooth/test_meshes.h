@@ -2,7 +2,7 @@
 // Small helpers shared by the libsmooth tests.
 #pragma once
 
-#include <smooth/mesh.h>
+#include <contourmesh/smooth/mesh.h>
 
 #include <cmath>
 

@@ -1,6 +1,6 @@
 // SPDX-License-Identifier: BSD-3-Clause
-#include <smooth/shapes.h>
-#include <smooth/topology.h>
+#include <contourmesh/smooth/shapes.h>
+#include <contourmesh/smooth/topology.h>
 
 #include <gtest/gtest.h>
 

@@ -1,8 +1,8 @@
 // SPDX-License-Identifier: BSD-3-Clause
-#include <smooth/adjacency.h>
-#include <smooth/normals.h>
-#include <smooth/shapes.h>
-#include <smooth/umbrella.h>
+#include <contourmesh/smooth/adjacency.h>
+#include <contourmesh/smooth/normals.h>
+#include <contourmesh/smooth/shapes.h>
+#include <contourmesh/smooth/umbrella.h>
 
 #include <gtest/gtest.h>
 

@@ -1,8 +1,8 @@
 // SPDX-License-Identifier: BSD-3-Clause
 #include "detail/band_tiling.h"
 
-#include <smooth/limits.h>
-#include <smooth/mesh_quality.h>
+#include <contourmesh/smooth/limits.h>
+#include <contourmesh/smooth/mesh_quality.h>
 
 #include <algorithm>
 #include <cmath>

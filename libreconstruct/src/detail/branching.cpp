@@ -4,7 +4,7 @@
 #include "detail/band_tiling.h"
 #include "detail/caps.h"
 #include "detail/correspondence.h"
-#include "reconstruct/contours.h"
+#include "contourmesh/reconstruct/contours.h"
 
 #include "contourmesh/internal/union_find.h"
 

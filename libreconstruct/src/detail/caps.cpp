@@ -3,7 +3,7 @@
 
 #include "detail/band_tiling.h"
 #include "detail/cap_refinement.h"
-#include "reconstruct/contours.h"
+#include "contourmesh/reconstruct/contours.h"
 
 #include <algorithm>
 

@@ -9,7 +9,7 @@
 
 #include "detail/sdf_primitives.h"
 
-#include <smooth/metrics.h>
+#include <contourmesh/smooth/metrics.h>
 
 #include <Eigen/Geometry>
 

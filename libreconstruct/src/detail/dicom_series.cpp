@@ -1,7 +1,7 @@
 // SPDX-License-Identifier: BSD-3-Clause
 #include "detail/dicom_series.h"
 
-#include <smooth/errors.h>
+#include <contourmesh/smooth/errors.h>
 
 #include <gdcmAttribute.h>
 #include <gdcmImage.h>
@@ -12,7 +12,7 @@
 #include <itkImageSeriesReader.h>
 
 // After ITK: its IO headers bring ITK's own Eigen, which must come before the system one.
-#include <smooth/limits.h>
+#include <contourmesh/smooth/limits.h>
 
 #include <algorithm>
 #include <cctype>

@@ -5,7 +5,7 @@
 // misplaced by up to 0.6 mm), and only its raw warning said anything.
 #pragma once
 
-#include "reconstruct/volume.h"
+#include "contourmesh/reconstruct/volume.h"
 
 #include <filesystem>
 #include <string>

@@ -2,7 +2,7 @@
 #include "detail/lifted_transition.h"
 
 #include "detail/cap_refinement.h"
-#include "reconstruct/contours.h"
+#include "contourmesh/reconstruct/contours.h"
 
 #include <algorithm>
 #include <array>

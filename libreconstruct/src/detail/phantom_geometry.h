@@ -5,7 +5,7 @@
 
 #include "detail/sdf_primitives.h"
 
-#include <smooth/metrics.h>
+#include <contourmesh/smooth/metrics.h>
 
 #include <Eigen/Core>
 #include <Eigen/Geometry>

@@ -1,7 +1,7 @@
 // SPDX-License-Identifier: BSD-3-Clause
 #include "detail/shape_interpolation.h"
 
-#include "reconstruct/contours.h"
+#include "contourmesh/reconstruct/contours.h"
 
 #include <algorithm>
 #include <cmath>

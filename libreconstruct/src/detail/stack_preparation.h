@@ -2,7 +2,7 @@
 // Private: checking a contour stack and normalising it for tiling.
 #pragma once
 
-#include "reconstruct/contours.h"
+#include "contourmesh/reconstruct/contours.h"
 
 #include <vector>
 

@@ -1,10 +1,10 @@
 // SPDX-License-Identifier: BSD-3-Clause
 #include "detail/tiling_types.h"
 
-#include "reconstruct/contours.h"
+#include "contourmesh/reconstruct/contours.h"
 
-#include <smooth/errors.h>
-#include <smooth/mesh_quality.h>
+#include <contourmesh/smooth/errors.h>
+#include <contourmesh/smooth/mesh_quality.h>
 
 #include <algorithm>
 #include <cmath>

@@ -4,10 +4,10 @@
 #pragma once
 
 #include "contourmesh/internal/polygon2d.h"
-#include "reconstruct/tiling.h"
+#include "contourmesh/reconstruct/tiling.h"
 
-#include <smooth/limits.h>
-#include <smooth/mesh.h>
+#include <contourmesh/smooth/limits.h>
+#include <contourmesh/smooth/mesh.h>
 
 #include <Eigen/Geometry>
 

@@ -6,10 +6,10 @@
 
 #include "detail/lpa_ici.h"
 #include "detail/slice_edge_grid.h"
-#include "smooth/adjacency.h"
-#include "smooth/contour_structure.h"
-#include "smooth/mesh.h"
-#include "smooth/slice_neighbors.h"
+#include "contourmesh/smooth/adjacency.h"
+#include "contourmesh/smooth/contour_structure.h"
+#include "contourmesh/smooth/mesh.h"
+#include "contourmesh/smooth/slice_neighbors.h"
 
 #include <Eigen/Core>
 

@@ -2,7 +2,7 @@
 // The one hot loop behind the umbrella operator and the umbrella smoothing steps.
 #pragma once
 
-#include "smooth/adjacency.h"
+#include "contourmesh/smooth/adjacency.h"
 
 #include <Eigen/Core>
 

@@ -4,8 +4,8 @@
 // next (branchings and caps join contours through vertices off the slices).
 #pragma once
 
-#include "smooth/contour_structure.h"
-#include "smooth/mesh.h"
+#include "contourmesh/smooth/contour_structure.h"
+#include "contourmesh/smooth/mesh.h"
 
 #include <Eigen/Core>
 

@@ -3,9 +3,9 @@
 #pragma once
 
 #include "detail/ring_sum.h"
-#include "smooth/adjacency.h"
-#include "smooth/errors.h"
-#include "smooth/smoothing.h"
+#include "contourmesh/smooth/adjacency.h"
+#include "contourmesh/smooth/errors.h"
+#include "contourmesh/smooth/smoothing.h"
 
 #include <cstdint>
 #include <vector>

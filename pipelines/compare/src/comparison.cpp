@@ -1,8 +1,8 @@
 // SPDX-License-Identifier: BSD-3-Clause
 #include "compare/comparison.h"
 
-#include <smooth/errors.h>
-#include <smooth/metrics.h>
+#include <contourmesh/smooth/errors.h>
+#include <contourmesh/smooth/metrics.h>
 
 #include <cmath>
 #include <limits>

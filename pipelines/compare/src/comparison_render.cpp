@@ -1,10 +1,10 @@
 // SPDX-License-Identifier: BSD-3-Clause
 #include "comparison_render.h"
 
-#include "pipelines/vtk_convert.h"
+#include "contourmesh/vtk/vtk_convert.h"
 #include "png_canvas.h"
 
-#include <smooth/errors.h>
+#include <contourmesh/smooth/errors.h>
 
 #include <vtkActor.h>
 #include <vtkCamera.h>

@@ -3,8 +3,8 @@
 // paper's labels as coloured points on the surface. Private to pipelines.
 #pragma once
 
-#include <smooth/feature_detection.h>
-#include <smooth/mesh.h>
+#include <contourmesh/smooth/feature_detection.h>
+#include <contourmesh/smooth/mesh.h>
 
 #include <vtkSmartPointer.h>
 

@@ -4,9 +4,9 @@
 #include "timing.h"
 #include "vtk_methods.h"
 
-#include <pipelines/vtk_convert.h>
-#include <smooth/errors.h>
-#include <smooth/metrics.h>
+#include <contourmesh/vtk/vtk_convert.h>
+#include <contourmesh/smooth/errors.h>
+#include <contourmesh/smooth/metrics.h>
 
 #include <vtkPolyData.h>
 

@@ -1,9 +1,9 @@
 // SPDX-License-Identifier: BSD-3-Clause
 #include "png_canvas.h"
 
-#include "pipelines/atomic_file.h"
+#include "contourmesh/vtk/atomic_file.h"
 
-#include <smooth/errors.h>
+#include <contourmesh/smooth/errors.h>
 
 #include <vtkFreeTypeTools.h>
 #include <vtkImageData.h>

@@ -1,8 +1,8 @@
 // SPDX-License-Identifier: BSD-3-Clause
 #include "report_format.h"
 
-#include <pipelines/atomic_file.h>
-#include <smooth/errors.h>
+#include <contourmesh/vtk/atomic_file.h>
+#include <contourmesh/smooth/errors.h>
 
 #include <cmath>
 #include <cstdio>

@@ -5,7 +5,7 @@
 #include "report_format.h"
 #include "report_tables.h"
 
-#include <pipelines/atomic_file.h>
+#include <contourmesh/vtk/atomic_file.h>
 
 #include <cmath>
 #include <functional>

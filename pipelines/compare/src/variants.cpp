@@ -3,7 +3,7 @@
 // follows the options of smooth.h's families; keep it in step when an option is added there.
 #include "compare/method_table.h"
 
-#include <smooth/errors.h>
+#include <contourmesh/smooth/errors.h>
 
 #include <algorithm>
 #include <cctype>

@@ -3,10 +3,10 @@
 
 #include "timing.h"
 
-#include <pipelines/vtk_convert.h>
-#include <pipelines/vtk_image_convert.h>
-#include <smooth/errors.h>
-#include <smooth/metrics.h>
+#include <contourmesh/vtk/vtk_convert.h>
+#include <contourmesh/vtk/vtk_image_convert.h>
+#include <contourmesh/smooth/errors.h>
+#include <contourmesh/smooth/metrics.h>
 
 #include <vtkDiscreteFlyingEdges3D.h>
 #include <vtkImageConnectivityFilter.h>

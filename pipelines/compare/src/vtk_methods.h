@@ -3,9 +3,9 @@
 // 3D Slicer's voxel route (threshold, islands, flying edges, windowed sinc) on a CT volume.
 #pragma once
 
-#include <reconstruct/volume.h>
-#include <smooth/mesh.h>
-#include <smooth/progress.h>
+#include <contourmesh/reconstruct/volume.h>
+#include <contourmesh/smooth/mesh.h>
+#include <contourmesh/smooth/progress.h>
 
 #include <vtkSmartPointer.h>
 

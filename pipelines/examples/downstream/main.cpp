@@ -6,16 +6,16 @@
 // pipelines, and prints a summary. Exits 0 only if every stage produced what it should.
 //
 // Usage: contourmesh_downstream [OUT.stl]   (default: downstream_ridge_box.stl)
-#include <pipelines/mesh_io.h>
-#include <pipelines/vtkContourPolylinesToSurfaceFilter.h>
-#include <pipelines/vtkCtImageToContourSurfaceFilter.h>
-#include <pipelines/vtk_convert.h>
-#include <pipelines/vtk_image_convert.h>
-#include <reconstruct/phantom.h>
-#include <reconstruct/reconstruction.h>
-#include <smooth/feature_smoothing.h>
-#include <smooth/metrics.h>
-#include <smooth/topology.h>
+#include <contourmesh/vtk/mesh_io.h>
+#include <contourmesh/vtk/vtkContourPolylinesToSurfaceFilter.h>
+#include <contourmesh/vtk/vtkCtImageToContourSurfaceFilter.h>
+#include <contourmesh/vtk/vtk_convert.h>
+#include <contourmesh/vtk/vtk_image_convert.h>
+#include <contourmesh/reconstruct/phantom.h>
+#include <contourmesh/reconstruct/reconstruction.h>
+#include <contourmesh/smooth/feature_smoothing.h>
+#include <contourmesh/smooth/metrics.h>
+#include <contourmesh/smooth/topology.h>
 
 #include <vtkCellArray.h>
 #include <vtkImageData.h>

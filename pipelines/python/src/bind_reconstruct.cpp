@@ -3,13 +3,13 @@
 #include "bindings.h"
 #include "bridge.h"
 
-#include <reconstruct/label_map.h>
-#include <reconstruct/phantom.h>
-#include <reconstruct/reconstruction.h>
-#include <reconstruct/threads.h>
-#include <reconstruct/volume.h>
-#include <smooth/errors.h>
-#include <smooth/limits.h>
+#include <contourmesh/reconstruct/label_map.h>
+#include <contourmesh/reconstruct/phantom.h>
+#include <contourmesh/reconstruct/reconstruction.h>
+#include <contourmesh/reconstruct/threads.h>
+#include <contourmesh/reconstruct/volume.h>
+#include <contourmesh/smooth/errors.h>
+#include <contourmesh/smooth/limits.h>
 
 #include <pybind11/stl.h>
 

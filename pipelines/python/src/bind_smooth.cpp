@@ -4,13 +4,13 @@
 #include "bindings.h"
 #include "bridge.h"
 
-#include <reconstruct/threads.h>
-#include <smooth/adjacency.h>
-#include <smooth/contour_structure.h>
-#include <smooth/errors.h>
-#include <smooth/feature_detection.h>
-#include <smooth/limits.h>
-#include <smooth/smooth.h>
+#include <contourmesh/reconstruct/threads.h>
+#include <contourmesh/smooth/adjacency.h>
+#include <contourmesh/smooth/contour_structure.h>
+#include <contourmesh/smooth/errors.h>
+#include <contourmesh/smooth/feature_detection.h>
+#include <contourmesh/smooth/limits.h>
+#include <contourmesh/smooth/smooth.h>
 
 #include <pybind11/stl.h>
 

@@ -3,9 +3,9 @@
 // Python, and running library work without the GIL.
 #pragma once
 
-#include <reconstruct/volume.h>
-#include <smooth/mesh.h>
-#include <smooth/progress.h>
+#include <contourmesh/reconstruct/volume.h>
+#include <contourmesh/smooth/mesh.h>
+#include <contourmesh/smooth/progress.h>
 
 #include <pybind11/numpy.h>
 #include <pybind11/pybind11.h>

@@ -4,7 +4,7 @@
 // contourmesh/__init__.py, which wraps these.
 #include "bindings.h"
 
-#include <smooth/errors.h>
+#include <contourmesh/smooth/errors.h>
 
 #include <filesystem>
 
@@ -12,7 +12,7 @@ namespace py = pybind11;
 
 PYBIND11_MODULE(_contourmesh, m) {
   m.doc() = "ContourMesh bindings (use the contourmesh package)";
-  // The hierarchy of smooth/errors.h: InvalidInputError is a ValueError, TopologyError and LimitError
+  // The hierarchy of contourmesh/smooth/errors.h: InvalidInputError is a ValueError, TopologyError and LimitError
   // are InvalidInputErrors, CancelledError is a RuntimeError. The objects live as long as the module.
   static py::handle invalid = PyErr_NewExceptionWithDoc(
       "contourmesh.InvalidInputError", "The input violates a documented precondition (a ValueError).",

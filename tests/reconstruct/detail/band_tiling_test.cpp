@@ -2,7 +2,7 @@
 // One contour to one contour: the least-area band, its quality, and twisted bands.
 #include "detail/band_tiling.h"
 
-#include <reconstruct/contours.h>
+#include <contourmesh/reconstruct/contours.h>
 
 #include <gtest/gtest.h>
 

@@ -4,7 +4,7 @@
 
 #include "detail/caps.h"
 
-#include <smooth/mesh_quality.h>
+#include <contourmesh/smooth/mesh_quality.h>
 
 #include <gtest/gtest.h>
 

@@ -2,7 +2,7 @@
 // Caps on ending contours.
 #include "detail/caps.h"
 
-#include <smooth/mesh_quality.h>
+#include <contourmesh/smooth/mesh_quality.h>
 
 #include <gtest/gtest.h>
 

@@ -5,7 +5,7 @@
 
 #include "detail/tiling_types.h"
 
-#include <smooth/mesh.h>
+#include <contourmesh/smooth/mesh.h>
 
 #include <cmath>
 #include <numbers>

@@ -4,8 +4,8 @@
 
 #include "detail/caps.h"
 
-#include <smooth/mesh_quality.h>
-#include <smooth/metrics.h>
+#include <contourmesh/smooth/mesh_quality.h>
+#include <contourmesh/smooth/metrics.h>
 
 #include <gtest/gtest.h>
 

@@ -2,7 +2,7 @@
 // The signed distance fields and the marching-squares levels of shape-based interpolation.
 #include "detail/shape_interpolation.h"
 
-#include <reconstruct/contours.h>
+#include <contourmesh/reconstruct/contours.h>
 
 #include <gtest/gtest.h>
 

@@ -2,7 +2,7 @@
 // One slab: bands, caps, refinement, and topology changes through interpolated levels.
 #include "detail/slab_tiling.h"
 
-#include <smooth/mesh_quality.h>
+#include <contourmesh/smooth/mesh_quality.h>
 
 #include <gtest/gtest.h>
 

@@ -10,14 +10,14 @@
 
 #include "compare/method_table.h"
 
-#include <reconstruct/phantom.h>
-#include <reconstruct/reconstruction.h>
-#include <reconstruct/volume.h>
-#include <smooth/feature_detection.h>
-#include <smooth/limits.h>
-#include <smooth/mesh.h>
-#include <smooth/progress.h>
-#include <smooth/surface_metrics.h>
+#include <contourmesh/reconstruct/phantom.h>
+#include <contourmesh/reconstruct/reconstruction.h>
+#include <contourmesh/reconstruct/volume.h>
+#include <contourmesh/smooth/feature_detection.h>
+#include <contourmesh/smooth/limits.h>
+#include <contourmesh/smooth/mesh.h>
+#include <contourmesh/smooth/progress.h>
+#include <contourmesh/smooth/surface_metrics.h>
 
 #include <cstddef>
 #include <cstdint>

@@ -5,12 +5,12 @@
 // like the others. Part of the contourmesh_compare target.
 #pragma once
 
-#include <reconstruct/reconstruction.h>
-#include <reconstruct/volume.h>
-#include <smooth/limits.h>
-#include <smooth/mesh.h>
-#include <smooth/progress.h>
-#include <smooth/smooth.h>
+#include <contourmesh/reconstruct/reconstruction.h>
+#include <contourmesh/reconstruct/volume.h>
+#include <contourmesh/smooth/limits.h>
+#include <contourmesh/smooth/mesh.h>
+#include <contourmesh/smooth/progress.h>
+#include <contourmesh/smooth/smooth.h>
 
 #include <array>
 #include <functional>

@@ -6,7 +6,7 @@
 
 #include "compare/comparison.h"
 
-#include <reconstruct/phantom.h>
+#include <contourmesh/reconstruct/phantom.h>
 
 #include <cstdint>
 #include <span>

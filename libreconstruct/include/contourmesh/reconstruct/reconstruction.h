@@ -1,0 +1,57 @@
+// SPDX-License-Identifier: BSD-3-Clause
+// The reconstruction chain (docs/reconstruction.md): CT volume -> segmentation -> contours -> tiling -> mesh.
+#pragma once
+
+#include "contourmesh/reconstruct/off_slice_heights.h"
+#include "contourmesh/reconstruct/segmentation.h"
+#include "contourmesh/reconstruct/tiling.h"
+#include "contourmesh/reconstruct/volume.h"
+
+#include <contourmesh/smooth/mesh.h>
+#include <contourmesh/smooth/progress.h>
+
+namespace contourmesh {
+
+struct ReconstructionOptions {
+  SegmentationOptions segmentation;
+  TilingOptions tiling;
+  /// Mesh components enclosing less than this many voxel volumes are dropped as specks (fragments of a
+  /// few voxels are noise, and smoothing collapses their few-vertex rings into degenerate triangles).
+  /// >= 0; 0 keeps everything.
+  double min_component_voxels = 4.0;
+  /// Heights of the vertices the tiler puts between the slices (caps, intermediate contours): from the
+  /// image by default (off_slice_heights.h).
+  OffSliceOptions off_slice;
+};
+
+struct ReconstructionReport {
+  std::size_t slices = 0;          ///< slices of the volume
+  std::size_t slices_with_contours = 0;
+  std::size_t contours = 0;        ///< outer and hole contours extracted
+  std::size_t hole_contours = 0;
+  double threshold = 0.0;          ///< the threshold used (HU or raw units)
+  std::size_t dropped_regions = 0;
+  std::size_t dropped_components = 0;  ///< mesh components below min_component_voxels
+  TilingStats tiling;
+  double seconds_segment = 0.0;
+  double seconds_tile = 0.0;
+  OffSliceReport off_slice;     ///< vertices between the slices placed from the image
+  double seconds_off_slice = 0.0;
+};
+
+struct Reconstruction {
+  Mesh mesh;  ///< tiled mesh with slice and contour ids (see tile_contours)
+  std::vector<FaceRole> face_roles;  ///< one per face of `mesh` (see tile_contours)
+  ContourStack contours;
+  ReconstructionReport report;
+};
+
+/// Segments and tiles a volume. Throws InvalidInputError when no contour is found (for example an
+/// all-air volume or a threshold above every voxel), when every voxel is foreground (an all-bone
+/// volume, whose only surface would be the volume's box) or when fewer than two slices hold contours,
+/// naming the threshold used; LimitError when the tiled mesh would exceed `options.tiling.limits`;
+/// CancelledError when `progress` returns false.
+[[nodiscard]] Reconstruction reconstruct(const CtImage& image, const ReconstructionOptions& options = {},
+                                         const ProgressCallback& progress = {});
+
+}  // namespace contourmesh

@@ -1,0 +1,49 @@
+// SPDX-License-Identifier: BSD-3-Clause
+// Sharp features of a (smoothed) mesh: creases found from the spread of face normals around each vertex,
+// kept when they extend along a line, and widened to a band. The cross-slice smoother labels its
+// result with it (docs/results.md, "Feature labels of the paper's method").
+//
+// 1. Core vertices: the normal tensor T = sum_f A_f n_f n_f^T / 3 over the faces of the vertex and of
+//    its ring neighbours within `radius` (faces counted once per such vertex they touch) has eigenvalues
+//    l1 >= l2 >= l3. Its normals spread in two directions
+//    (a crease) when l2 / trace >= `edge_threshold`: two planes meeting at a dihedral angle theta give
+//    l2 / trace = sin^2(theta / 2) / ... up to the split of areas, about 0.07 at 30 degrees and 0.25 at
+//    60; a smooth patch of curvature kappa gives about (radius kappa)^2 / 4. In three directions (a
+//    corner) when l3 / trace >= `corner_threshold`.
+// 2. Lines, not specks: connected groups of core vertices spanning less than `min_extent` are noise.
+// 3. Band: every vertex within `band` of a kept core vertex (along the mesh's edges) takes its label,
+//    edge or corner (corner wins), as the evaluation's feature region counts vertices near a feature.
+#pragma once
+
+#include "contourmesh/smooth/adjacency.h"
+#include "contourmesh/smooth/feature_detection.h"
+#include "contourmesh/smooth/mesh.h"
+
+#include <Eigen/Core>
+
+#include <vector>
+
+namespace contourmesh {
+
+struct CreaseOptions {
+  double radius = 1.0;            ///< mm (input units) around each vertex for its normal tensor, > 0
+  double edge_threshold = 0.05;   ///< l2 / trace of a crease, in (0, 0.5]
+  double corner_threshold = 0.08; ///< l3 / trace of a corner, in (0, 1/3]
+  double min_extent = 3.0;        ///< mm: groups of core vertices shorter than this are noise, >= 0
+  double band = 1.5;              ///< mm: labels reach vertices this far from a core vertex, >= 0
+};
+
+struct CreaseDetection {
+  std::vector<VertexLabel> labels;  ///< Smooth, Edge, Corner, or Noise (a rejected core vertex)
+  Eigen::VectorXd edge_strength;    ///< l2 / trace per vertex
+  Eigen::VectorXd corner_strength;  ///< l3 / trace per vertex
+  std::size_t core_vertices = 0;    ///< core vertices kept
+  std::size_t edges = 0, corners = 0, noise = 0;
+};
+
+/// Runs on every core. Throws InvalidInputError for options out of range or an adjacency of another
+/// mesh.
+[[nodiscard]] CreaseDetection detect_creases(const Mesh& mesh, const MeshAdjacency& adjacency,
+                                             const CreaseOptions& options = {});
+
+}  // namespace contourmesh

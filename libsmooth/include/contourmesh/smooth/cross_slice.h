@@ -1,0 +1,73 @@
+// SPDX-License-Identifier: BSD-3-Clause
+// Cross-slice smoothing: the project's default smoothing of contour meshes (docs/smoothing.md,
+// "Cross-slice smoothing"). It follows the paper's observation (Xu et al. 2006, section 3) that
+// segmentation errors perturb single contours while true shape continues from contour to contour:
+// every contour vertex is corrected from the profile the surface traces across the neighbouring
+// slices, and then from the profile along its own contour, never from its umbrella.
+//
+// 1. Across the slices: the plane through a contour vertex perpendicular to its contour cuts the
+//    corresponding contours of up to `reach` slices above and below; their offsets along the vertex's
+//    in-slice normal, against their height, form the profile. A local polynomial fit of the profile,
+//    with windows grown by the intersection of confidence intervals (LPA-ICI) from the measured noise
+//    level, gives the vertex's corrected offset: windows that would reach across a kink (a ridge within
+//    a slice plane, the end of a feature) stop before it, those on the smooth side grow.
+// 2. Along the contour: the same on the profile of the contour's own vertices (in-slice jitter), where
+//    windows stop at corners (ridges crossing the slices).
+// 3. Contour vertices move along their in-slice normals only, so they stay in their slice planes;
+//    vertices off the slices (caps, branchings) follow the harmonic extension of those displacements.
+// 4. Labels: the creases of the result (detect_creases), edge or corner, in a band along them.
+// With noise-free contours the estimated noise is zero and nothing moves.
+#pragma once
+
+#include "contourmesh/smooth/crease_detection.h"
+#include "contourmesh/smooth/feature_detection.h"
+#include "contourmesh/smooth/mesh.h"
+#include "contourmesh/smooth/progress.h"
+
+#include <optional>
+#include <vector>
+
+namespace contourmesh {
+
+/// Which profiles are smoothed.
+enum class CrossSliceStages {
+  AcrossThenAlong,  ///< across the slices, then along the contours (default)
+  AcrossOnly,       ///< across the slices only (the paper's per-contour noise model)
+};
+
+struct CrossSliceOptions {
+  /// Slices on each side that a cross-slice profile may use, in [1, 30].
+  int reach = 8;
+  /// Contour vertices on each side that an along-contour profile may use, in [1, 30].
+  int along_reach = 8;
+  /// Confidence-interval width of the window selection, in noise standard deviations, > 0. Larger:
+  /// wider windows, more smoothing, more bias where profiles bend.
+  double gamma = 2.0;
+  /// Noise standard deviation of the contour offsets across the slices and along the contours, mm.
+  /// Unset: estimated from the mesh (robust fourth differences of the profiles; docs/smoothing.md).
+  std::optional<double> noise_across, noise_along;
+  CrossSliceStages stages = CrossSliceStages::AcrossThenAlong;
+  /// Jacobi iterations of the harmonic extension to vertices off the slices, >= 0.
+  int extension_iterations = 30;
+  /// The feature labels of the result: creases of the smoothed mesh (crease_detection.h).
+  CreaseOptions features;
+  /// Stages "smooth" and "detect"; return false to cancel (CancelledError).
+  ProgressCallback progress;
+};
+
+struct CrossSliceResult {
+  Mesh mesh;                   ///< smoothed, same connectivity and ids
+  std::vector<VertexLabel> labels;  ///< per vertex: Smooth, Edge, Corner, or Noise (a crease too short)
+  CreaseDetection features;         ///< how the labels were found
+  double noise_across = 0.0;   ///< the noise levels used, mm
+  double noise_along = 0.0;
+  std::size_t profiles = 0;    ///< contour vertices corrected from a cross-slice profile
+  double seconds_detect = 0.0, seconds_smooth = 0.0, seconds_total = 0.0;
+};
+
+/// Smooths a contour mesh. Needs contour ids (InvalidInputError otherwise; recover them with
+/// assign_ids_by_slice_planes); throws InvalidInputError for options out of range and CancelledError
+/// on request.
+[[nodiscard]] CrossSliceResult cross_slice_smooth(const Mesh& mesh, const CrossSliceOptions& options = {});
+
+}  // namespace contourmesh
