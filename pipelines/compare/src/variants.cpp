@@ -74,8 +74,8 @@ const std::vector<Key>& keys() {
       {"max-levels", kPaper, [](SmoothOptions& o, const Value& v) { o.paper.max_levels = v.integer(); }},
       {"diffusion", kPaper,
        [](SmoothOptions& o, const Value& v) {
-         o.paper.diffusion =
-             v.choice<SmoothingMethod>({{"taubin", SmoothingMethod::Taubin}, {"laplacian", SmoothingMethod::Laplacian}});
+         o.paper.diffusion = v.choice<SmoothingMethod>(
+             {{"taubin", SmoothingMethod::Taubin}, {"laplacian", SmoothingMethod::Laplacian}});
        }},
       {"measure", kPaper,
        [](SmoothOptions& o, const Value& v) {
@@ -106,7 +106,8 @@ const std::vector<Key>& keys() {
        }},
       {"extension-iterations", kCrossSlice,
        [](SmoothOptions& o, const Value& v) { o.cross_slice.extension_iterations = v.integer(); }},
-      {"crease-radius", kCrossSlice, [](SmoothOptions& o, const Value& v) { o.cross_slice.features.radius = v.number(); }},
+      {"crease-radius", kCrossSlice,
+       [](SmoothOptions& o, const Value& v) { o.cross_slice.features.radius = v.number(); }},
       {"edge-threshold", kCrossSlice,
        [](SmoothOptions& o, const Value& v) { o.cross_slice.features.edge_threshold = v.number(); }},
       {"corner-threshold", kCrossSlice,
