@@ -219,9 +219,11 @@ void cross_slice_profile(const ContourFrame& f, const Eigen::Matrix3Xd& x, const
     }
   }
   out.clear();
-  for (int c = count[0] - 1; c >= 0; --c) out.push(side[0][static_cast<std::size_t>(2 * c)], side[0][static_cast<std::size_t>(2 * c + 1)]);
+  for (int c = count[0] - 1; c >= 0; --c)
+    out.push(side[0][static_cast<std::size_t>(2 * c)], side[0][static_cast<std::size_t>(2 * c + 1)]);
   out.push(0.0, 0.0);
-  for (int c = 0; c < count[1]; ++c) out.push(side[1][static_cast<std::size_t>(2 * c)], side[1][static_cast<std::size_t>(2 * c + 1)]);
+  for (int c = 0; c < count[1]; ++c)
+    out.push(side[1][static_cast<std::size_t>(2 * c)], side[1][static_cast<std::size_t>(2 * c + 1)]);
   // Heights increase along each side but a folded contour could break the order: check, sort if so.
   for (int k = 1; k < out.size; ++k) {
     if (out.x[static_cast<std::size_t>(k)] < out.x[static_cast<std::size_t>(k - 1)]) {
@@ -340,9 +342,11 @@ void chained_profile(const ContourFrame& f, const Eigen::Matrix3Xd& x, const Nex
     }
   }
   out.clear();
-  for (int c = count[0] - 1; c >= 0; --c) out.push(side[0][static_cast<std::size_t>(2 * c)], side[0][static_cast<std::size_t>(2 * c + 1)]);
+  for (int c = count[0] - 1; c >= 0; --c)
+    out.push(side[0][static_cast<std::size_t>(2 * c)], side[0][static_cast<std::size_t>(2 * c + 1)]);
   out.push(0.0, 0.0);
-  for (int c = 0; c < count[1]; ++c) out.push(side[1][static_cast<std::size_t>(2 * c)], side[1][static_cast<std::size_t>(2 * c + 1)]);
+  for (int c = 0; c < count[1]; ++c)
+    out.push(side[1][static_cast<std::size_t>(2 * c)], side[1][static_cast<std::size_t>(2 * c + 1)]);
   for (int k = 1; k < out.size; ++k) {
     if (out.x[static_cast<std::size_t>(k)] < out.x[static_cast<std::size_t>(k - 1)]) {
       out.sort();
@@ -357,7 +361,9 @@ void along_contour_profile(const ContourFrame& f, const Eigen::Matrix3Xd& x, Ind
   const Eigen::Vector3d tangent = f.axis.cross(m);
   // Walk both ways, but never meet: on a short contour each side takes half of the other vertices.
   std::array<std::array<Index, 2>, 2> cursor{};
-  for (int side = 0; side < 2; ++side) cursor[static_cast<std::size_t>(side)] = {i, f.contour.of[static_cast<std::size_t>(i)][static_cast<std::size_t>(side)]};
+  for (int side = 0; side < 2; ++side)
+    cursor[static_cast<std::size_t>(side)] = {
+        i, f.contour.of[static_cast<std::size_t>(i)][static_cast<std::size_t>(side)]};
   std::array<double, 2> arc{0.0, 0.0};
   std::array<double, 2> sign{1.0, 1.0};
   for (int side = 0; side < 2; ++side) {
