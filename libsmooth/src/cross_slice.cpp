@@ -130,15 +130,16 @@ void extend_displacements(const detail::ContourFrame& frame, int iterations, Eig
     if (!frame.is_contour_vertex(i) && frame.adjacency.valence(i) > 0) free.push_back(i);
   }
   if (free.empty()) return;
-  Eigen::Matrix3Xd next = displacement;
+  // Each iteration's averages, for the free vertices only (the others are held), then written back.
+  Eigen::Matrix3Xd next(3, static_cast<Index>(free.size()));
   for (int it = 0; it < iterations; ++it) {
-    for (Index i : free) {
+    for (std::size_t k = 0; k < free.size(); ++k) {
       Eigen::Vector3d sum = Eigen::Vector3d::Zero();
-      const auto ring = frame.adjacency.ring(i);
+      const auto ring = frame.adjacency.ring(free[k]);
       for (Index j : ring) sum += displacement.col(j);
-      next.col(i) = sum / static_cast<double>(ring.size());
+      next.col(static_cast<Index>(k)) = sum / static_cast<double>(ring.size());
     }
-    displacement.swap(next);
+    for (std::size_t k = 0; k < free.size(); ++k) displacement.col(free[k]) = next.col(static_cast<Index>(k));
   }
 }
 

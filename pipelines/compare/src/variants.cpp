@@ -74,8 +74,8 @@ const std::vector<Key>& keys() {
       {"max-levels", kPaper, [](SmoothOptions& o, const Value& v) { o.paper.max_levels = v.integer(); }},
       {"diffusion", kPaper,
        [](SmoothOptions& o, const Value& v) {
-         o.paper.diffusion =
-             v.choice<SmoothingMethod>({{"taubin", SmoothingMethod::Taubin}, {"laplacian", SmoothingMethod::Laplacian}});
+         o.paper.diffusion = v.choice<SmoothingMethod>(
+             {{"taubin", SmoothingMethod::Taubin}, {"laplacian", SmoothingMethod::Laplacian}});
        }},
       {"measure", kPaper,
        [](SmoothOptions& o, const Value& v) {
@@ -126,7 +126,8 @@ const std::vector<Key>& keys() {
        [](SmoothOptions& o, const Value& v) { o.cross_slice.off_slice.max_move = v.number(); }},
       {"contour-max-move", kCrossSlice,
        [](SmoothOptions& o, const Value& v) { o.cross_slice.off_slice.contour_max_move = v.number(); }},
-      {"crease-radius", kCrossSlice, [](SmoothOptions& o, const Value& v) { o.cross_slice.features.radius = v.number(); }},
+      {"crease-radius", kCrossSlice,
+       [](SmoothOptions& o, const Value& v) { o.cross_slice.features.radius = v.number(); }},
       {"edge-threshold", kCrossSlice,
        [](SmoothOptions& o, const Value& v) { o.cross_slice.features.edge_threshold = v.number(); }},
       {"corner-threshold", kCrossSlice,
