@@ -3,7 +3,6 @@
 
 #include "detail/parallel.h"
 #include "contourmesh/smooth/errors.h"
-#include "contourmesh/smooth/normals.h"
 
 #include <Eigen/Eigenvalues>
 
@@ -57,8 +56,6 @@ std::vector<double> distances_from(const Mesh& mesh, const MeshAdjacency& adjace
 CreaseDetection detect_creases(const Mesh& mesh, const MeshAdjacency& adjacency, const CreaseOptions& options) {
   check(mesh, adjacency, options);
   const Index n = mesh.num_vertices();
-  const Eigen::Matrix3Xd normals = face_normals(mesh.positions, mesh.triangles);
-  const Eigen::VectorXd areas = face_areas(mesh.positions, mesh.triangles);
   CreaseDetection result;
   result.labels.assign(static_cast<std::size_t>(n), VertexLabel::Smooth);
   result.edge_strength = Eigen::VectorXd::Zero(n);
@@ -68,13 +65,19 @@ CreaseDetection detect_creases(const Mesh& mesh, const MeshAdjacency& adjacency,
 
   // 1. Normal tensors: each vertex's own, a third of sum A_f n_f n_f^T over its faces, then summed over
   //    the vertex and its ring neighbours within the radius (about one or two edge lengths).
+  //    A face's unit normal and area come from one cross product, as face_normals and face_areas
+  //    compute them (the same values, without the two per-face arrays).
   std::vector<Eigen::Matrix<double, 6, 1>> own(static_cast<std::size_t>(n), Eigen::Matrix<double, 6, 1>::Zero());
-  for (std::size_t f = 0; f < mesh.triangles.size(); ++f) {
-    const Eigen::Vector3d nf = normals.col(static_cast<Index>(f));
-    const double w = areas[static_cast<Index>(f)] / 3.0;
+  for (const Triangle& tri : mesh.triangles) {
+    const Eigen::Vector3d c = (mesh.positions.col(tri[1]) - mesh.positions.col(tri[0]))
+                                  .cross(mesh.positions.col(tri[2]) - mesh.positions.col(tri[0]));
+    const double len = c.norm();
+    const Eigen::Vector3d nf = len > 0.0 ? Eigen::Vector3d(c / len) : Eigen::Vector3d::Zero();
+    const double w = 0.5 * len / 3.0;
     Eigen::Matrix<double, 6, 1> t;
     t << nf.x() * nf.x(), nf.y() * nf.y(), nf.z() * nf.z(), nf.x() * nf.y(), nf.x() * nf.z(), nf.y() * nf.z();
-    for (Index v : mesh.triangles[f]) own[static_cast<std::size_t>(v)] += w * t;
+    const Eigen::Matrix<double, 6, 1> wt = w * t;
+    for (Index v : tri) own[static_cast<std::size_t>(v)] += wt;
   }
   const double r2 = options.radius * options.radius;
   detail::parallel_chunks(static_cast<std::size_t>(n), 4096, [&](std::size_t, std::size_t begin, std::size_t end) {

@@ -3,6 +3,7 @@
 
 #include "detail/contour_profiles.h"
 #include "detail/lpa_ici.h"
+#include "detail/off_slice_filter.h"
 #include "detail/parallel.h"
 #include "contourmesh/smooth/errors.h"
 #include "contourmesh/smooth/normals.h"
@@ -30,6 +31,12 @@ void check_options(const CrossSliceOptions& o) {
     if (noise && !(*noise >= 0.0 && std::isfinite(*noise))) fail("a noise level must be a finite number >= 0 mm");
   }
   if (o.extension_iterations < 0) fail("extension iterations must be >= 0");
+  const OffSliceFilterOptions& f = o.off_slice;
+  if (f.normal_iterations < 0 || f.vertex_iterations < 0) fail("off-slice filter iterations must be >= 0");
+  if (!(f.sigma_angle_degrees > 0.0 && f.sigma_angle_degrees <= 90.0)) {
+    fail("off-slice filter angle must be in (0, 90] degrees");
+  }
+  if (!(f.max_move >= 0.0 && std::isfinite(f.max_move))) fail("off-slice filter max move must be a finite number >= 0");
 }
 
 // How a stage reads a profile.
@@ -123,15 +130,16 @@ void extend_displacements(const detail::ContourFrame& frame, int iterations, Eig
     if (!frame.is_contour_vertex(i) && frame.adjacency.valence(i) > 0) free.push_back(i);
   }
   if (free.empty()) return;
-  Eigen::Matrix3Xd next = displacement;
+  // Each iteration's averages, for the free vertices only (the others are held), then written back.
+  Eigen::Matrix3Xd next(3, static_cast<Index>(free.size()));
   for (int it = 0; it < iterations; ++it) {
-    for (Index i : free) {
+    for (std::size_t k = 0; k < free.size(); ++k) {
       Eigen::Vector3d sum = Eigen::Vector3d::Zero();
-      const auto ring = frame.adjacency.ring(i);
+      const auto ring = frame.adjacency.ring(free[k]);
       for (Index j : ring) sum += displacement.col(j);
-      next.col(i) = sum / static_cast<double>(ring.size());
+      next.col(static_cast<Index>(k)) = sum / static_cast<double>(ring.size());
     }
-    displacement.swap(next);
+    for (std::size_t k = 0; k < free.size(); ++k) displacement.col(free[k]) = next.col(static_cast<Index>(k));
   }
 }
 
@@ -180,6 +188,8 @@ CrossSliceResult cross_slice_smooth(const Mesh& mesh, const CrossSliceOptions& o
   extend_displacements(frame, options.extension_iterations, displacement);
   result.mesh = mesh;
   result.mesh.positions += displacement;
+  result.off_slice_moved =
+      detail::filter_off_slice_normals(frame, mesh.triangles, options.off_slice, result.mesh.positions);
   result.seconds_smooth = seconds_since(t);
   if (options.progress && !options.progress("smooth", 1.0)) throw CancelledError("smoothing");
 

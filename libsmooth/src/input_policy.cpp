@@ -120,7 +120,8 @@ double single_slice_thickness(const Mesh& mesh, std::int32_t& id) {
   const Eigen::Vector3d normal = eig.eigenvectors().col(0);
   double thickness = 0.0;
   for (Index i = 0; i < mesh.num_vertices(); ++i) {
-    if (mesh.slice_ids[i] != kNoId) thickness = std::max(thickness, std::abs((mesh.positions.col(i) - centre).dot(normal)));
+    if (mesh.slice_ids[i] != kNoId)
+      thickness = std::max(thickness, std::abs((mesh.positions.col(i) - centre).dot(normal)));
   }
   return 2.0 * thickness;
 }
@@ -160,8 +161,8 @@ class IdPreparation {
     const double thickness = single_slice_thickness(mesh, id);
     if (thickness > 1e-4 * bounding_diagonal(mesh.positions)) {
       std::ostringstream what;
-      what << "every vertex has slice id " << id << ", but the vertices do not lie in one plane (they span " << thickness
-           << " across their best-fit plane)";
+      what << "every vertex has slice id " << id << ", but the vertices do not lie in one plane (they span "
+           << thickness << " across their best-fit plane)";
       if (!options_.slice_axis) {
         throw InvalidInputError(what.str() +
                                 ": the ids cannot describe slices; give the slice axis to recover them by binning "
@@ -218,7 +219,8 @@ class IdPreparation {
     Mesh& mesh = out_.mesh;
     if (!assign_ids_by_slice_planes(mesh, adjacency, *options_.slice_axis, options_.slice_tolerance)) {
       throw InvalidInputError((why.empty() ? std::string() : why + ", and ") +
-                              "the vertices do not lie on planes normal to the slice axis " + axis_name(*options_.slice_axis) +
+                              "the vertices do not lie on planes normal to the slice axis " +
+                              axis_name(*options_.slice_axis) +
                               ", so contour ids cannot be recovered (not a contour-based mesh?)");
     }
     if (!why.empty()) {
@@ -396,7 +398,8 @@ OrientationRepair make_orientation_consistent(Mesh& mesh) {
     }
     // The minority turns over; on a tie, a closed piece takes the orientation that encloses a positive
     // volume.
-    const auto to_flip = static_cast<Index>(std::count_if(piece.begin(), piece.end(), [&](Index f) { return flip[f]; }));
+    const auto to_flip =
+        static_cast<Index>(std::count_if(piece.begin(), piece.end(), [&](Index f) { return flip[f]; }));
     bool invert = 2 * to_flip > static_cast<Index>(piece.size());
     if (closed && 2 * to_flip == static_cast<Index>(piece.size())) {
       double volume = 0.0;

@@ -3,6 +3,10 @@
 
 #include "contourmesh/smooth/errors.h"
 
+#include <array>
+#include <cstdint>
+#include <vector>
+
 namespace contourmesh {
 
 SliceRings split_rings_by_slice(const Mesh& mesh, const MeshAdjacency& adj) {
@@ -17,22 +21,35 @@ SliceRings split_rings_by_slice(const Mesh& mesh, const MeshAdjacency& adj) {
   rings.above_begin.resize(static_cast<std::size_t>(n));
   rings.other_begin.resize(static_cast<std::size_t>(n));
   const auto& s = mesh.slice_ids;
+  // Per neighbour its group (same slice, below, above, other), then a stable counting sort of the ring
+  // by group: one pass over the ring instead of one per group.
+  std::array<std::uint8_t, 64> small_groups{};
+  std::vector<std::uint8_t> large_groups;
   for (Index i = 0; i < n; ++i) {
     const auto ring = adj.ring(i);
-    auto group = [&](Index j) {
-      if (s[i] == kNoId || s[j] == kNoId) return 3;
-      const int d = s[j] - s[i];
-      return d == 0 ? 0 : d == -1 ? 1 : d == 1 ? 2 : 3;
-    };
-    Index out = rings.offsets[i];
-    for (int g = 0; g < 4; ++g) {
-      if (g == 1) rings.below_begin[i] = out;
-      if (g == 2) rings.above_begin[i] = out;
-      if (g == 3) rings.other_begin[i] = out;
-      for (Index j : ring) {
-        if (group(j) == g) rings.neighbors[out++] = j;
-      }
+    const std::size_t size = ring.size();
+    std::uint8_t* group = small_groups.data();
+    if (size > small_groups.size()) {
+      large_groups.resize(size);
+      group = large_groups.data();
     }
+    std::array<Index, 4> count{0, 0, 0, 0};
+    for (std::size_t k = 0; k < size; ++k) {
+      const Index j = ring[k];
+      int g = 3;
+      if (s[i] != kNoId && s[j] != kNoId) {
+        const int d = s[j] - s[i];
+        g = d == 0 ? 0 : d == -1 ? 1 : d == 1 ? 2 : 3;
+      }
+      group[k] = static_cast<std::uint8_t>(g);
+      ++count[static_cast<std::size_t>(g)];
+    }
+    const Index begin = rings.offsets[i];
+    rings.below_begin[i] = begin + count[0];
+    rings.above_begin[i] = rings.below_begin[i] + count[1];
+    rings.other_begin[i] = rings.above_begin[i] + count[2];
+    std::array<Index, 4> out{begin, rings.below_begin[i], rings.above_begin[i], rings.other_begin[i]};
+    for (std::size_t k = 0; k < size; ++k) rings.neighbors[out[group[k]]++] = ring[k];
   }
   return rings;
 }

@@ -65,7 +65,8 @@ void check_smoothing_options(const SmoothingOptions& o, Index num_vertices) {
     if (!(l > 0.0 && l <= 1.0)) throw InvalidInputError("lambda must be in (0, 1], got " + std::to_string(l));
   }
   if (!(o.mu >= -1.0 && o.mu < 0.0)) throw InvalidInputError("mu must be in [-1, 0), got " + std::to_string(o.mu));
-  if (!(o.beta >= 0.0 && o.beta <= 2.0)) throw InvalidInputError("beta must be in [0, 2], got " + std::to_string(o.beta));
+  if (!(o.beta >= 0.0 && o.beta <= 2.0))
+    throw InvalidInputError("beta must be in [0, 2], got " + std::to_string(o.beta));
   if (!o.locked.empty() && o.locked.size() != static_cast<std::size_t>(num_vertices)) {
     throw InvalidInputError("lock mask has " + std::to_string(o.locked.size()) + " entries for " +
                             std::to_string(num_vertices) + " vertices");

@@ -177,8 +177,8 @@ CLI::Option* add_contour_noise_option(CLI::App* command, double& contour_noise) 
 
 void check_contour_noise(double contour_noise) {
   if (!std::isfinite(contour_noise) || contour_noise < 0.0 || contour_noise > kMaxContourNoise) {
-    throw InvalidInputError("--contour-noise must be an RMS in [0, " + std::to_string(static_cast<int>(kMaxContourNoise)) +
-                            "] mm");
+    throw InvalidInputError("--contour-noise must be an RMS in [0, " +
+                            std::to_string(static_cast<int>(kMaxContourNoise)) + "] mm");
   }
 }
 

@@ -257,7 +257,8 @@ void ensure_parent_directory(const std::filesystem::path& path) {
   if (dir.empty() || std::filesystem::exists(dir)) return;
   std::error_code ec;
   std::filesystem::create_directories(dir, ec);
-  if (ec) throw InvalidInputError(path.string() + ": cannot create the directory '" + dir.string() + "': " + ec.message());
+  if (ec)
+    throw InvalidInputError(path.string() + ": cannot create the directory '" + dir.string() + "': " + ec.message());
 }
 
 void print_warnings(const std::string& command, const std::vector<std::string>& lines) {

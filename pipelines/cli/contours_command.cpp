@@ -145,9 +145,10 @@ int list_contour_file(const ContoursArgs& a) {
     return kOk;
   }
   std::cout << a.input << ": contour stack" << (in.name.empty() ? "" : " '" + in.name + "'") << "\n"
-            << "  " << contours << " contours (" << holes << (holes == 1 ? " hole), " : " holes), ") << points << " points, on " << occupied
-            << " of " << sl.size() << " slices";
-  if (!sl.empty()) std::cout << std::fixed << std::setprecision(2) << ", w " << sl.front().w << " .. " << sl.back().w << " mm";
+            << "  " << contours << " contours (" << holes << (holes == 1 ? " hole), " : " holes), ") << points
+            << " points, on " << occupied << " of " << sl.size() << " slices";
+  if (!sl.empty())
+    std::cout << std::fixed << std::setprecision(2) << ", w " << sl.front().w << " .. " << sl.back().w << " mm";
   std::cout << "\n  slice-wise volume " << std::setprecision(1) << volume << " mm^3\n";
   return kOk;
 }

@@ -120,7 +120,8 @@ void add_detect_command(CLI::App& app) {
   cmd->add_option("-o,--output", args->output, "Labelled mesh (.vtp or .ply)")->required();
   add_method_options(cmd, args->selection, false);
   add_feature_options(cmd, args->features);
-  cmd->add_option("--slice-array", args->slice_array, "Point array holding the slice index c(i)")->capture_default_str();
+  cmd->add_option("--slice-array", args->slice_array, "Point array holding the slice index c(i)")
+      ->capture_default_str();
   cmd->add_option("--contour-array", args->contour_array, "Point array holding the contour index within a slice")
       ->capture_default_str();
   add_max_vertices_option(cmd, args->max_vertices);

@@ -21,7 +21,8 @@ namespace {
 std::string g_command = "contourmesh";
 
 bool is_preamble(const std::string& line) {
-  for (const char* start : {"WARNING: In ", "ERROR: In ", "Warning: In ", "Error: In ", "Debug: In ", "Generic Warning: In "}) {
+  for (const char* start :
+       {"WARNING: In ", "ERROR: In ", "Warning: In ", "Error: In ", "Debug: In ", "Generic Warning: In "}) {
     if (line.rfind(start, 0) == 0) return true;
   }
   return false;
@@ -31,7 +32,8 @@ bool is_preamble(const std::string& line) {
 std::string without_object_prefix(const std::string& line) {
   const auto open = line.find(" (0x");
   const auto close = line.find("): ");
-  if (open != std::string::npos && close != std::string::npos && open < close && close < 80) return line.substr(close + 3);
+  if (open != std::string::npos && close != std::string::npos && open < close && close < 80)
+    return line.substr(close + 3);
   return line;
 }
 

@@ -27,9 +27,12 @@ void add_step_options(CLI::App* cmd, StepArgs& args) {
                   "Step factor in (0, 1]; default: the paper's value for the method "
                   "(paper/taubin 0.6307, laplacian 0.3, mcf 0.3, mindist 0.5)");
   cmd->add_option("--mu", args.mu, "Taubin's negative factor in [-1, 0) (default -0.6732)");
-  cmd->add_option("--beta", args.beta, "MIN-DIST crease threshold on 1 - cos(dihedral angle), in [0, 2] (default 0.03)");
-  cmd->add_option("--boundary", args.boundary, "fixed | free: whether boundary vertices of open meshes move (default fixed)");
-  cmd->add_option("--max-levels", args.max_levels, "paper: subdivision levels around a feature vertex (>= 0; default 3)");
+  cmd->add_option("--beta", args.beta,
+                  "MIN-DIST crease threshold on 1 - cos(dihedral angle), in [0, 2] (default 0.03)");
+  cmd->add_option("--boundary", args.boundary,
+                  "fixed | free: whether boundary vertices of open meshes move (default fixed)");
+  cmd->add_option("--max-levels", args.max_levels,
+                  "paper: subdivision levels around a feature vertex (>= 0; default 3)");
   cmd->add_option("--diffusion", args.diffusion, "paper: taubin | laplacian on the adaptive mesh (default taubin)");
   cmd->add_flag("--keep-adaptive", args.keep_adaptive, "paper: output the smoothed adaptive mesh itself");
 }

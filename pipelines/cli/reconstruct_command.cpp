@@ -171,7 +171,8 @@ int run_reconstruct(const ReconstructArgs& a) {
   }
   check_output_path(a.output);
   if (!a.contours_out.empty()) {
-    if (!is_contour_stack_path(a.contours_out)) throw InvalidInputError(a.contours_out + ": contour files end in .json");
+    if (!is_contour_stack_path(a.contours_out))
+      throw InvalidInputError(a.contours_out + ": contour files end in .json");
     check_output_path(a.contours_out);
   }
   options.tiling.limits.max_vertices = a.max_vertices;
@@ -430,7 +431,8 @@ void add_reconstruct_command(CLI::App& app) {
   cmd->add_option("--sampling", args->sampling,
                   "Distance between contour points, mm (CT default 0: the pixel spacing, at most 1 mm; contours "
                   "default 1, 0: as drawn)");
-  cmd->add_option("--smoothing", args->smoothing, "Image denoising: none | median | anisotropic")->capture_default_str();
+  cmd->add_option("--smoothing", args->smoothing, "Image denoising: none | median | anisotropic")
+      ->capture_default_str();
   cmd->add_option("--keep", args->keep, "Components: all | largest (3-D)")->capture_default_str();
   cmd->add_option("--min-area", args->min_area, "Drop regions and fill holes smaller than this, mm^2")
       ->capture_default_str();

@@ -159,7 +159,9 @@ std::vector<Index> vertices_near_features(const Phantom& phantom, const Eigen::M
   auto cell_of = [&](const Eigen::Vector3d& p) -> Eigen::Array3i {
     return (((p - lo) / cell).array().floor().max(-1.0).min((cells + 1).cast<double>())).cast<int>();
   };
-  auto index = [&](const Eigen::Array3i& c) { return (static_cast<std::size_t>(c.z()) * cells.y() + c.y()) * cells.x() + c.x(); };
+  auto index = [&](const Eigen::Array3i& c) {
+    return (static_cast<std::size_t>(c.z()) * cells.y() + c.y()) * cells.x() + c.x();
+  };
   // Points per cell (CSR).
   std::vector<std::size_t> start(static_cast<std::size_t>(cells.prod()) + 1, 0), order(points.size());
   for (const Eigen::Vector3d& q : points) ++start[index(cell_of(q)) + 1];
@@ -177,7 +179,8 @@ std::vector<Index> vertices_near_features(const Phantom& phantom, const Eigen::M
       for (int y = std::max(c.y() - 1, 0); y <= std::min(c.y() + 1, cells.y() - 1); ++y) {
         for (int x = std::max(c.x() - 1, 0); x <= std::min(c.x() + 1, cells.x() - 1); ++x) {
           const std::size_t cc = index({x, y, z});
-          for (std::size_t k = start[cc]; k < start[cc + 1]; ++k) best = std::min(best, (points[order[k]] - p).squaredNorm());
+          for (std::size_t k = start[cc]; k < start[cc + 1]; ++k)
+            best = std::min(best, (points[order[k]] - p).squaredNorm());
         }
       }
     }
@@ -364,8 +367,9 @@ int run_run(const RunArgs& a, const std::string& output, const std::string& labe
             << (topo.closed ? "closed" : "OPEN") << ", " << (topo.manifold ? "manifold" : "NOT manifold")
             << ", Euler characteristic " << topo.euler_characteristic << "\n";
   print_features(smoothed);
-  std::cout << "  smoothing   " << describe_selection(a.smoothing, smoothed.method) << ": volume " << std::setprecision(1) << v0 << " -> " << v1 << " mm^3 ("
-            << std::setprecision(2) << 100.0 * (v1 - v0) / v0 << " %)\n";
+  std::cout << "  smoothing   " << describe_selection(a.smoothing, smoothed.method) << ": volume "
+            << std::setprecision(1) << v0 << " -> " << v1 << " mm^3 (" << std::setprecision(2) << 100.0 * (v1 - v0) / v0
+            << " %)\n";
   if (phantom) {
     std::cout << std::setprecision(3) << "  accuracy    RMS distance to the true surface " << before.rms << " -> "
               << after.rms << " mm; within " << a.feature_radius << " mm of sharp features " << feature_before.rms
@@ -398,7 +402,8 @@ int run_volume(const RunArgs& a) {
     const int code = run_run(a, label_output_path(a.output, label, a.selection).string(), labels_out, &job, &meshes);
     if (code != kOk) return code;
   }
-  if (a.json) print_json({{"command", "run"}, {"input", a.input}, {"labels", meshes}, {"seconds", seconds_since(start)}});
+  if (a.json)
+    print_json({{"command", "run"}, {"input", a.input}, {"labels", meshes}, {"seconds", seconds_since(start)}});
   return kOk;
 }
 
@@ -463,12 +468,13 @@ nlohmann::json run_one(const RunArgs& a, const MethodConfig& config, InputKind k
             << rec.report.hole_contours << (rec.report.hole_contours == 1 ? " hole, " : " holes, ")
             << rec.report.tiling.branchings << " branchings, " << rec.report.slabs << " single-slice slabs)\n"
             << "  mesh        " << smoothed.mesh.num_vertices() << " vertices, " << smoothed.mesh.num_faces()
-            << " triangles, " << (topo.closed ? "closed" : "OPEN") << ", " << (topo.manifold ? "manifold" : "NOT manifold")
-            << ", Euler characteristic " << topo.euler_characteristic << "\n";
+            << " triangles, " << (topo.closed ? "closed" : "OPEN") << ", "
+            << (topo.manifold ? "manifold" : "NOT manifold") << ", Euler characteristic " << topo.euler_characteristic
+            << "\n";
   print_features(smoothed);
-  std::cout << "  smoothing   " << describe_selection(a.smoothing, smoothed.method) << ": volume " << std::setprecision(1) << v0 << " -> " << v1 << " mm^3 ("
-            << std::setprecision(2) << 100.0 * (v1 - v0) / v0 << " %; slice-wise " << std::setprecision(1)
-            << rec.report.slicewise_volume << ")\n"
+  std::cout << "  smoothing   " << describe_selection(a.smoothing, smoothed.method) << ": volume "
+            << std::setprecision(1) << v0 << " -> " << v1 << " mm^3 (" << std::setprecision(2) << 100.0 * (v1 - v0) / v0
+            << " %; slice-wise " << std::setprecision(1) << rec.report.slicewise_volume << ")\n"
             << std::setprecision(3) << "  contours    in-plane distance to the drawn contours: mean " << before.mean
             << " -> " << after.mean << " mm, largest " << before.max << " -> " << after.max << " mm\n"
             << std::setprecision(2) << "  seconds     tile " << rec.report.seconds_tile << ", smooth " << seconds_smooth
@@ -515,7 +521,8 @@ int run_contours(const RunArgs& a, InputKind kind, bool output_given) {
       failed);
   progress.finish();
   if (a.json) print_json(roi_results_json("run", a.input, loaded, std::move(rois), failed, start));
-  if (failed > 0 && !a.json) std::cerr << "contourmesh run: " << failed << " of " << loaded.inputs.size() << " ROIs failed\n";
+  if (failed > 0 && !a.json)
+    std::cerr << "contourmesh run: " << failed << " of " << loaded.inputs.size() << " ROIs failed\n";
   return failed > 0 ? kBadInput : kOk;
 }
 
@@ -534,16 +541,19 @@ int run_any(const RunArgs& a, const CLI::App* cmd) {
 void add_run_command(CLI::App& app) {
   auto args = std::make_shared<RunArgs>();
   CLI::App* cmd = app.add_subcommand(
-      "run", "The whole pipeline: volume (or a built-in phantom, or drawn contours) -> contours -> mesh -> smoothing -> file");
+      "run",
+      "The whole pipeline: volume (or a built-in phantom, or drawn contours) -> contours -> mesh -> smoothing -> file");
   CLI::Option* input = cmd->add_option("input", args->input,
                   "CT volume or DICOM directory, RT Structure Set (with --roi) or contour file (.json); none: the "
                   "built-in phantom --shape");
-  cmd->add_option("-o,--output", args->output, "Output mesh (.stl .ply .vtp .obj); format from the extension unless --format")
+  cmd->add_option("-o,--output", args->output,
+                  "Output mesh (.stl .ply .vtp .obj); format from the extension unless --format")
       ->capture_default_str();
   cmd->add_option("--format", args->format, "Output format: auto | stl | stl-ascii | ply | vtp | obj")
       ->capture_default_str();
-  cmd->add_option("--labels-out", args->labels_out,
-                  "paper, cross-slice: also write the reconstructed mesh with per-vertex labels and curvatures (.vtp or .ply)");
+  cmd->add_option(
+      "--labels-out", args->labels_out,
+      "paper, cross-slice: also write the reconstructed mesh with per-vertex labels and curvatures (.vtp or .ply)");
   cmd->add_option("--shape", args->shape, "Phantom when no input: " + phantom_shape_names(" | "))
       ->capture_default_str();
   cmd->add_option("--spacing", args->spacing, "Phantom voxel size, mm: sx,sy,sz")->capture_default_str();

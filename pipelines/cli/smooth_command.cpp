@@ -207,7 +207,8 @@ void add_smooth_command(CLI::App& app) {
                   "paper, cross-slice: also write the input mesh with per-vertex labels and curvatures (.vtp or .ply)");
   cmd->add_option("--format", args->format, "Output format: auto | stl | stl-ascii | ply | vtp | obj")
       ->capture_default_str();
-  cmd->add_option("--slice-array", args->slice_array, "Point array holding the slice index c(i)")->capture_default_str();
+  cmd->add_option("--slice-array", args->slice_array, "Point array holding the slice index c(i)")
+      ->capture_default_str();
   cmd->add_option("--contour-array", args->contour_array, "Point array holding the contour index within a slice")
       ->capture_default_str();
   add_max_vertices_option(cmd, args->max_vertices);

@@ -109,7 +109,8 @@ int main(int argc, char** argv) {
   app.add_option("--label", args.label, "A label value or segment name instead of the threshold");
   app.add_flag("--keep-largest", args.keep_largest, "Keep the largest connected piece only");
   app.add_option("--method", args.method, "cross-slice | paper | taubin | laplacian | none")->capture_default_str();
-  app.add_option("--iterations", args.iterations, "Smoothing iterations; -1: the method's default")->capture_default_str();
+  app.add_option("--iterations", args.iterations, "Smoothing iterations; -1: the method's default")
+      ->capture_default_str();
   app.add_option("--threads", args.threads, "Threads; 0: every core")->capture_default_str();
   try {
     app.parse(argc, argv);

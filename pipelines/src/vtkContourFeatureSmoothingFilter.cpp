@@ -203,7 +203,8 @@ int vtkContourFeatureSmoothingFilter::Execute(vtkPolyData* input, vtkPolyData* o
   const SmoothingMethod method = to_library(this->Method);
   const bool cross_slice = method == SmoothingMethod::CrossSlice;
   // The paper's detection runs for its method, and for labels of a method that has none of its own.
-  const bool detect = method == SmoothingMethod::FeaturePreserving || (this->GenerateLabels && !produces_labels(method));
+  const bool detect =
+      method == SmoothingMethod::FeaturePreserving || (this->GenerateLabels && !produces_labels(method));
 
   // The one input policy, as `contourmesh smooth` runs it (contourmesh/smooth/input_policy.h): refusals, repairs,
   // orientation, and contour ids made usable for the detection or for cross-slice smoothing, which
@@ -240,7 +241,8 @@ int vtkContourFeatureSmoothingFilter::Execute(vtkPolyData* input, vtkPolyData* o
   std::vector<std::uint8_t> locked;
   if (this->LockedArrayName != nullptr && this->LockedArrayName[0] != '\0') {
     if (cross_slice) {
-      throw InvalidInputError("cross-slice smoothing cannot lock vertices: unset LockedArrayName or choose another Method");
+      throw InvalidInputError(
+          "cross-slice smoothing cannot lock vertices: unset LockedArrayName or choose another Method");
     }
     vtkDataArray* array = input->GetPointData()->GetArray(this->LockedArrayName);
     if (array == nullptr) {
@@ -367,8 +369,8 @@ void vtkContourFeatureSmoothingFilter::PrintSelf(ostream& os, vtkIndent indent) 
   auto str = [](const char* s) { return s != nullptr ? s : "(none)"; };
   os << indent << "Preset: " << this->GetPresetAsString() << " (last applied)\n";
   os << indent << "Method: " << this->GetMethodAsString() << "\n";
-  os << indent << "NumberOfIterations: " << this->NumberOfIterations << (this->NumberOfIterations < 0 ? " (automatic)" : "")
-     << "\n";
+  os << indent << "NumberOfIterations: " << this->NumberOfIterations
+     << (this->NumberOfIterations < 0 ? " (automatic)" : "") << "\n";
   os << indent << "Lambda: " << this->Lambda << (this->Lambda > 0.0 ? "" : " (automatic)") << "\n";
   os << indent << "Mu: " << this->Mu << "\n";
   os << indent << "Beta: " << this->Beta << "\n";
@@ -379,7 +381,8 @@ void vtkContourFeatureSmoothingFilter::PrintSelf(ostream& os, vtkIndent indent) 
   os << indent << "Anisotropy: " << this->Anisotropy << "\n";
   os << indent << "Gamma: " << this->Gamma << (this->Gamma < 0.0 ? " (automatic)" : "") << "\n";
   os << indent << "GammaFactor: " << this->GammaFactor << "\n";
-  os << indent << "UmbrellaMeasure: " << (this->UmbrellaMeasure == UMBRELLA_NORMAL_COMPONENT ? "NormalComponent" : "Length")
+  os << indent
+     << "UmbrellaMeasure: " << (this->UmbrellaMeasure == UMBRELLA_NORMAL_COMPONENT ? "NormalComponent" : "Length")
      << "\n";
   os << indent << "Delta: " << this->Delta << (this->Delta < 0.0 ? " (automatic)" : "") << "\n";
   os << indent << "DeltaFactor: " << this->DeltaFactor << "\n";
@@ -393,9 +396,10 @@ void vtkContourFeatureSmoothingFilter::PrintSelf(ostream& os, vtkIndent indent) 
   os << indent << "DiffusionMethod: " << (this->DiffusionMethod == METHOD_LAPLACIAN ? "Laplacian" : "Taubin") << "\n";
   os << indent << "KeepAdaptiveMesh: " << (this->KeepAdaptiveMesh ? "On" : "Off") << "\n";
   os << indent << "GenerateLabels: " << (this->GenerateLabels ? "On" : "Off") << "\n";
-  os << indent << "SliceAxis: " << (this->SliceAxis == SLICE_AXIS_NONE ? "None" : std::string(1, "XYZ"[this->SliceAxis]))
+  os << indent
+     << "SliceAxis: " << (this->SliceAxis == SLICE_AXIS_NONE ? "None" : std::string(1, "XYZ"[this->SliceAxis])) << "\n";
+  os << indent << "SliceTolerance: " << this->SliceTolerance << (this->SliceTolerance > 0.0 ? "" : " (automatic)")
      << "\n";
-  os << indent << "SliceTolerance: " << this->SliceTolerance << (this->SliceTolerance > 0.0 ? "" : " (automatic)") << "\n";
   os << indent << "ContourIdArrayName: " << str(this->ContourIdArrayName) << "\n";
   os << indent << "ContourIndexArrayName: " << str(this->ContourIndexArrayName) << "\n";
   os << indent << "LockedArrayName: " << str(this->LockedArrayName) << "\n";

@@ -70,7 +70,8 @@ TEST_F(BadInput, TruncatedPlyAndVtp) {
   const fs::path ply = dir_ / "cut.ply";
   write_mesh(stack_, ply);
   cut(ply, test::read_bytes(ply).size() * 6 / 10);
-  expect_rejected(run("smooth " + ply.string() + " -o " + out.string()), {ply.string(), "PLY: data ends inside element"});
+  expect_rejected(run("smooth " + ply.string() + " -o " + out.string()),
+                  {ply.string(), "PLY: data ends inside element"});
   const fs::path ascii = write_text("cut_ascii.ply", tetra_ascii_ply().substr(0, tetra_ascii_ply().size() - 12));
   expect_rejected(run("smooth " + ascii.string() + " -o " + out.string()),
                   {ascii.string(), "PLY: data ends inside element 'face'"});
@@ -135,7 +136,8 @@ TEST_F(BadInput, NonFiniteCoordinatesInEveryFormat) {
   expect_rejected(run("smooth " + obj_nan.string() + " -o " + out.string()),
                   {obj_nan.string(), "line 4: vertex 3 has a non-finite coordinate 'nan'"});
   const fs::path obj_inf = write_text("inf.obj", tetra_obj("v 0 -inf 0"));
-  expect_rejected(run("detect " + obj_inf.string() + " -o " + out.string()), {"vertex 3 has a non-finite coordinate '-inf'"});
+  expect_rejected(run("detect " + obj_inf.string() + " -o " + out.string()),
+                  {"vertex 3 has a non-finite coordinate '-inf'"});
   const fs::path ply_inf = write_text("inf.ply", tetra_ascii_ply("0 1e999 0"));
   expect_rejected(run("smooth " + ply_inf.string() + " -o " + out.string()), {"vertex 2 has a non-finite coordinate"});
   expect_nothing_written(out);

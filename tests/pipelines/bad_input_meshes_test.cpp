@@ -69,8 +69,9 @@ TEST_F(BadInput, CoincidentVerticesOfATriangleSoupAreMerged) {
   const CliRun r = run("smooth " + (dir_ / "soup.ply").string() + " -o " + (dir_ / "out.ply").string() +
                        " --method taubin --json");
   ASSERT_EQ(r.code, 0) << r.err;
-  EXPECT_NE(r.err.find("merged " + std::to_string(soup.num_vertices() - sphere.num_vertices()) + " coincident vertices"),
-            std::string::npos)
+  EXPECT_NE(
+      r.err.find("merged " + std::to_string(soup.num_vertices() - sphere.num_vertices()) + " coincident vertices"),
+      std::string::npos)
       << r.err;
   const auto j = json_of(r);
   EXPECT_EQ(j["vertices"], sphere.num_vertices());
@@ -94,7 +95,8 @@ TEST_F(BadInput, NonManifoldEdgesAndVerticesAreSmoothedWithAWarning) {
   write_mesh(m, dir_ / "nonmanifold.vtp");
   for (const std::string method : {"paper", "taubin", "laplacian", "mcf", "mindist"}) {
     const fs::path out = dir_ / ("out_" + method + ".vtp");
-    const CliRun r = run("smooth " + (dir_ / "nonmanifold.vtp").string() + " -o " + out.string() + " --method " + method);
+    const CliRun r =
+        run("smooth " + (dir_ / "nonmanifold.vtp").string() + " -o " + out.string() + " --method " + method);
     ASSERT_EQ(r.code, 0) << method << ": " << r.err;
     EXPECT_NE(r.err.find("topology problems left as they are, first: non-manifold edge between vertices"),
               std::string::npos)
@@ -136,7 +138,8 @@ TEST_F(BadInput, OpenMeshesAreSmoothedWithTheirBoundaryFixed) {
 // (The paper's detection: it has a fallback without ids; cross-slice smoothing, the default, needs them.)
 TEST_F(BadInput, MissingContourIdsFallBackWithAWarning) {
   write_mesh(stack_, dir_ / "plain.stl");
-  CliRun r = run("detect " + (dir_ / "plain.stl").string() + " -o " + (dir_ / "l.vtp").string() + " --method paper --json");
+  CliRun r =
+      run("detect " + (dir_ / "plain.stl").string() + " -o " + (dir_ / "l.vtp").string() + " --method paper --json");
   ASSERT_EQ(r.code, 0) << r.err;
   EXPECT_EQ(json_of(r)["mode"], "curvature-only");
   EXPECT_NE(r.err.find("has no contour ids"), std::string::npos) << r.err;

@@ -86,7 +86,8 @@ class BadInput : public ::testing::Test {
       slice->SetRegions(region);
       slice->Allocate();
       for (int y = 0; y < 16; ++y) {
-        for (int x = 0; x < 16; ++x) slice->SetPixel({{x, y}}, (x - 8) * (x - 8) + (y - 8) * (y - 8) < 25 ? 1000 : -1000);
+        for (int x = 0; x < 16; ++x)
+          slice->SetPixel({{x, y}}, (x - 8) * (x - 8) + (y - 8) * (y - 8) < 25 ? 1000 : -1000);
       }
       auto io = itk::GDCMImageIO::New();
       io->KeepOriginalUIDOn();

@@ -48,7 +48,8 @@ class Cli : public ::testing::Test {
 TEST_F(Cli, SmoothEveryMethodWithJson) {
   for (const std::string method : {"none", "laplacian", "taubin", "mcf", "mindist", "paper", "cross-slice"}) {
     const fs::path out = dir_ / ("out_" + method + ".ply");
-    const CliRun r = run_cli("smooth " + input_.string() + " -o " + out.string() + " --method " + method + " --json", dir_);
+    const CliRun r =
+        run_cli("smooth " + input_.string() + " -o " + out.string() + " --method " + method + " --json", dir_);
     ASSERT_EQ(r.code, 0) << method << ": " << r.err;
     const auto j = nlohmann::json::parse(r.out);
     for (const char* key : {"method", "iterations", "vertices", "faces", "volume_before", "volume_after", "seconds"}) {
@@ -86,8 +87,8 @@ TEST_F(Cli, SmoothEveryMethodWithJson) {
 TEST_F(Cli, PaperMethodWritesLabelsAndTheAdaptiveMesh) {
   const fs::path out = dir_ / "adaptive.vtp";
   const fs::path labels = dir_ / "labels.vtp";
-  CliRun r = run_cli("smooth " + input_.string() + " -o " + out.string() + " --method paper --keep-adaptive --labels-out " +
-                         labels.string() + " --max-levels 2 --json",
+  CliRun r = run_cli("smooth " + input_.string() + " -o " + out.string() +
+                         " --method paper --keep-adaptive --labels-out " + labels.string() + " --max-levels 2 --json",
                      dir_);
   ASSERT_EQ(r.code, 0) << r.err;
   const auto j = nlohmann::json::parse(r.out);
@@ -151,8 +152,8 @@ TEST_F(Cli, SmoothPresetsAndTheDefault) {
   EXPECT_EQ(j["iterations"], 40);
   EXPECT_EQ(j["lambda"], 0.6307);
 
-  EXPECT_EQ(run_cli("smooth " + input_.string() + " -o " + out.string() + " --preset xu2006 --method taubin", dir_).code,
-            1);
+  EXPECT_EQ(
+      run_cli("smooth " + input_.string() + " -o " + out.string() + " --preset xu2006 --method taubin", dir_).code, 1);
   for (const std::string& bad : {std::string("--preset slicer"), std::string("--method bilateral"),
                                  std::string("--lambda 0.5"), std::string("--max-levels 2"), std::string("--gamma 0.3"),
                                  std::string("--iterations 5"), std::string("--method taubin --max-levels 2")}) {
@@ -165,7 +166,8 @@ TEST_F(Cli, SmoothPresetsAndTheDefault) {
   r = run_cli("smooth " + input_.string() + " -o " + out.string() + " --labels-out " + labels.string(), dir_);
   ASSERT_EQ(r.code, 0) << r.err;
   EXPECT_EQ(read_mesh(labels).num_vertices(), by_default.num_vertices());
-  r = run_cli("smooth " + input_.string() + " -o " + out.string() + " --method mcf --labels-out " + labels.string(), dir_);
+  r = run_cli("smooth " + input_.string() + " -o " + out.string() + " --method mcf --labels-out " + labels.string(),
+              dir_);
   EXPECT_EQ(r.code, 2);
   EXPECT_NE(r.err.find("--labels-out needs a method that labels features"), std::string::npos) << r.err;
 }
@@ -257,8 +259,8 @@ TEST_F(Cli, UsageErrorsExitOne) {
   EXPECT_EQ(run_cli("smooth " + input_.string() + " -o x.stl --iterations many", dir_).code, 1);
   const CliRun help = run_cli("smooth --help", dir_);
   EXPECT_EQ(help.code, 0);
-  for (const char* option : {"--method", "--preset", "--iterations", "--lambda", "--mu", "--beta", "--json", "--output", "--gamma",
-                             "--delta", "--max-levels", "--keep-adaptive", "--labels-out", "--slice-axis"}) {
+  for (const char* option : {"--method", "--preset", "--iterations", "--lambda", "--mu", "--beta", "--json", "--output",
+                             "--gamma", "--delta", "--max-levels", "--keep-adaptive", "--labels-out", "--slice-axis"}) {
     EXPECT_NE(help.out.find(option), std::string::npos) << option;
   }
 }
@@ -293,7 +295,8 @@ TEST_F(Cli, TilingOptionsReachTheTilerOnBothRoutes) {
   const fs::path volume = dir_ / "branch.nrrd", contours = dir_ / "branch.json";
   ASSERT_EQ(run_cli("phantom --shape branch -o " + volume.string() + " --spacing 1,1,2.5 -q", dir_).code, 0);
   auto vertices = [&](const fs::path& input, const std::string& options) {
-    const CliRun r = run_cli("reconstruct " + input.string() + " -o " + (dir_ / "out.vtp").string() + " --json " + options, dir_);
+    const CliRun r =
+        run_cli("reconstruct " + input.string() + " -o " + (dir_ / "out.vtp").string() + " --json " + options, dir_);
     EXPECT_EQ(r.code, 0) << options << ": " << r.err;
     return r.code == 0 ? nlohmann::json::parse(r.out)["vertices"].get<long>() : -1L;
   };
@@ -453,17 +456,21 @@ TEST_F(Cli, ProgressIsOneLinePerStageOffATerminalAndQuietSilencesIt) {
 TEST_F(Cli, HelpListsEveryOptionOfEverySubcommand) {
   const std::map<std::string, std::vector<std::string>> options = {
       {"phantom", {"--shape", "--spacing", "--noise", "--blur", "--seed", "--json"}},
-      {"reconstruct", {"--threshold", "--otsu", "--end-caps", "--branching", "--band-refinement", "--full-dp-limit",
-                       "--min-overlap-of-larger", "--keep", "--fill-holes", "--json", "--quiet", "--threads",
-                       "--roi", "--contours-out", "--sampling", "--slab-thickness", "--align", "--single-slice"}},
+      {"reconstruct",
+       {"--threshold", "--otsu", "--end-caps", "--branching", "--band-refinement", "--full-dp-limit",
+        "--min-overlap-of-larger", "--keep", "--fill-holes", "--json", "--quiet", "--threads", "--roi",
+        "--contours-out", "--sampling", "--slab-thickness", "--align", "--single-slice"}},
       {"contours", {"--list", "--roi", "--output", "--json", "--planarity-tolerance"}},
-      {"detect", {"--method", "--preset", "--gamma", "--delta", "--measure", "--in-slice", "--prefilter", "--window", "--corner-spread", "--slice-axis",
-                  "--json"}},
-      {"smooth", {"--method", "--preset", "--iterations", "--gamma", "--delta", "--max-levels", "--keep-adaptive", "--labels-out",
-                  "--in-slice", "--json", "--quiet", "--threads"}},
-      {"run", {"--shape", "--noise", "--method", "--preset", "--iterations", "--threshold", "--end-caps", "--branching",
-               "--max-band-aspect", "--interpolation-grid", "--in-slice", "--measure",
-               "--json", "--quiet", "--threads", "--roi", "--sampling", "--slab-thickness"}},
+      {"detect",
+       {"--method", "--preset", "--gamma", "--delta", "--measure", "--in-slice", "--prefilter", "--window",
+        "--corner-spread", "--slice-axis", "--json"}},
+      {"smooth",
+       {"--method", "--preset", "--iterations", "--gamma", "--delta", "--max-levels", "--keep-adaptive", "--labels-out",
+        "--in-slice", "--json", "--quiet", "--threads"}},
+      {"run",
+       {"--shape", "--noise", "--method", "--preset", "--iterations", "--threshold", "--end-caps", "--branching",
+        "--max-band-aspect", "--interpolation-grid", "--in-slice", "--measure", "--json", "--quiet", "--threads",
+        "--roi", "--sampling", "--slab-thickness"}},
   };
   for (const auto& [command, names] : options) {
     const CliRun r = run_cli(command + " --help", dir_);

@@ -93,11 +93,12 @@ TEST(CompareCli, RegimesSeedsVariantsAndTheSummary) {
   test::ScopedTempDir tmp("contourmesh_compare");
   const fs::path out = tmp.path() / "out";
   const fs::path md = tmp.path() / "results.md";
-  const CliRun r = run_cli("compare --phantom ridge-box --spacing 2,2,4 --regimes ct20,contour0.4 --seeds 1-2 --methods "
-                           "none,cross-slice,voxel-windowed-sinc --variant along-off:stages=across-only --no-render "
-                           "--no-curves --out " +
-                               out.string() + " --markdown " + md.string() + " --json",
-                           tmp.path());
+  const CliRun r = run_cli(
+      "compare --phantom ridge-box --spacing 2,2,4 --regimes ct20,contour0.4 --seeds 1-2 --methods "
+      "none,cross-slice,voxel-windowed-sinc --variant along-off:stages=across-only --no-render "
+      "--no-curves --out " +
+          out.string() + " --markdown " + md.string() + " --json",
+      tmp.path());
   ASSERT_EQ(r.code, 0) << r.err;
   const auto j = nlohmann::json::parse(r.out);
   ASSERT_EQ(j["comparisons"].size(), 2u);
@@ -111,7 +112,8 @@ TEST(CompareCli, RegimesSeedsVariantsAndTheSummary) {
     ASSERT_EQ(m["mean"].size(), 4u);
     EXPECT_EQ(m["mean"][3]["id"], "along-off");
     EXPECT_TRUE(m["mean"][3]["variant"].get<bool>());
-    const double a = m["runs"][0]["methods"][1]["accuracy"]["all"]["rms"], b = m["runs"][1]["methods"][1]["accuracy"]["all"]["rms"];
+    const double a = m["runs"][0]["methods"][1]["accuracy"]["all"]["rms"],
+                 b = m["runs"][1]["methods"][1]["accuracy"]["all"]["rms"];
     EXPECT_NEAR(m["mean"][1]["rms_mm"].get<double>(), 0.5 * (a + b), 1e-12);
     EXPECT_EQ(m["mean"][1]["runs"], 2);
   }
@@ -131,8 +133,9 @@ TEST(CompareCli, RegimesSeedsVariantsAndTheSummary) {
   std::istringstream lines(page);
   int rows = 0;
   for (std::string line; std::getline(lines, line);) {
-    const bool verdict_row = (line.rfind("| ct20 | ridge-box |", 0) == 0 || line.rfind("| contour0.4 | ridge-box |", 0) == 0) &&
-                             line.find("RMS ") != std::string::npos;
+    const bool verdict_row =
+        (line.rfind("| ct20 | ridge-box |", 0) == 0 || line.rfind("| contour0.4 | ridge-box |", 0) == 0) &&
+        line.find("RMS ") != std::string::npos;
     if (!verdict_row) continue;
     int bars = 0;
     for (std::size_t i = 0; i < line.size(); ++i) bars += line[i] == '|' && (i == 0 || line[i - 1] != '\\');

@@ -120,7 +120,8 @@ TEST(Series, RegimesAndSeedsParse) {
   }
   EXPECT_EQ(parse_seeds("1-3"), (std::vector<std::uint64_t>{1, 2, 3}));
   EXPECT_EQ(parse_seeds("7,1-2"), (std::vector<std::uint64_t>{7, 1, 2}));
-  for (const char* bad : {"", "3-1", "1,1", "a", "1-", "0-200"}) EXPECT_THROW((void)parse_seeds(bad), InvalidInputError) << bad;
+  for (const char* bad : {"", "3-1", "1,1", "a", "1-", "0-200"})
+    EXPECT_THROW((void)parse_seeds(bad), InvalidInputError) << bad;
 }
 
 TEST(Series, MeansAreOverTheSeeds) {

@@ -79,7 +79,8 @@ void check_the_metrics_see_what_smoothing_does(const Comparison& c) {
   const MethodResult& laplacian = *c.find(SmoothingMethod::Laplacian);
   EXPECT_LT(laplacian.volume_change_percent, -1.0);
   EXPECT_LT(laplacian.accuracy->all.mean_signed, c.find(SmoothingMethod::Taubin)->accuracy->all.mean_signed);
-  EXPECT_LT(std::abs(c.find(SmoothingMethod::Taubin)->volume_change_percent), std::abs(laplacian.volume_change_percent));
+  EXPECT_LT(std::abs(c.find(SmoothingMethod::Taubin)->volume_change_percent),
+            std::abs(laplacian.volume_change_percent));
 }
 
 void check_stages_labels_and_detection_scores(const Comparison& c) {
@@ -90,7 +91,8 @@ void check_stages_labels_and_detection_scores(const Comparison& c) {
   EXPECT_NEAR(paper.stage_seconds("total"),
               paper.stage_seconds("detect") + paper.stage_seconds("subdivide") + paper.stage_seconds("smooth"), 1e-9);
   const MethodResult& voxel = *c.find(ExternalMethod::VoxelWindowedSinc);
-  for (const char* stage : {"threshold", "surface", "smooth", "total"}) EXPECT_GT(voxel.stage_seconds(stage), 0.0) << stage;
+  for (const char* stage : {"threshold", "surface", "smooth", "total"})
+    EXPECT_GT(voxel.stage_seconds(stage), 0.0) << stage;
 
   std::size_t truths = 0, examinable_truths = 0;
   for (std::size_t i = 0; i < c.true_features.size(); ++i) {

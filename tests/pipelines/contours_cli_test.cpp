@@ -36,12 +36,14 @@ class ContoursCli : public ::testing::Test {
     std::vector<test::TestRoi> rois;
     for (const auto& [number, name, r] : {std::tuple{1, "GTV 1", 8.0}, std::tuple{2, "Cord/Canal", 5.0}}) {
       test::TestRoi roi = test::roi_of(number, name);
-      for (int k = 0; k < 5; ++k) roi.contours.push_back(test::contour_of("CLOSED_PLANAR", test::ellipse(20.0 * number, 0, r, r, 3.0 * k)));
+      for (int k = 0; k < 5; ++k)
+        roi.contours.push_back(test::contour_of("CLOSED_PLANAR", test::ellipse(20.0 * number, 0, r, r, 3.0 * k)));
       rois.push_back(roi);
     }
     rois.push_back(test::roi_of(3, "Empty"));
     test::TestRoi bent = test::roi_of(4, "Bent");
-    for (int k = 0; k < 3; ++k) bent.contours.push_back(test::contour_of("CLOSED_PLANAR", test::ellipse(-30, 0, 5, 5, 3.0 * k)));
+    for (int k = 0; k < 3; ++k)
+      bent.contours.push_back(test::contour_of("CLOSED_PLANAR", test::ellipse(-30, 0, 5, 5, 3.0 * k)));
     bent.contours[1].points[3].z() += 2.0;
     rois.push_back(bent);
     test::write_rtstruct(path, rois);
@@ -151,9 +153,9 @@ TEST_F(ContoursCli, RunSmoothsAnRoiAndReportsTheInPlaneDeviation) {
   EXPECT_EQ(j["method"], "cross-slice");  // the default preset, as for a CT volume
   EXPECT_EQ(j["preset"], "default");
   EXPECT_TRUE(j["is_closed"].get<bool>());
-  for (const char* key : {"contour_deviation_before_mean", "contour_deviation_before_max", "contour_deviation_after_mean",
-                          "contour_deviation_after_max", "slicewise_volume", "volume_before", "volume_after",
-                          "seconds_tile", "seconds_smooth"}) {
+  for (const char* key : {"contour_deviation_before_mean", "contour_deviation_before_max",
+                          "contour_deviation_after_mean", "contour_deviation_after_max", "slicewise_volume",
+                          "volume_before", "volume_after", "seconds_tile", "seconds_smooth"}) {
     EXPECT_TRUE(j.contains(key)) << key;
   }
   EXPECT_LT(j["contour_deviation_before_max"].get<double>(), 0.1);
@@ -181,7 +183,8 @@ TEST_F(ContoursCli, ContourFilesRoundTripThroughContoursAndReconstruct) {
   const CliRun b = run_cli("reconstruct " + q(json) + " -o " + q(dir_ / "b.vtp") + " --json", dir_);
   ASSERT_EQ(a.code, 0) << a.err;
   ASSERT_EQ(b.code, 0) << b.err;
-  EXPECT_DOUBLE_EQ(nlohmann::json::parse(a.out)["volume"].get<double>(), nlohmann::json::parse(b.out)["volume"].get<double>());
+  EXPECT_DOUBLE_EQ(nlohmann::json::parse(a.out)["volume"].get<double>(),
+                   nlohmann::json::parse(b.out)["volume"].get<double>());
 }
 
 TEST_F(ContoursCli, AHandWrittenContourFile) {
@@ -240,7 +243,8 @@ TEST_F(ContoursCli, ContoursOutWritesWhatTheImageRouteFound) {
   EXPECT_EQ(file.stack.slices.size(), j["slices"].get<std::size_t>());
   EXPECT_EQ(file.stack.num_contours(), j["contours"].get<std::size_t>());
   // Tiled again as contours, they give about the same solid.
-  const CliRun again = run_cli("reconstruct " + q(contours) + " --sampling 0 -o " + q(dir_ / "again.vtp") + " --json", dir_);
+  const CliRun again =
+      run_cli("reconstruct " + q(contours) + " --sampling 0 -o " + q(dir_ / "again.vtp") + " --json", dir_);
   ASSERT_EQ(again.code, 0) << again.err;
   EXPECT_NEAR(nlohmann::json::parse(again.out)["volume"].get<double>() / j["volume"].get<double>(), 1.0, 0.01);
   EXPECT_LT(nlohmann::json::parse(again.out)["contour_deviation_max"].get<double>(), 1e-6);

@@ -117,7 +117,8 @@ TEST_F(DamagedOutput, HalfTheTrianglesFlippedAreTurnedBackWithAWarning) {
   const test::CliRun clean = run("detect " + input_.string() + " -o " + (dir_ / "clean.ply").string() + " --json");
   ASSERT_EQ(clean.code, 0) << clean.err;
   Mesh flipped = stack_;
-  for (std::size_t f = 0; f < flipped.triangles.size(); f += 2) std::swap(flipped.triangles[f][1], flipped.triangles[f][2]);
+  for (std::size_t f = 0; f < flipped.triangles.size(); f += 2)
+    std::swap(flipped.triangles[f][1], flipped.triangles[f][2]);
   write_mesh(flipped, dir_ / "flipped.ply");
   const test::CliRun r = run("smooth " + (dir_ / "flipped.ply").string() + " -o " + (dir_ / "out.ply").string() +
                              " --method none --json");
@@ -218,7 +219,8 @@ TEST_F(DamagedOutput, TheCliAndTheVtkFilterAgreeOnADirtyMesh) {
   // Ids below -1: both refuse, with the same words.
   dirty.slice_ids[20] = -7;
   write_mesh(dirty, in);
-  test::expect_rejected(run("smooth " + in.string() + " -o " + cli_out.string()), {"dirty.vtp: vertex 20 has slice id -7"});
+  test::expect_rejected(run("smooth " + in.string() + " -o " + cli_out.string()),
+                        {"dirty.vtp: vertex 20 has slice id -7"});
   errors.clear();
   EXPECT_EQ(run_filter(in, errors).num_vertices(), 0);
   EXPECT_NE(errors.find("input: vertex 20 has slice id -7"), std::string::npos) << "[" << errors << "]";
@@ -264,10 +266,10 @@ TEST_F(DamagedOutput, TheDataReachTheDiskBeforeTheRename) {
   if (std::system("command -v strace >/dev/null 2>&1") != 0) GTEST_SKIP() << "strace is not installed";
   const fs::path out = dir_ / "out.stl";
   const fs::path trace = dir_ / "trace.txt";
-  const test::CliRun r = run("smooth " + input_.string() + " -o " + out.string() + " --method none",
-                             // LeakSanitizer cannot run under ptrace (the asan build)
-                             "ASAN_OPTIONS=detect_leaks=0 strace -f -e trace=fsync,fdatasync,rename,renameat,renameat2 -o " +
-                                 trace.string());
+  const test::CliRun r = run(
+      "smooth " + input_.string() + " -o " + out.string() + " --method none",
+      // LeakSanitizer cannot run under ptrace (the asan build)
+      "ASAN_OPTIONS=detect_leaks=0 strace -f -e trace=fsync,fdatasync,rename,renameat,renameat2 -o " + trace.string());
   ASSERT_EQ(r.code, 0) << r.err;
   std::ifstream in(trace);
   bool synced = false, renamed_after_sync = false;
@@ -340,7 +342,8 @@ TEST_F(DamagedOutput, SigintAndSigtermCancelCleanlyWithTheirExitCodes) {
 
 TEST_F(DamagedOutput, AnOutputNameOf249CharactersWorks) {
   const std::string name(245, 'n');
-  const test::CliRun r = run("smooth " + input_.string() + " -o " + (dir_ / (name + ".stl")).string() + " --method none");
+  const test::CliRun r =
+      run("smooth " + input_.string() + " -o " + (dir_ / (name + ".stl")).string() + " --method none");
   EXPECT_EQ(r.code, 0) << r.err;
   EXPECT_TRUE(fs::exists(dir_ / (name + ".stl")));
   const test::CliRun p = run("phantom --shape ridge-box --spacing 2,2,3 -o " + (dir_ / (name + ".mha")).string());

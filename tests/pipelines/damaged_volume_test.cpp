@@ -188,7 +188,8 @@ TEST_F(DamagedDicom, AMissingSliceIsRefusedOrResampledOnRequest) {
   const test::CliRun verbose =
       run("reconstruct " + series_.string() + " -o " + out_.string() + " --allow-uneven-slices --verbose");
   EXPECT_EQ(verbose.code, 0) << verbose.err;
-  EXPECT_NE(verbose.err.find("Non uniform sampling"), std::string::npos) << "--verbose shows ITK's text: " << verbose.err;
+  EXPECT_NE(verbose.err.find("Non uniform sampling"), std::string::npos)
+      << "--verbose shows ITK's text: " << verbose.err;
 }
 
 TEST_F(DamagedDicom, MismatchedSizesAndOrientationsAreRefused) {

@@ -229,9 +229,11 @@ TEST_F(FuzzFindings, VtpInlineBinaryCompressionHeaderIsChecked) {
   auto vtp = [&](const std::string& header) {
     return "<?xml version=\"1.0\"?>\n<VTKFile type=\"PolyData\" version=\"1.0\" byte_order=\"LittleEndian\" "
            "header_type=\"UInt32\" compressor=\"vtkZLibDataCompressor\">\n<PolyData>\n"
-           "<Piece NumberOfPoints=\"4\" NumberOfVerts=\"0\" NumberOfLines=\"0\" NumberOfStrips=\"0\" NumberOfPolys=\"1\">\n"
+           "<Piece NumberOfPoints=\"4\" NumberOfVerts=\"0\" NumberOfLines=\"0\" NumberOfStrips=\"0\" "
+           "NumberOfPolys=\"1\">\n"
            "<Points><DataArray type=\"Float32\" NumberOfComponents=\"3\" format=\"binary\">\n" +
-           base64(header) + "AAAAAAAAAAAAAAAA\n</DataArray></Points>\n"
+           base64(header) +
+           "AAAAAAAAAAAAAAAA\n</DataArray></Points>\n"
            "<Polys><DataArray type=\"Int32\" Name=\"connectivity\" format=\"ascii\">0 1 2</DataArray>"
            "<DataArray type=\"Int32\" Name=\"offsets\" format=\"ascii\">3</DataArray></Polys>\n"
            "</Piece>\n</PolyData>\n</VTKFile>\n";
@@ -295,7 +297,8 @@ TEST_F(FuzzFindings, VtpContourIdsMustBe32BitIntegers) {
       "<?xml version=\"1.0\"?>\n<VTKFile type=\"PolyData\" version=\"1.0\" byte_order=\"LittleEndian\">\n<PolyData>\n"
       "<Piece NumberOfPoints=\"4\" NumberOfVerts=\"0\" NumberOfLines=\"0\" NumberOfStrips=\"0\" NumberOfPolys=\"4\">\n"
       "<PointData><DataArray type=\"Float64\" Name=\"ContourId\" format=\"ascii\">0 0 0 1e300</DataArray></PointData>\n"
-      "<Points><DataArray type=\"Float64\" NumberOfComponents=\"3\" format=\"ascii\">0 0 0 1 0 0 0 1 0 0 0 1</DataArray></Points>\n"
+      "<Points><DataArray type=\"Float64\" NumberOfComponents=\"3\" format=\"ascii\">0 0 0 1 0 0 0 1 0 0 0 "
+      "1</DataArray></Points>\n"
       "<Polys><DataArray type=\"Int64\" Name=\"connectivity\" format=\"ascii\">0 2 1 0 1 3 0 3 2 1 2 3</DataArray>"
       "<DataArray type=\"Int64\" Name=\"offsets\" format=\"ascii\">3 6 9 12</DataArray></Polys>\n"
       "</Piece>\n</PolyData>\n</VTKFile>\n";

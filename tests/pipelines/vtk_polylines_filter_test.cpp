@@ -44,7 +44,9 @@ class Messages : public vtkCommand {
 class AbortAtStart : public vtkCommand {
  public:
   static AbortAtStart* New() { return new AbortAtStart; }
-  void Execute(vtkObject* caller, unsigned long, void*) override { static_cast<vtkAlgorithm*>(caller)->AbortExecuteOn(); }
+  void Execute(vtkObject* caller, unsigned long, void*) override {
+    static_cast<vtkAlgorithm*>(caller)->AbortExecuteOn();
+  }
 };
 
 void observe(vtkAlgorithm* filter, Messages* messages) {
@@ -176,7 +178,8 @@ TEST(VtkPolylinesFilter, ErrorsNameTheCellAndLeaveTheOutputEmpty) {
   vtkIntArray::SafeDownCast(poly->GetPointData()->GetArray("SliceId"))->SetValue(3, 9);
   filter->SetInputData(poly);
   filter->Update();
-  EXPECT_NE(messages->errors.find("cell 0: its points carry different slice ids"), std::string::npos) << messages->errors;
+  EXPECT_NE(messages->errors.find("cell 0: its points carry different slice ids"), std::string::npos)
+      << messages->errors;
   // A non-planar contour.
   messages->errors.clear();
   std::vector<Points> bent = contours();

@@ -240,7 +240,8 @@ TEST_F(VtkFilters, ImageConversionKeepsPhysicalPositions) {
   image->AllocateScalars(VTK_SHORT, 1);
   for (int k = 3; k <= 4; ++k) {
     for (int j = -1; j <= 1; ++j) {
-      for (int i = 2; i <= 5; ++i) *static_cast<short*>(image->GetScalarPointer(i, j, k)) = static_cast<short>(100 * i + 10 * j + k);
+      for (int i = 2; i <= 5; ++i)
+        *static_cast<short*>(image->GetScalarPointer(i, j, k)) = static_cast<short>(100 * i + 10 * j + k);
     }
   }
   const CtImage::Pointer ct = to_ct_image(image);

@@ -253,12 +253,36 @@ TEST_F(VtkFilters, OptionsClampAndPrintSelfListsThem) {
 
   std::ostringstream printed;
   f->Print(printed);
-  for (const char* option :
-       {"Preset: Default", "Method: None", "NumberOfIterations: -1 (automatic)", "Lambda", "Mu", "Beta", "BoundarySmoothing",
-        "TimeStepMode", "DetectionMode", "Anisotropy", "Gamma: -1 (automatic)", "GammaFactor", "UmbrellaMeasure",
-        "Delta", "DeltaFactor", "Window: 5", "CornerSpread", "InSliceFeatures: Noise", "PrefilterIterations", "UmbilicTolerance", "MinReciprocalCondition",
-        "MaxLevels", "DiffusionMethod: Laplacian", "KeepAdaptiveMesh", "GenerateLabels", "SliceAxis: Z",
-        "SliceTolerance", "ContourIdArrayName: ContourId", "ContourIndexArrayName: ContourIndex", "LockedArrayName"}) {
+  for (const char* option : {"Preset: Default",
+                             "Method: None",
+                             "NumberOfIterations: -1 (automatic)",
+                             "Lambda",
+                             "Mu",
+                             "Beta",
+                             "BoundarySmoothing",
+                             "TimeStepMode",
+                             "DetectionMode",
+                             "Anisotropy",
+                             "Gamma: -1 (automatic)",
+                             "GammaFactor",
+                             "UmbrellaMeasure",
+                             "Delta",
+                             "DeltaFactor",
+                             "Window: 5",
+                             "CornerSpread",
+                             "InSliceFeatures: Noise",
+                             "PrefilterIterations",
+                             "UmbilicTolerance",
+                             "MinReciprocalCondition",
+                             "MaxLevels",
+                             "DiffusionMethod: Laplacian",
+                             "KeepAdaptiveMesh",
+                             "GenerateLabels",
+                             "SliceAxis: Z",
+                             "SliceTolerance",
+                             "ContourIdArrayName: ContourId",
+                             "ContourIndexArrayName: ContourIndex",
+                             "LockedArrayName"}) {
     EXPECT_NE(printed.str().find(option), std::string::npos) << option;
   }
   std::ostringstream printed_surface;

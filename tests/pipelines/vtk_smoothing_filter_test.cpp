@@ -261,9 +261,11 @@ TEST_F(VtkFilters, LabelArrayMatchesDetection) {
   ASSERT_GT(d.edges, 0u);
   ASSERT_GT(d.noise + d.corners, 0u) << "labels of one kind only would prove little";
 
-  vtkSmartPointer<vtkPolyData> poly = to_polydata(mesh, {}, {PointScalars{"Extra", std::vector<double>(mesh.num_vertices(), 7.0)}});
-  for (const int method : {vtkContourFeatureSmoothingFilter::METHOD_PAPER, vtkContourFeatureSmoothingFilter::METHOD_CROSS_SLICE,
-                           vtkContourFeatureSmoothingFilter::METHOD_NONE}) {
+  vtkSmartPointer<vtkPolyData> poly =
+      to_polydata(mesh, {}, {PointScalars{"Extra", std::vector<double>(mesh.num_vertices(), 7.0)}});
+  for (const int method :
+       {vtkContourFeatureSmoothingFilter::METHOD_PAPER, vtkContourFeatureSmoothingFilter::METHOD_CROSS_SLICE,
+        vtkContourFeatureSmoothingFilter::METHOD_NONE}) {
     const bool paper = method != vtkContourFeatureSmoothingFilter::METHOD_NONE;  // a method with its own labels
     vtkNew<vtkContourFeatureSmoothingFilter> filter;
     filter->SetInputData(poly);

@@ -109,6 +109,20 @@ def test_default_method_and_presets_are_the_librarys(box_mesh):
         cm.smooth(*box_mesh[:4], iterations=3)
 
 
+def test_cross_slice_off_slice_filter_options(box_mesh):
+    """The normal filter of the vertices between the slices is an option of cross-slice smoothing."""
+    default = cm.smooth(*box_mesh[:4])
+    off = cm.smooth(*box_mesh[:4], method="cross-slice", off_slice_filter="none")
+    assert not np.array_equal(default.points, off.points)
+    axis = cm.smooth(*box_mesh[:4], method="cross-slice", off_slice_motion="axis", normal_iterations=5,
+                     normal_sigma=15.0, vertex_iterations=10, max_move=0.2, contour_max_move=0.0)
+    assert axis.points.shape == default.points.shape
+    with pytest.raises(cm.InvalidInputError, match="off_slice_filter must be"):
+        cm.smooth(*box_mesh[:4], method="cross-slice", off_slice_filter="guided")
+    with pytest.raises(cm.InvalidInputError, match="angle"):
+        cm.smooth(*box_mesh[:4], method="cross-slice", normal_sigma=0.0)
+
+
 def test_errors_are_typed():
     with pytest.raises(cm.InvalidInputError) as e:
         cm.smooth(np.zeros((3, 3)), [[0, 1, 5]])

@@ -36,10 +36,16 @@ double radial_error(const Mesh& mesh, int s, double radius) {
 
 TEST(CrossSlice, LeavesAnExactCylinderInPlace) {
   const Mesh mesh = make_contour_stack(cylinder(10.0, 20));
-  const CrossSliceResult r = cross_slice_smooth(mesh);
+  CrossSliceOptions options;
+  options.off_slice.filter = OffSliceFilter::None;
+  const CrossSliceResult r = cross_slice_smooth(mesh, options);
   // Only the fourth-order deviation of the polygon from its local parabolas is left to correct.
   EXPECT_LT((r.mesh.positions - mesh.positions).cwiseAbs().maxCoeff(), 1e-4);
   EXPECT_GT(r.profiles, 0u);
+  // The normal filter of the default moves the caps' rims a little: the facets' normals of a polygonal
+  // cylinder are not a fixed point of the filter.
+  const CrossSliceResult filtered = cross_slice_smooth(mesh);
+  EXPECT_LT((filtered.mesh.positions - mesh.positions).cwiseAbs().maxCoeff(), 0.02);
 }
 
 TEST(CrossSlice, PullsAContourDisplacedAloneBackTowardsItsNeighbours) {

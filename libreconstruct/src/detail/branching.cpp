@@ -4,6 +4,7 @@
 #include "detail/band_tiling.h"
 #include "detail/caps.h"
 #include "detail/correspondence.h"
+#include "detail/outline.h"
 #include "contourmesh/reconstruct/contours.h"
 
 #include "contourmesh/internal/union_find.h"
@@ -12,6 +13,7 @@
 #include <array>
 #include <limits>
 #include <numeric>
+#include <optional>
 #include <tuple>
 
 namespace contourmesh::detail {
@@ -27,18 +29,10 @@ struct Composite {
   std::vector<std::array<Eigen::Vector2d, 4>> quad_points;
 };
 
-// Whether p lies inside one of the outer contours of `level` (its holes filled: a hole is background
-// enclosed by material, not an opening of the wall).
-bool in_outline(const Level& level, const Eigen::Vector2d& p) {
-  return std::any_of(level.contours.begin(), level.contours.end(), [&](const LevelContour& c) {
-    return !c.is_hole && c.box.contains(p) && point_in_polygon(c.points, p);
-  });
-}
-
 // The pair (point of `a`, point of `b`) a bridge joins: the nearest pair; for a hole that opens (`gap`
 // given: the other level), the nearest pair whose midpoint lies outside the other level's outer contours, where the
 // wall between hole and outer contour is open on the other side (the nearest pair overall when there is none).
-std::pair<std::size_t, std::size_t> bridge_ends(const LevelContour& a, const LevelContour& b, const Level* gap,
+std::pair<std::size_t, std::size_t> bridge_ends(const LevelContour& a, const LevelContour& b, const Outline* gap,
                                                 double& distance) {
   std::vector<std::tuple<double, std::size_t, std::size_t>> nearest;
   nearest.reserve(a.points.size());
@@ -57,7 +51,7 @@ std::pair<std::size_t, std::size_t> bridge_ends(const LevelContour& a, const Lev
   std::sort(nearest.begin(), nearest.end());
   if (gap) {
     for (const auto& [d, i, j] : nearest) {
-      if (!in_outline(*gap, 0.5 * (a.points[i] + b.points[j]))) {
+      if (!gap->contains(0.5 * (a.points[i] + b.points[j]))) {
         distance = d;
         return {i, j};
       }
@@ -73,6 +67,8 @@ Composite make_composite(const std::vector<LevelContour>& copies, const Level& o
   std::vector<bool> used(copies.size(), false);
   used[0] = true;
   const bool opening = std::any_of(copies.begin(), copies.end(), [](const LevelContour& c) { return c.is_hole; });
+  std::optional<Outline> outline;
+  if (opening) outline.emplace(other);
   for (std::size_t round = 1; round < copies.size(); ++round) {
     // The contour not yet joined that is nearest to the composite.
     double best = std::numeric_limits<double>::infinity();
@@ -80,7 +76,7 @@ Composite make_composite(const std::vector<LevelContour>& copies, const Level& o
     for (std::size_t r = 0; r < copies.size(); ++r) {
       if (used[r]) continue;
       double d = 0.0;
-      const auto [a, b] = bridge_ends(comp.ring, copies[r], opening ? &other : nullptr, d);
+      const auto [a, b] = bridge_ends(comp.ring, copies[r], outline ? &*outline : nullptr, d);
       if (d < best) {
         best = d;
         which = r;

@@ -5,6 +5,8 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdint>
+#include <cstring>
 #include <limits>
 #include <utility>
 
@@ -182,6 +184,17 @@ std::vector<Polygon> zero_level(const DistancePair& fields, double t, double lev
     if (level < 0.0) v = std::min(v, std::max(lo, up));  // around their intersection
     f[k] = v < 0.0 ? v : std::max(v, nudge);
   }
+  // Which nodes are inside, one byte each: runs of eight cells whose nine nodes on both rows are all
+  // inside or all outside hold no crossing and are passed over in one step (most of the grid).
+  std::vector<std::uint8_t> inside(count);
+  for (std::size_t k = 0; k < count; ++k) inside[k] = f[k] < 0.0 ? 1 : 0;
+  auto uniform_run = [&](std::size_t a, std::size_t b) {  // nodes a .. a + 8 and b .. b + 8
+    std::uint64_t x = 0, y = 0;
+    std::memcpy(&x, inside.data() + a, sizeof x);
+    std::memcpy(&y, inside.data() + b, sizeof y);
+    const std::uint64_t all = inside[a] ? 0x0101010101010101ULL : 0;
+    return x == all && y == all && inside[a + 8] == inside[a] && inside[b + 8] == inside[a];
+  };
   // Grid edges: horizontal (i, j)-(i + 1, j) has id j * nx + i; vertical (i, j)-(i, j + 1) has id
   // count + j * nx + i. A crossing is named by its edge.
   auto crossing = [&](std::size_t id) -> Eigen::Vector2d {
@@ -194,11 +207,16 @@ std::vector<Polygon> zero_level(const DistancePair& fields, double t, double lev
     const Eigen::Vector2d pa = fields.origin + fields.h * Eigen::Vector2d(i, j);
     return pa + s * fields.h * (vertical ? Eigen::Vector2d(0, 1) : Eigen::Vector2d(1, 0));
   };
-  std::vector<std::int64_t> next(2 * count, -1);
-  std::vector<std::size_t> starts;
+  // (edge, next edge) for every crossing where the level leaves a cell's inside: a few per cell the level
+  // passes, so nothing is kept per node of the grid.
+  std::vector<std::pair<std::size_t, std::size_t>> links;
   for (int j = 0; j + 1 < ny; ++j) {
     for (int i = 0; i + 1 < nx; ++i) {
       const std::size_t c0 = static_cast<std::size_t>(j) * nx + i;
+      if (i + 9 <= nx && uniform_run(c0, c0 + static_cast<std::size_t>(nx))) {
+        i += 7;  // cells i .. i + 7
+        continue;
+      }
       const std::size_t c[4] = {c0, c0 + 1, c0 + 1 + static_cast<std::size_t>(nx), c0 + static_cast<std::size_t>(nx)};
       const bool neg[4] = {f[c[0]] < 0.0, f[c[1]] < 0.0, f[c[2]] < 0.0, f[c[3]] < 0.0};
       if (neg[0] == neg[1] && neg[1] == neg[2] && neg[2] == neg[3]) continue;
@@ -217,21 +235,26 @@ std::vector<Polygon> zero_level(const DistancePair& fields, double t, double lev
             if (!neg[e] && neg[(e + 1) % 4]) partner = e;
           }
         }
-        next[edge[k]] = static_cast<std::int64_t>(edge[partner]);
-        starts.push_back(edge[k]);
+        links.emplace_back(edge[k], edge[partner]);
       }
     }
   }
-  std::sort(starts.begin(), starts.end());
-  std::vector<std::uint8_t> used(2 * count, 0);
-  for (std::size_t s : starts) {
+  // Each edge starts one link at most (the cell where the level leaves across it): sorted by edge, the
+  // links are the starts in order, and the link leaving edge e is found by binary search.
+  std::sort(links.begin(), links.end());
+  std::vector<std::uint8_t> used(links.size(), 0);
+  auto find = [&](std::size_t e) -> std::size_t {
+    const auto it =
+        std::lower_bound(links.begin(), links.end(), e,
+                         [](const std::pair<std::size_t, std::size_t>& a, std::size_t x) { return a.first < x; });
+    return it != links.end() && it->first == e ? static_cast<std::size_t>(it - links.begin()) : links.size();
+  };
+  for (std::size_t s = 0; s < links.size(); ++s) {
     if (used[s]) continue;
     Polygon loop;
-    std::size_t e = s;
-    while (!used[e] && next[e] >= 0) {
-      used[e] = 1;
-      loop.push_back(crossing(e));
-      e = static_cast<std::size_t>(next[e]);
+    for (std::size_t k = s; k < links.size() && !used[k]; k = find(links[k].second)) {
+      used[k] = 1;
+      loop.push_back(crossing(links[k].first));
     }
     if (loop.size() >= 3) loops.push_back(std::move(loop));
   }

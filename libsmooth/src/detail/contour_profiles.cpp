@@ -27,15 +27,21 @@ ContourFrame make_contour_frame(const Mesh& mesh) {
   std::map<std::int32_t, std::pair<double, double>> levels;  // slice id -> (sum of heights, count)
   double edge_sum = 0.0;
   std::size_t edges = 0;
+  // Vertices come slice by slice in a tiled mesh: the map is looked up only when the slice changes.
+  std::int32_t last_slice = kNoId;
+  std::pair<double, double>* slice_level = nullptr;
   for (Index i = 0; i < n; ++i) {
     const auto& nb = f.contour.of[static_cast<std::size_t>(i)];
     if (mesh.slice_ids[static_cast<std::size_t>(i)] < 0 || nb[0] < 0 || nb[1] < 0) continue;
     f.on_contour[static_cast<std::size_t>(i)] = 1;
     edge_sum += (mesh.positions.col(nb[0]) - mesh.positions.col(i)).norm();
     ++edges;
-    auto& level = levels[mesh.slice_ids[static_cast<std::size_t>(i)]];
-    level.first += mesh.positions.col(i).dot(f.axis);
-    level.second += 1.0;
+    if (slice_level == nullptr || mesh.slice_ids[static_cast<std::size_t>(i)] != last_slice) {
+      last_slice = mesh.slice_ids[static_cast<std::size_t>(i)];
+      slice_level = &levels[last_slice];
+    }
+    slice_level->first += mesh.positions.col(i).dot(f.axis);
+    slice_level->second += 1.0;
   }
   // The spacing from the slices' own heights, not from edges between them: a tiler that inserts
   // intermediate contours joins no contour vertex to the next slice directly.
@@ -171,8 +177,10 @@ void cross_slice_profile(const ContourFrame& f, const Eigen::Matrix3Xd& x, const
   const double search_radius = 1.5 * f.slice_spacing;
   const std::int32_t own_slice = f.mesh->slice_ids[static_cast<std::size_t>(i)];
   std::array<Index, kMaxStarts> start{};
-  // Samples of each side, nearest first; written out in increasing height at the end (no sort).
-  std::array<std::array<double, 2 * kMaxProfile>, 2> side{};
+  // Samples of each side, nearest first; written out in increasing height at the end (no sort). Left
+  // uninitialised: only the count[dir] pairs written are read (zeroing the 2 KB was a sixth of a
+  // chained profile's instructions).
+  std::array<std::array<double, 2 * kMaxProfile>, 2> side;
   std::array<int, 2> count{0, 0};
   reach = std::min(reach, kMaxProfile / 2 - 1);
   for (int dir = 0; dir < 2; ++dir) {
@@ -211,9 +219,11 @@ void cross_slice_profile(const ContourFrame& f, const Eigen::Matrix3Xd& x, const
     }
   }
   out.clear();
-  for (int c = count[0] - 1; c >= 0; --c) out.push(side[0][static_cast<std::size_t>(2 * c)], side[0][static_cast<std::size_t>(2 * c + 1)]);
+  for (int c = count[0] - 1; c >= 0; --c)
+    out.push(side[0][static_cast<std::size_t>(2 * c)], side[0][static_cast<std::size_t>(2 * c + 1)]);
   out.push(0.0, 0.0);
-  for (int c = 0; c < count[1]; ++c) out.push(side[1][static_cast<std::size_t>(2 * c)], side[1][static_cast<std::size_t>(2 * c + 1)]);
+  for (int c = 0; c < count[1]; ++c)
+    out.push(side[1][static_cast<std::size_t>(2 * c)], side[1][static_cast<std::size_t>(2 * c + 1)]);
   // Heights increase along each side but a folded contour could break the order: check, sort if so.
   for (int k = 1; k < out.size; ++k) {
     if (out.x[static_cast<std::size_t>(k)] < out.x[static_cast<std::size_t>(k - 1)]) {
@@ -268,28 +278,51 @@ void chained_profile(const ContourFrame& f, const Eigen::Matrix3Xd& x, const Nex
   const Eigen::Vector3d v = x.col(i);
   const Eigen::Vector3d plane_normal = f.axis.cross(m);
   const double max_offset2 = 36.0 * f.slice_spacing * f.slice_spacing;
-  std::array<std::array<double, 2 * kMaxProfile>, 2> side{};
+  std::array<std::array<double, 2 * kMaxProfile>, 2> side;  // as in cross_slice_profile: not zeroed
   std::array<int, 2> count{0, 0};
   reach = std::min(reach, kMaxProfile / 2 - 1);
-  for (int dir = 0; dir < 2; ++dir) {
-    const std::vector<EdgePoint>& next = dir == 1 ? cuts.up : cuts.down;
-    EdgePoint at = next[static_cast<std::size_t>(i)];
-    if (!at.valid()) continue;
-    Eigen::Vector3d point = at.on(x);
-    for (int k = 1; k <= reach; ++k) {
+  // The chains below (dir 0) and above (dir 1) are independent: they advance in turn, step by step, so
+  // that the processor overlaps one's dependent loads and divisions with the other's.
+  struct Chain {
+    EdgePoint at;
+    Eigen::Vector3d point = Eigen::Vector3d::Zero();
+    bool going = false;
+  };
+  std::array<Chain, 2> chain;
+  for (std::size_t dir = 0; dir < 2; ++dir) {
+    chain[dir].at = (dir == 1 ? cuts.up : cuts.down)[static_cast<std::size_t>(i)];
+    chain[dir].going = chain[dir].at.valid();
+    if (chain[dir].going) chain[dir].point = chain[dir].at.on(x);
+  }
+  for (int k = 1; k <= reach && (chain[0].going || chain[1].going); ++k) {
+    for (std::size_t dir = 0; dir < 2; ++dir) {
+      Chain& ch = chain[dir];
+      if (!ch.going) continue;
+      const std::vector<EdgePoint>& next = dir == 1 ? cuts.up : cuts.down;
+      EdgePoint& at = ch.at;
+      Eigen::Vector3d& point = ch.point;
       const Eigen::Vector3d r = point - v;
-      if ((r - r.dot(f.axis) * f.axis).squaredNorm() > max_offset2) break;
-      auto& s = side[static_cast<std::size_t>(dir)];
-      const int c = count[static_cast<std::size_t>(dir)]++;
+      if ((r - r.dot(f.axis) * f.axis).squaredNorm() > max_offset2) {
+        ch.going = false;
+        continue;
+      }
+      auto& s = side[dir];
+      const int c = count[dir]++;
       s[static_cast<std::size_t>(2 * c)] = r.dot(f.axis) / f.slice_spacing;
       s[static_cast<std::size_t>(2 * c + 1)] = r.dot(m);
-      if (k == reach) break;
+      if (k == reach) {
+        ch.going = false;
+        continue;
+      }
       // The next point: the edge's ends' own next cuts lead to the next contour; there the vertex's own
       // plane is cut, from the nearer of the two (a step or two along the contour), so the chain does
       // not drift along the contours. Where that fails, the interpolation of the two cuts serves.
       const EdgePoint& from_a = next[static_cast<std::size_t>(at.a)];
       const EdgePoint& from_b = next[static_cast<std::size_t>(at.b)];
-      if (!from_a.valid() && !from_b.valid()) break;
+      if (!from_a.valid() && !from_b.valid()) {
+        ch.going = false;
+        continue;
+      }
       const EdgePoint& nearer = !from_b.valid() || (from_a.valid() && at.t < 0.5) ? from_a : from_b;
       const std::array<Index, 2> starts{nearer.a, nearer.b};
       Eigen::Vector3d cut = Eigen::Vector3d::Zero();
@@ -309,9 +342,11 @@ void chained_profile(const ContourFrame& f, const Eigen::Matrix3Xd& x, const Nex
     }
   }
   out.clear();
-  for (int c = count[0] - 1; c >= 0; --c) out.push(side[0][static_cast<std::size_t>(2 * c)], side[0][static_cast<std::size_t>(2 * c + 1)]);
+  for (int c = count[0] - 1; c >= 0; --c)
+    out.push(side[0][static_cast<std::size_t>(2 * c)], side[0][static_cast<std::size_t>(2 * c + 1)]);
   out.push(0.0, 0.0);
-  for (int c = 0; c < count[1]; ++c) out.push(side[1][static_cast<std::size_t>(2 * c)], side[1][static_cast<std::size_t>(2 * c + 1)]);
+  for (int c = 0; c < count[1]; ++c)
+    out.push(side[1][static_cast<std::size_t>(2 * c)], side[1][static_cast<std::size_t>(2 * c + 1)]);
   for (int k = 1; k < out.size; ++k) {
     if (out.x[static_cast<std::size_t>(k)] < out.x[static_cast<std::size_t>(k - 1)]) {
       out.sort();
@@ -322,13 +357,13 @@ void chained_profile(const ContourFrame& f, const Eigen::Matrix3Xd& x, const Nex
 
 void along_contour_profile(const ContourFrame& f, const Eigen::Matrix3Xd& x, Index i, const Eigen::Vector3d& m,
                            int reach, Profile& out) {
-  out.clear();
-  out.push(0.0, 0.0);
   const Eigen::Vector3d v = x.col(i);
   const Eigen::Vector3d tangent = f.axis.cross(m);
   // Walk both ways, but never meet: on a short contour each side takes half of the other vertices.
   std::array<std::array<Index, 2>, 2> cursor{};
-  for (int side = 0; side < 2; ++side) cursor[static_cast<std::size_t>(side)] = {i, f.contour.of[static_cast<std::size_t>(i)][static_cast<std::size_t>(side)]};
+  for (int side = 0; side < 2; ++side)
+    cursor[static_cast<std::size_t>(side)] = {
+        i, f.contour.of[static_cast<std::size_t>(i)][static_cast<std::size_t>(side)]};
   std::array<double, 2> arc{0.0, 0.0};
   std::array<double, 2> sign{1.0, 1.0};
   for (int side = 0; side < 2; ++side) {
@@ -336,6 +371,11 @@ void along_contour_profile(const ContourFrame& f, const Eigen::Matrix3Xd& x, Ind
     sign[static_cast<std::size_t>(side)] = (x.col(first) - v).dot(tangent) >= 0.0 ? 1.0 : -1.0;
   }
   if (sign[0] == sign[1]) sign[1] = -sign[0];  // a cusp: keep the two sides apart
+  // Each side's samples in walking order; a side stops where the profile is full (kMaxProfile samples
+  // with the centre).
+  std::array<std::array<double, kMaxProfile>, 2> sx, sy;  // not zeroed: only count[side] entries are read
+  std::array<int, 2> count{0, 0};
+  int taken = 1;  // the centre
   for (int k = 1; k <= reach; ++k) {
     for (int side = 0; side < 2; ++side) {
       auto& [prev, cur] = cursor[static_cast<std::size_t>(side)];
@@ -347,18 +387,46 @@ void along_contour_profile(const ContourFrame& f, const Eigen::Matrix3Xd& x, Ind
         continue;
       }
       arc[static_cast<std::size_t>(side)] += (x.col(cur) - x.col(prev)).norm();
-      if (!out.push(sign[static_cast<std::size_t>(side)] * arc[static_cast<std::size_t>(side)] / f.point_spacing,
-                    (x.col(cur) - v).dot(m))) {
+      if (taken == kMaxProfile) {
         cur = -1;
         continue;
       }
+      ++taken;
+      const auto c = static_cast<std::size_t>(count[static_cast<std::size_t>(side)]++);
+      const auto sd = static_cast<std::size_t>(side);
+      sx[sd][c] = sign[sd] * arc[sd] / f.point_spacing;
+      sy[static_cast<std::size_t>(side)][c] = (x.col(cur) - v).dot(m);
       const auto& nb = f.contour.of[static_cast<std::size_t>(cur)];
       const Index next = nb[0] == prev ? nb[1] : nb[0];
       prev = cur;
       cur = next;
     }
   }
-  out.sort();
+  // In increasing x: the negative side from its far end, the centre, the positive side. Where that is
+  // not strictly increasing (a zero-length edge, a contour folding back), the samples go in as they were
+  // taken (centre, then both sides step by step) and are sorted, stably, as before.
+  const std::size_t neg = sign[0] < 0.0 ? 0 : 1, pos = 1 - neg;
+  out.clear();
+  for (int c = count[neg] - 1; c >= 0; --c) {
+    out.push(sx[neg][static_cast<std::size_t>(c)], sy[neg][static_cast<std::size_t>(c)]);
+  }
+  out.push(0.0, 0.0);
+  for (int c = 0; c < count[pos]; ++c) {
+    out.push(sx[pos][static_cast<std::size_t>(c)], sy[pos][static_cast<std::size_t>(c)]);
+  }
+  for (int k = 1; k < out.size; ++k) {
+    if (!(out.x[static_cast<std::size_t>(k - 1)] < out.x[static_cast<std::size_t>(k)])) {
+      out.clear();
+      out.push(0.0, 0.0);
+      for (int c = 0; c < std::max(count[0], count[1]); ++c) {
+        for (std::size_t side = 0; side < 2; ++side) {
+          if (c < count[side]) out.push(sx[side][static_cast<std::size_t>(c)], sy[side][static_cast<std::size_t>(c)]);
+        }
+      }
+      out.sort();
+      break;
+    }
+  }
 }
 
 double profile_noise(const ContourFrame& f, const Eigen::Matrix3Xd& x, const Eigen::Matrix3Xd& normals, bool across,

@@ -50,7 +50,7 @@ struct Moments {
 };
 
 // Least-squares parabola through the window, evaluated at 0: value and (M^-1)_00, the variance factor.
-bool fit_parabola(const Moments& m, double& value, double& variance) {
+inline bool fit_parabola(const Moments& m, double& value, double& variance) {
   if (m.distinct < 3) return false;
   const double a = m.s[0], b = m.s[1], c = m.s[2], d = m.s[3], e = m.s[4];
   // M = [[a b c] [b c d] [c d e]]; cofactors of the first row give the first row of M^-1 * det.
@@ -139,18 +139,23 @@ LpaIciResult lpa_ici(const Profile& p, const LpaIciOptions& o) {
       ++hi;
       added_up = true;
     }
-    const Moments below = centre_only + down, above = centre_only + up, both = below + up;
+    // Only the windows still growing are summed and fitted (stopped kinds keep their last estimate).
+    const bool grow_below = added_down && !g[kBelow].stopped, grow_above = added_up && !g[kAbove].stopped;
+    const bool grow_symmetric = !g[kSymmetric].stopped, grow_line = o.symmetric_mean && !g[kLine].stopped,
+               grow_mean = o.symmetric_mean && !g[kMean].stopped;
+    const bool grow_both = (added_down || added_up) && (grow_symmetric || grow_line || grow_mean);
     double value = 0.0, variance = 0.0;
-    if (added_down && !g[kBelow].stopped && fit_parabola(below, value, variance))
-      g[kBelow].offer(value, variance, h, o);
-    if (added_up && !g[kAbove].stopped && fit_parabola(above, value, variance)) g[kAbove].offer(value, variance, h, o);
-    if (added_down || added_up) {
-      if (!g[kSymmetric].stopped && fit_parabola(both, value, variance)) g[kSymmetric].offer(value, variance, h, o);
-      if (o.symmetric_mean) {
-        if (!g[kLine].stopped && fit_line(both, value, variance)) g[kLine].offer(value, variance, h, o);
-        if (!g[kMean].stopped && fit_mean(both, value, variance)) g[kMean].offer(value, variance, h, o);
+    if (grow_below || grow_both) {
+      const Moments below = centre_only + down;
+      if (grow_below && fit_parabola(below, value, variance)) g[kBelow].offer(value, variance, h, o);
+      if (grow_both) {
+        const Moments both = below + up;
+        if (grow_symmetric && fit_parabola(both, value, variance)) g[kSymmetric].offer(value, variance, h, o);
+        if (grow_line && fit_line(both, value, variance)) g[kLine].offer(value, variance, h, o);
+        if (grow_mean && fit_mean(both, value, variance)) g[kMean].offer(value, variance, h, o);
       }
     }
+    if (grow_above && fit_parabola(centre_only + up, value, variance)) g[kAbove].offer(value, variance, h, o);
     const bool more = lo >= 0 || hi < p.size;
     if (!more) break;
     bool all_stopped = true;

@@ -32,13 +32,29 @@ SliceEdgeGrid::SliceEdgeGrid(const Mesh& mesh, const ContourNeighbours& contour,
   const auto uv = [&](Index v) {
     return Eigen::Vector2d(mesh.positions.col(v).dot(e1_), mesh.positions.col(v).dot(e2_));
   };
-  // Bounds per slice, then cell counts, then CSR fill (an edge goes into every cell its box touches).
+  // Bounds per slice, then each slice's edges (in increasing index), then per slice the cells every
+  // edge's box touches, counted in a dense scratch array that is reused from slice to slice, and the
+  // non-empty ones kept as a CSR (an edge goes into every cell its box touches).
   std::vector<Eigen::AlignedBox2d> bounds(slices_.size());
+  std::vector<Index> slice_start(slices_.size() + 1, 0);
+  const auto slice_of = [&](std::size_t e) {
+    return static_cast<std::size_t>(mesh.slice_ids[static_cast<std::size_t>(edge_a_[e])] - lo);
+  };
   for (std::size_t e = 0; e < edge_a_.size(); ++e) {
-    const auto s = static_cast<std::size_t>(mesh.slice_ids[static_cast<std::size_t>(edge_a_[e])] - lo);
+    const std::size_t s = slice_of(e);
     bounds[s].extend(uv(edge_a_[e]));
     bounds[s].extend(uv(edge_b_[e]));
+    ++slice_start[s + 1];
   }
+  for (std::size_t s = 0; s < slices_.size(); ++s) slice_start[s + 1] += slice_start[s];
+  std::vector<Index> by_slice(edge_a_.size());
+  {
+    std::vector<Index> fill(slice_start.begin(), slice_start.end() - 1);
+    for (std::size_t e = 0; e < edge_a_.size(); ++e) {
+      by_slice[static_cast<std::size_t>(fill[slice_of(e)]++)] = static_cast<Index>(e);
+    }
+  }
+  std::vector<Index> count;  // per cell of the current slice: edges, then the next free slot
   for (std::size_t s = 0; s < slices_.size(); ++s) {
     Slice& sl = slices_[s];
     if (bounds[s].isEmpty()) continue;
@@ -46,36 +62,42 @@ SliceEdgeGrid::SliceEdgeGrid(const Mesh& mesh, const ContourNeighbours& contour,
     sl.v0 = bounds[s].min().y();
     sl.nu = static_cast<std::int64_t>(std::floor(bounds[s].sizes().x() / cell_)) + 1;
     sl.nv = static_cast<std::int64_t>(std::floor(bounds[s].sizes().y() / cell_)) + 1;
-    sl.start.assign(static_cast<std::size_t>(sl.nu * sl.nv + 1), 0);
-  }
-  const auto cells_of = [&](std::size_t e, auto&& visit) {
-    const auto s = static_cast<std::size_t>(mesh.slice_ids[static_cast<std::size_t>(edge_a_[e])] - lo);
-    const Slice& sl = slices_[s];
-    const Eigen::Vector2d a = uv(edge_a_[e]), b = uv(edge_b_[e]);
-    const auto cu = [&](double u) {
-      return std::clamp<std::int64_t>(static_cast<std::int64_t>(std::floor((u - sl.u0) / cell_)), 0, sl.nu - 1);
+    const auto cells_of = [&](std::size_t e, auto&& visit) {
+      const Eigen::Vector2d a = uv(edge_a_[e]), b = uv(edge_b_[e]);
+      const auto cu = [&](double u) {
+        return std::clamp<std::int64_t>(static_cast<std::int64_t>(std::floor((u - sl.u0) / cell_)), 0, sl.nu - 1);
+      };
+      const auto cv = [&](double v) {
+        return std::clamp<std::int64_t>(static_cast<std::int64_t>(std::floor((v - sl.v0) / cell_)), 0, sl.nv - 1);
+      };
+      for (std::int64_t y = cv(std::min(a.y(), b.y())); y <= cv(std::max(a.y(), b.y())); ++y) {
+        for (std::int64_t x = cu(std::min(a.x(), b.x())); x <= cu(std::max(a.x(), b.x())); ++x) {
+          visit(static_cast<std::size_t>(y * sl.nu + x));
+        }
+      }
     };
-    const auto cv = [&](double v) {
-      return std::clamp<std::int64_t>(static_cast<std::int64_t>(std::floor((v - sl.v0) / cell_)), 0, sl.nv - 1);
-    };
-    for (std::int64_t y = cv(std::min(a.y(), b.y())); y <= cv(std::max(a.y(), b.y())); ++y) {
-      for (std::int64_t x = cu(std::min(a.x(), b.x())); x <= cu(std::max(a.x(), b.x())); ++x) visit(s, y * sl.nu + x);
+    const auto first = static_cast<std::size_t>(slice_start[s]), last = static_cast<std::size_t>(slice_start[s + 1]);
+    count.assign(static_cast<std::size_t>(sl.nu * sl.nv), 0);
+    Index total = 0;
+    for (std::size_t k = first; k < last; ++k) {
+      cells_of(static_cast<std::size_t>(by_slice[k]), [&](std::size_t c) {
+        ++count[c];
+        ++total;
+      });
     }
-  };
-  for (std::size_t e = 0; e < edge_a_.size(); ++e) {
-    cells_of(e, [&](std::size_t s, std::int64_t c) { ++slices_[s].start[static_cast<std::size_t>(c) + 1]; });
-  }
-  std::vector<std::vector<std::int64_t>> next(slices_.size());
-  for (std::size_t s = 0; s < slices_.size(); ++s) {
-    Slice& sl = slices_[s];
-    for (std::size_t c = 1; c < sl.start.size(); ++c) sl.start[c] += sl.start[c - 1];
-    sl.edges.resize(sl.start.empty() ? 0 : static_cast<std::size_t>(sl.start.back()));
-    next[s].assign(sl.start.begin(), sl.start.empty() ? sl.start.begin() : sl.start.end() - 1);
-  }
-  for (std::size_t e = 0; e < edge_a_.size(); ++e) {
-    cells_of(e, [&](std::size_t s, std::int64_t c) {
-      slices_[s].edges[static_cast<std::size_t>(next[s][static_cast<std::size_t>(c)]++)] = static_cast<Index>(e);
-    });
+    sl.start.push_back(0);
+    for (std::size_t c = 0; c < count.size(); ++c) {
+      if (count[c] == 0) continue;
+      const Index begin = sl.start.back();
+      sl.cells.push_back(static_cast<std::int64_t>(c));
+      sl.start.push_back(begin + count[c]);
+      count[c] = begin;
+    }
+    sl.edges.resize(static_cast<std::size_t>(total));
+    for (std::size_t k = first; k < last; ++k) {
+      cells_of(static_cast<std::size_t>(by_slice[k]),
+               [&](std::size_t c) { sl.edges[static_cast<std::size_t>(count[c]++)] = by_slice[k]; });
+    }
   }
 }
 
@@ -97,8 +119,10 @@ bool SliceEdgeGrid::cut(std::int32_t slice, const Eigen::Matrix3Xd& x, const Eig
   bool found = false;
   const auto test_cell = [&](std::int64_t cu, std::int64_t cv) {
     if (cu < 0 || cv < 0 || cu >= sl.nu || cv >= sl.nv) return;
-    const std::int64_t c = cv * sl.nu + cu;
-    for (std::int64_t k = sl.start[static_cast<std::size_t>(c)]; k < sl.start[static_cast<std::size_t>(c) + 1]; ++k) {
+    const auto cell = std::lower_bound(sl.cells.begin(), sl.cells.end(), cv * sl.nu + cu);
+    if (cell == sl.cells.end() || *cell != cv * sl.nu + cu) return;
+    const auto c = static_cast<std::size_t>(cell - sl.cells.begin());
+    for (Index k = sl.start[c]; k < sl.start[c + 1]; ++k) {
       const Index e = sl.edges[static_cast<std::size_t>(k)];
       const Index a = edge_a_[static_cast<std::size_t>(e)], b = edge_b_[static_cast<std::size_t>(e)];
       const double sa = (x.col(a) - origin).dot(plane_normal), sb = (x.col(b) - origin).dot(plane_normal);

@@ -36,11 +36,14 @@ class SliceEdgeGrid {
                          const Eigen::Vector3d& near, const Eigen::Vector3d& facing, double radius, EdgeCut& out) const;
 
  private:
+  // A slice's grid stores its non-empty cells only: a contour touches a few hundred of the tens of
+  // thousands of cells of its slice's box (a dense CSR was hundreds of MB at a million vertices).
   struct Slice {
     double u0 = 0.0, v0 = 0.0;
     std::int64_t nu = 0, nv = 0;
-    std::vector<std::int64_t> start;  // CSR over cells
-    std::vector<Index> edges;         // index into edge_a_ / edge_b_
+    std::vector<std::int64_t> cells;  // ids (v * nu + u) of the non-empty cells, increasing
+    std::vector<Index> start;         // CSR over `cells`: cell k's edges are edges[start[k], start[k + 1])
+    std::vector<Index> edges;         // index into edge_a_ / edge_b_, increasing within a cell
   };
   Eigen::Vector3d e1_ = Eigen::Vector3d::UnitX(), e2_ = Eigen::Vector3d::UnitY();
   double cell_ = 1.0;

@@ -175,10 +175,11 @@ std::string paper_settings(const SmoothOptions& o) {
   s << "Algorithm 1: detection by " << (d.measure == UmbrellaMeasure::Length ? "|U|" : "|U.n|") << " > "
     << d.gamma_factor << " x its mean, window " << d.window << ", in-slice lines "
     << (d.in_slice == InSliceFeatures::Noise ? "noise (the paper's rule)" : "followed along the line")
-    << (d.corner_spread > 1.0 / 3.0 ? ", corners by the umbilic vote only" : ", corner-spread rule " + number(d.corner_spread))
+    << (d.corner_spread > 1.0 / 3.0 ? ", corners by the umbilic vote only"
+                                    : ", corner-spread rule " + number(d.corner_spread))
     << "; up to " << p.max_levels << " subdivision levels; " << to_string(p.diffusion) << " "
-    << p.lambda.value_or(default_lambda(p.diffusion)) << " / " << p.mu << ", " << iterations_of(SmoothingMethod::FeaturePreserving, o)
-    << " iterations";
+    << p.lambda.value_or(default_lambda(p.diffusion)) << " / " << p.mu << ", "
+    << iterations_of(SmoothingMethod::FeaturePreserving, o) << " iterations";
   return s.str();
 }
 
@@ -191,6 +192,11 @@ std::string cross_slice_settings(const SmoothOptions& o) {
                                                       : " only")
     << ", LPA-ICI windows (gamma " << c.gamma << ") for a noise level "
     << (c.noise_across ? number(*c.noise_across) + " mm" : std::string("estimated from the mesh"))
+    << (c.off_slice.filter == OffSliceFilter::BilateralNormals
+            ? "; vertices between the slices fitted to bilaterally filtered normals (" +
+                  std::to_string(c.off_slice.normal_iterations) + " iterations, " +
+                  number(c.off_slice.sigma_angle_degrees) + " degrees)"
+            : std::string())
     << "; labels: creases of the result (radius " << c.features.radius << " mm, band " << c.features.band << " mm)";
   return s.str();
 }
@@ -310,8 +316,9 @@ void add_external_rows(std::vector<MethodSpec>& rows, const MethodTableOptions& 
   slicer << "3D Slicer's voxel route: threshold, islands and holes removed, vtkDiscreteFlyingEdges3D, "
          << "vtkWindowedSincPolyDataFilter (" << o.voxel_sinc_iterations << " iterations, passband " << o.sinc_passband
          << ")";
-  rows.push_back(external_row(ExternalMethod::VoxelWindowedSinc, "voxel route: flying edges + windowed sinc (3D Slicer)",
-                              "voxel route (3D Slicer)", {0.74, 0.74, 0.13}, Route::Voxel, slicer.str(),
+  rows.push_back(external_row(ExternalMethod::VoxelWindowedSinc,
+                              "voxel route: flying edges + windowed sinc (3D Slicer)", "voxel route (3D Slicer)",
+                              {0.74, 0.74, 0.13}, Route::Voxel, slicer.str(),
                               voxel(true, ExternalMethod::VoxelWindowedSinc)));
 }
 

@@ -192,7 +192,8 @@ std::string summary_csv_row(const MethodSummary& m) {
     s << "," << csv_number(v);
   }
   for (const char* stage : {"detect", "subdivide", "threshold", "surface", "smooth", "total"}) {
-    const bool has = std::any_of(m.seconds.begin(), m.seconds.end(), [&](const StageTime& t) { return t.stage == stage; });
+    const bool has =
+        std::any_of(m.seconds.begin(), m.seconds.end(), [&](const StageTime& t) { return t.stage == stage; });
     s << "," << (has ? csv_number(m.stage_seconds(stage)) : "");
   }
   for (double v : {m.edges, m.corners, m.noise, m.precision, m.recall, m.recall_examinable}) s << "," << csv_number(v);

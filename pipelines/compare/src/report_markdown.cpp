@@ -67,7 +67,8 @@ void header(std::ostringstream& s, std::span<const SeriesEntry> entries, const s
     }
   }
   const std::string seeds = seeds_of(entries);
-  if (!seeds.empty()) s << ". Every number is the mean over the noise seeds " << seeds << " (metrics.json keeps each seed's)";
+  if (!seeds.empty())
+    s << ". Every number is the mean over the noise seeds " << seeds << " (metrics.json keeps each seed's)";
   s << ". Method settings:\n\n";
   for (const MethodResult& m : entries.front().series->first().methods) {
     s << "- **" << m.spec.title << "** (`" << m.spec.id << "`): " << m.spec.settings << "\n";
@@ -108,7 +109,9 @@ void regime_section(std::ostringstream& s, std::span<const SeriesEntry> entries,
     << "\nVolume against the true volume (%) / vertex RMS (mm, secondary); bold: the smallest |volume error|.\n\n"
     << markdown_table(regime_table(
            entries, regime,
-           [](const MethodSummary& m) { return signed_fixed(m.volume_error_percent, 2) + " / " + fixed(m.vertex_rms, 3); },
+           [](const MethodSummary& m) {
+             return signed_fixed(m.volume_error_percent, 2) + " / " + fixed(m.vertex_rms, 3);
+           },
            [](const MethodSummary& m) { return std::abs(m.volume_error_percent); }))
     << "\n";
 }
@@ -125,7 +128,8 @@ void render_section(std::ostringstream& s, std::span<const SeriesEntry> entries,
     const Comparison& c = e.series->first();
     if (!e.files.rendered) continue;
     s << "### " << e.series->name << ", " << e.series->regime.name << "\n\n";
-    for (const MethodKey& key : {default_key, MethodKey(ExternalMethod::VoxelWindowedSinc), MethodKey(SmoothingMethod::None)}) {
+    for (const MethodKey& key :
+         {default_key, MethodKey(ExternalMethod::VoxelWindowedSinc), MethodKey(SmoothingMethod::None)}) {
       const MethodResult* m = c.find(key);
       if (!m) continue;
       const fs::path png = e.directory / ("render_" + m->spec.id + ".png");

@@ -41,8 +41,8 @@ void write_volume_curve_png(const Comparison& c, const fs::path& path, int width
   using detail::Align;
   detail::Canvas canvas(width, height, {1.0, 1.0, 1.0});
   const double left = 80, right = width - 300.0, bottom = 60, top = height - 50.0;
-  // Iterative methods are curves. Methods without intermediate results (windowed sinc, cross-slice smoothing) are markers at their
-  // iteration count, or at the right end when they have none.
+  // Iterative methods are curves. Methods without intermediate results (windowed sinc, cross-slice smoothing) are
+  // markers at their iteration count, or at the right end when they have none.
   const auto marker = [](const MethodResult& m) { return m.volume_curve.empty() && smoothed(m); };
   std::size_t iterations = 1;
   double lo = 0.0, hi = 0.0;

@@ -202,7 +202,9 @@ Table timing_table(std::span<const SeriesEntry> entries) {
     const MethodSummary* taubin = s.find(SmoothingMethod::Taubin);
     const MethodSummary* sinc = s.find(ExternalMethod::VtkWindowedSinc);
     const MethodSummary* voxel = s.find(ExternalMethod::VoxelWindowedSinc);
-    const auto sec = [](const MethodSummary* m, const char* stage) { return m ? fixed(m->stage_seconds(stage), 3) : ""; };
+    const auto sec = [](const MethodSummary* m, const char* stage) {
+      return m ? fixed(m->stage_seconds(stage), 3) : "";
+    };
     std::string ratio;
     if (d && sinc && sinc->stage_seconds("total") > 0.0) {
       ratio = fixed(d->stage_seconds("total") / sinc->stage_seconds("total"), 1);

@@ -45,7 +45,8 @@ ComparisonTruth phantom_truth(const Phantom& phantom, double spacing, double mar
   surface->samples = sample_implicit_surface(phantom.sdf, phantom.normal, box, spacing);
   if (!phantom.feature_points.empty()) {
     Eigen::Matrix3Xd points(3, static_cast<Index>(phantom.feature_points.size()));
-    for (std::size_t k = 0; k < phantom.feature_points.size(); ++k) points.col(static_cast<Index>(k)) = phantom.feature_points[k];
+    for (std::size_t k = 0; k < phantom.feature_points.size(); ++k)
+      points.col(static_cast<Index>(k)) = phantom.feature_points[k];
     // Built once; the lambda shares it with every copy of the truth. Every measured mesh asks for the
     // feature distance of every truth sample again: those are looked up (exact coordinates), not searched.
     const auto locator = std::make_shared<const PointLocator>(points);

@@ -74,8 +74,8 @@ const std::vector<Key>& keys() {
       {"max-levels", kPaper, [](SmoothOptions& o, const Value& v) { o.paper.max_levels = v.integer(); }},
       {"diffusion", kPaper,
        [](SmoothOptions& o, const Value& v) {
-         o.paper.diffusion =
-             v.choice<SmoothingMethod>({{"taubin", SmoothingMethod::Taubin}, {"laplacian", SmoothingMethod::Laplacian}});
+         o.paper.diffusion = v.choice<SmoothingMethod>(
+             {{"taubin", SmoothingMethod::Taubin}, {"laplacian", SmoothingMethod::Laplacian}});
        }},
       {"measure", kPaper,
        [](SmoothOptions& o, const Value& v) {
@@ -106,7 +106,28 @@ const std::vector<Key>& keys() {
        }},
       {"extension-iterations", kCrossSlice,
        [](SmoothOptions& o, const Value& v) { o.cross_slice.extension_iterations = v.integer(); }},
-      {"crease-radius", kCrossSlice, [](SmoothOptions& o, const Value& v) { o.cross_slice.features.radius = v.number(); }},
+      {"off-slice-filter", kCrossSlice,
+       [](SmoothOptions& o, const Value& v) {
+         o.cross_slice.off_slice.filter = v.choice<OffSliceFilter>(
+             {{"bilateral", OffSliceFilter::BilateralNormals}, {"none", OffSliceFilter::None}});
+       }},
+      {"off-slice-motion", kCrossSlice,
+       [](SmoothOptions& o, const Value& v) {
+         o.cross_slice.off_slice.motion =
+             v.choice<OffSliceMotion>({{"axis", OffSliceMotion::AlongAxis}, {"free", OffSliceMotion::Free}});
+       }},
+      {"normal-iterations", kCrossSlice,
+       [](SmoothOptions& o, const Value& v) { o.cross_slice.off_slice.normal_iterations = v.integer(); }},
+      {"normal-sigma", kCrossSlice,
+       [](SmoothOptions& o, const Value& v) { o.cross_slice.off_slice.sigma_angle_degrees = v.number(); }},
+      {"vertex-iterations", kCrossSlice,
+       [](SmoothOptions& o, const Value& v) { o.cross_slice.off_slice.vertex_iterations = v.integer(); }},
+      {"max-move", kCrossSlice,
+       [](SmoothOptions& o, const Value& v) { o.cross_slice.off_slice.max_move = v.number(); }},
+      {"contour-max-move", kCrossSlice,
+       [](SmoothOptions& o, const Value& v) { o.cross_slice.off_slice.contour_max_move = v.number(); }},
+      {"crease-radius", kCrossSlice,
+       [](SmoothOptions& o, const Value& v) { o.cross_slice.features.radius = v.number(); }},
       {"edge-threshold", kCrossSlice,
        [](SmoothOptions& o, const Value& v) { o.cross_slice.features.edge_threshold = v.number(); }},
       {"corner-threshold", kCrossSlice,

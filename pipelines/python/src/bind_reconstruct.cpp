@@ -199,52 +199,68 @@ The analytic truth of a built-in phantom (millimetres, slice axis z).
 
 Phantom(name): name is one of phantom_shapes(). sdf(points) and normal(points) evaluate the signed
 distance (negative inside) and the outward unit normal at an (n, 3) array of points.)doc")
-      .def(py::init([](const std::string& name) { return std::make_shared<Phantom>(make_phantom(parse_phantom_shape(name))); }),
+      .def(py::init([](const std::string& name) {
+             return std::make_shared<Phantom>(make_phantom(parse_phantom_shape(name)));
+           }),
            py::arg("name"))
       .def_property_readonly("name", [](const Phantom& p) { return std::string(to_string(p.shape)); })
-      .def_property_readonly("volume", [](const Phantom& p) { return p.volume; }, "Exact volume of the solid, mm^3.")
+      .def_property_readonly(
+          "volume", [](const Phantom& p) { return p.volume; }, "Exact volume of the solid, mm^3.")
       .def_property_readonly("surface_components", [](const Phantom& p) { return p.surface_components; })
       .def_property_readonly("euler_characteristic", [](const Phantom& p) { return p.euler_characteristic; })
-      .def_property_readonly("bounds", [](const Phantom& p) {
-        py::array_t<double> b({py::ssize_t{2}, py::ssize_t{3}});
-        for (int d = 0; d < 3; ++d) {
-          b.mutable_at(0, d) = p.bounds.min()[d];
-          b.mutable_at(1, d) = p.bounds.max()[d];
-        }
-        return b;
-      }, "Bounding box of the solid: [[xmin, ymin, zmin], [xmax, ymax, zmax]], mm.")
-      .def_property_readonly("feature_points", [](const Phantom& p) {
-        py::array_t<double> a({static_cast<py::ssize_t>(p.feature_points.size()), py::ssize_t{3}});
-        for (std::size_t i = 0; i < p.feature_points.size(); ++i) {
-          for (int d = 0; d < 3; ++d) a.mutable_at(static_cast<py::ssize_t>(i), d) = p.feature_points[i][d];
-        }
-        return a;
-      }, "Points along the sharp edges and at the corners, (k, 3).")
-      .def("sdf", [](const Phantom& p, const py::object& points) {
-        const Eigen::Matrix3Xd x = points_from_array(points, "points");
-        py::array_t<double> out(x.cols());
-        double* o = out.mutable_data();
-        {
-          py::gil_scoped_release release;
-          for (Eigen::Index i = 0; i < x.cols(); ++i) o[i] = p.sdf(x.col(i));
-        }
-        return out;
-      }, py::arg("points"), "Signed distance (mm, negative inside) at each of the (n, 3) points.")
-      .def("__call__", [](const py::object& self, const py::object& points) { return self.attr("sdf")(points); },
-           py::arg("points"))
-      .def("normal", [](const Phantom& p, const py::object& points) {
-        const Eigen::Matrix3Xd x = points_from_array(points, "points");
-        py::array_t<double> out({static_cast<py::ssize_t>(x.cols()), py::ssize_t{3}});
-        double* o = out.mutable_data();
-        {
-          py::gil_scoped_release release;
-          for (Eigen::Index i = 0; i < x.cols(); ++i) {
-            const Eigen::Vector3d nrm = p.normal(x.col(i));
-            for (int d = 0; d < 3; ++d) o[3 * i + d] = nrm[d];
-          }
-        }
-        return out;
-      }, py::arg("points"), "Outward unit normal at each of the (n, 3) points.")
+      .def_property_readonly(
+          "bounds",
+          [](const Phantom& p) {
+            py::array_t<double> b({py::ssize_t{2}, py::ssize_t{3}});
+            for (int d = 0; d < 3; ++d) {
+              b.mutable_at(0, d) = p.bounds.min()[d];
+              b.mutable_at(1, d) = p.bounds.max()[d];
+            }
+            return b;
+          },
+          "Bounding box of the solid: [[xmin, ymin, zmin], [xmax, ymax, zmax]], mm.")
+      .def_property_readonly(
+          "feature_points",
+          [](const Phantom& p) {
+            py::array_t<double> a({static_cast<py::ssize_t>(p.feature_points.size()), py::ssize_t{3}});
+            for (std::size_t i = 0; i < p.feature_points.size(); ++i) {
+              for (int d = 0; d < 3; ++d) a.mutable_at(static_cast<py::ssize_t>(i), d) = p.feature_points[i][d];
+            }
+            return a;
+          },
+          "Points along the sharp edges and at the corners, (k, 3).")
+      .def(
+          "sdf",
+          [](const Phantom& p, const py::object& points) {
+            const Eigen::Matrix3Xd x = points_from_array(points, "points");
+            py::array_t<double> out(x.cols());
+            double* o = out.mutable_data();
+            {
+              py::gil_scoped_release release;
+              for (Eigen::Index i = 0; i < x.cols(); ++i) o[i] = p.sdf(x.col(i));
+            }
+            return out;
+          },
+          py::arg("points"), "Signed distance (mm, negative inside) at each of the (n, 3) points.")
+      .def(
+          "__call__", [](const py::object& self, const py::object& points) { return self.attr("sdf")(points); },
+          py::arg("points"))
+      .def(
+          "normal",
+          [](const Phantom& p, const py::object& points) {
+            const Eigen::Matrix3Xd x = points_from_array(points, "points");
+            py::array_t<double> out({static_cast<py::ssize_t>(x.cols()), py::ssize_t{3}});
+            double* o = out.mutable_data();
+            {
+              py::gil_scoped_release release;
+              for (Eigen::Index i = 0; i < x.cols(); ++i) {
+                const Eigen::Vector3d nrm = p.normal(x.col(i));
+                for (int d = 0; d < 3; ++d) o[3 * i + d] = nrm[d];
+              }
+            }
+            return out;
+          },
+          py::arg("points"), "Outward unit normal at each of the (n, 3) points.")
       .def("__repr__", [](const Phantom& p) { return "Phantom('" + std::string(to_string(p.shape)) + "')"; });
 }
 

@@ -58,8 +58,8 @@ class Options {
     if (values_.empty()) return;
     std::string names;
     for (const auto& [name, value] : values_) names += (names.empty() ? "" : ", ") + name;
-    throw InvalidInputError("option" + std::string(values_.size() == 1 ? " " : "s ") + names + " not known to method '" +
-                            method_ + "'");
+    throw InvalidInputError("option" + std::string(values_.size() == 1 ? " " : "s ") + names +
+                            " not known to method '" + method_ + "'");
   }
 
  private:
@@ -112,7 +112,8 @@ void take_slice_axis(Options& o, Mesh& mesh) {
 
 py::array_t<std::uint8_t> labels_array(const std::vector<VertexLabel>& labels) {
   py::array_t<std::uint8_t> a(static_cast<py::ssize_t>(labels.size()));
-  for (std::size_t i = 0; i < labels.size(); ++i) a.mutable_at(static_cast<py::ssize_t>(i)) = static_cast<std::uint8_t>(labels[i]);
+  for (std::size_t i = 0; i < labels.size(); ++i)
+    a.mutable_at(static_cast<py::ssize_t>(i)) = static_cast<std::uint8_t>(labels[i]);
   return a;
 }
 
@@ -167,7 +168,8 @@ MethodConfig method_config(const py::object& method_arg, Options& o, Mesh& mesh)
     o.take_int("max_levels", fo.max_levels);
     o.take("diffusion", [&](const py::object& v) {
       const std::string s = as_string(v, "diffusion");
-      if (s != "taubin" && s != "laplacian") throw InvalidInputError("diffusion must be 'taubin' or 'laplacian', got '" + s + "'");
+      if (s != "taubin" && s != "laplacian")
+        throw InvalidInputError("diffusion must be 'taubin' or 'laplacian', got '" + s + "'");
       fo.diffusion = parse_smoothing_method(s);
     });
     o.take("keep_adaptive", [&](const py::object& v) {
@@ -188,6 +190,24 @@ MethodConfig method_config(const py::object& method_arg, Options& o, Mesh& mesh)
       else if (s == "across-only") co.stages = CrossSliceStages::AcrossOnly;
       else throw InvalidInputError("stages must be 'across-then-along' or 'across-only', got '" + s + "'");
     });
+    OffSliceFilterOptions& fo = co.off_slice;
+    o.take("off_slice_filter", [&](const py::object& v) {
+      const std::string s = as_string(v, "off_slice_filter");
+      if (s == "bilateral") fo.filter = OffSliceFilter::BilateralNormals;
+      else if (s == "none") fo.filter = OffSliceFilter::None;
+      else throw InvalidInputError("off_slice_filter must be 'bilateral' or 'none', got '" + s + "'");
+    });
+    o.take("off_slice_motion", [&](const py::object& v) {
+      const std::string s = as_string(v, "off_slice_motion");
+      if (s == "free") fo.motion = OffSliceMotion::Free;
+      else if (s == "axis") fo.motion = OffSliceMotion::AlongAxis;
+      else throw InvalidInputError("off_slice_motion must be 'free' or 'axis', got '" + s + "'");
+    });
+    o.take_int("normal_iterations", fo.normal_iterations);
+    o.take_double("normal_sigma", fo.sigma_angle_degrees);
+    o.take_int("vertex_iterations", fo.vertex_iterations);
+    o.take_double("max_move", fo.max_move);
+    o.take_double("contour_max_move", fo.contour_max_move);
   } else if (m != SmoothingMethod::None) {
     SmoothingOptions& bo = so.baseline;
     o.take_double("lambda", bo.lambda);

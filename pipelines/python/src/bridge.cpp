@@ -38,13 +38,15 @@ py::array_t<T, py::array::c_style | py::array::forcecast> checked(const py::hand
 std::vector<std::int32_t> ids_of(const py::handle& h, const std::string& name, py::ssize_t n) {
   auto a = checked<std::int64_t>(h, name);
   if (a.ndim() != 1 || a.shape(0) != n) {
-    throw InvalidInputError(name + ": expected shape (" + std::to_string(n) + ",), one id per point, got " + shape_of(a));
+    throw InvalidInputError(name + ": expected shape (" + std::to_string(n) + ",), one id per point, got " +
+                            shape_of(a));
   }
   std::vector<std::int32_t> ids(static_cast<std::size_t>(n));
   const std::int64_t* p = a.data();
   for (py::ssize_t i = 0; i < n; ++i) {
     if (p[i] < kNoId || p[i] > std::numeric_limits<std::int32_t>::max()) {
-      throw InvalidInputError(name + "[" + std::to_string(i) + "] = " + std::to_string(p[i]) + " is out of range (ids are >= -1)");
+      throw InvalidInputError(name + "[" + std::to_string(i) + "] = " + std::to_string(p[i]) +
+                              " is out of range (ids are >= -1)");
     }
     ids[static_cast<std::size_t>(i)] = static_cast<std::int32_t>(p[i]);
   }
@@ -115,10 +117,12 @@ py::tuple mesh_to_arrays(const Mesh& mesh) {
 CtImage::Pointer image_from_array(const py::handle& volume, const py::handle& spacing, const py::handle& origin,
                                   const py::handle& direction) {
   auto v = checked<float>(volume, "volume");
-  if (v.ndim() != 3) throw InvalidInputError("volume: expected a 3-D array indexed [slice, row, column], got shape " + shape_of(v));
+  if (v.ndim() != 3)
+    throw InvalidInputError("volume: expected a 3-D array indexed [slice, row, column], got shape " + shape_of(v));
   const Eigen::Vector3d s = vector3(spacing, "spacing");
   const Eigen::Vector3d o = vector3(origin, "origin");
-  if (!s.allFinite() || (s.array() <= 0.0).any()) throw InvalidInputError("spacing: every value must be finite and > 0 mm");
+  if (!s.allFinite() || (s.array() <= 0.0).any())
+    throw InvalidInputError("spacing: every value must be finite and > 0 mm");
   if (!o.allFinite()) throw InvalidInputError("origin: every value must be finite");
   auto image = CtImage::New();
   CtImage::RegionType region;
@@ -126,7 +130,8 @@ CtImage::Pointer image_from_array(const py::handle& volume, const py::handle& sp
   size[0] = static_cast<CtImage::SizeValueType>(v.shape(2));
   size[1] = static_cast<CtImage::SizeValueType>(v.shape(1));
   size[2] = static_cast<CtImage::SizeValueType>(v.shape(0));
-  if (size[0] == 0 || size[1] == 0 || size[2] == 0) throw InvalidInputError("volume: empty (shape " + shape_of(v) + ")");
+  if (size[0] == 0 || size[1] == 0 || size[2] == 0)
+    throw InvalidInputError("volume: empty (shape " + shape_of(v) + ")");
   region.SetSize(size);
   image->SetRegions(region);
   image->SetSpacing(s.data());
@@ -198,20 +203,23 @@ double as_double(const py::handle& value, const std::string& name) {
   try {
     return value.cast<double>();
   } catch (const py::cast_error&) {
-    throw InvalidInputError(name + ": expected a number, got " + std::string(py::str(value.get_type().attr("__name__"))));
+    throw InvalidInputError(name + ": expected a number, got " +
+                            std::string(py::str(value.get_type().attr("__name__"))));
   }
 }
 
 int as_int(const py::handle& value, const std::string& name) {
   if (!py::isinstance<py::int_>(value) || py::isinstance<py::bool_>(value)) {
-    throw InvalidInputError(name + ": expected an integer, got " + std::string(py::str(value.get_type().attr("__name__"))));
+    throw InvalidInputError(name + ": expected an integer, got " +
+                            std::string(py::str(value.get_type().attr("__name__"))));
   }
   return value.cast<int>();
 }
 
 std::string as_string(const py::handle& value, const std::string& name) {
   if (!py::isinstance<py::str>(value)) {
-    throw InvalidInputError(name + ": expected a string, got " + std::string(py::str(value.get_type().attr("__name__"))));
+    throw InvalidInputError(name + ": expected a string, got " +
+                            std::string(py::str(value.get_type().attr("__name__"))));
   }
   return value.cast<std::string>();
 }

@@ -7,8 +7,10 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <limits>
 #include <map>
 #include <numbers>
+#include <random>
 
 #include "reconstruct/detail/level_helpers.h"
 
@@ -54,6 +56,106 @@ TEST(BandTiling, LargeContoursSolvedCoarseToFineKeepTheLeastArea) {
   const double frustum = std::numbers::pi * (50.0 + 45.0) * std::hypot(5.0, 2.0);
   EXPECT_NEAR(q.area / frustum, 1.0, 2e-3);
   EXPECT_EQ(band.size(), 600u + 540u);
+}
+
+// The least-area band by the textbook recurrence over the whole grid, triangle areas from Eigen
+// (0.5 |(b - a) x (c - a)|), from the start pair lower[r0], upper[q0], with the tiler's rules (the path
+// leaves the start edge along the lower ring and returns along the upper one; moving along the lower
+// ring wins ties) and its listing of the triangles (from the end of the path).
+std::vector<BandTriangle> reference_band(const Polygon& lower, double wl, const Polygon& upper, double wu, int r0,
+                                         int q0, double span_weight) {
+  const int m = static_cast<int>(lower.size()), n = static_cast<int>(upper.size());
+  auto P = [&](int i) {
+    const Eigen::Vector2d& p = lower[static_cast<std::size_t>((r0 + i) % m)];
+    return Eigen::Vector3d(p.x(), p.y(), wl);
+  };
+  auto Q = [&](int j) {
+    const Eigen::Vector2d& q = upper[static_cast<std::size_t>((q0 + j) % n)];
+    return Eigen::Vector3d(q.x(), q.y(), wu);
+  };
+  auto area = [](const Eigen::Vector3d& a, const Eigen::Vector3d& b, const Eigen::Vector3d& c) {
+    return 0.5 * (b - a).cross(c - a).norm();
+  };
+  const double inf = std::numeric_limits<double>::infinity();
+  std::vector<std::vector<double>> cost(m + 1, std::vector<double>(n + 1, inf));
+  std::vector<std::vector<int>> along_lower(m + 1, std::vector<int>(n + 1, 0));
+  cost[0][0] = 0.0;
+  for (int i = 0; i <= m; ++i) {
+    for (int j = 0; j <= n; ++j) {
+      if ((i == 0) || (i == m && j == 0) || (j == n && i < m)) continue;
+      double c = inf;
+      if (cost[i - 1][j] < inf) {
+        c = cost[i - 1][j] + area(P(i - 1), P(i), Q(j));
+        along_lower[i][j] = 1;
+      }
+      if (j > 0 && cost[i][j - 1] < inf) {
+        const double c2 = cost[i][j - 1] + area(P(i), Q(j), Q(j - 1));
+        if (c2 < c) {
+          c = c2;
+          along_lower[i][j] = 0;
+        }
+      }
+      cost[i][j] = c + (span_weight > 0.0 && c < inf ? span_weight * (P(i) - Q(j)).squaredNorm() : 0.0);
+    }
+  }
+  std::vector<BandTriangle> band;
+  auto L = [&](int k) { return BandCorner{0, (r0 + k) % m}; };
+  auto U = [&](int k) { return BandCorner{1, (q0 + k) % n}; };
+  for (int i = m, j = n; i > 0 || j > 0;) {
+    if (along_lower[i][j]) {
+      band.push_back({L(i - 1), L(i), U(j)});
+      --i;
+    } else {
+      band.push_back({L(i), U(j), U(j - 1)});
+      --j;
+    }
+  }
+  return band;
+}
+
+// A random star-shaped ring, counter-clockwise: concave where the wave is deep.
+Polygon random_ring(std::mt19937& rng, int points) {
+  std::uniform_real_distribution<double> u(0.0, 1.0);
+  const double cx = 4.0 * u(rng) - 2.0, cy = 4.0 * u(rng) - 2.0, r = 10.0 + 10.0 * u(rng);
+  const double depth = 0.5 * u(rng), lobes = std::floor(1.0 + 6.0 * u(rng)), phase = 6.0 * u(rng);
+  Polygon ring;
+  for (int k = 0; k < points; ++k) {
+    const double t = 2.0 * std::numbers::pi * (k + 0.3 * u(rng)) / points;
+    const double rr = r * (1.0 + depth * std::sin(lobes * t + phase) + 0.02 * u(rng));
+    ring.emplace_back(cx + rr * std::cos(t), cy + rr * std::sin(t));
+  }
+  return ring;
+}
+
+TEST(BandTiling, TheProgrammeFindsTheBandOfTheTextbookRecurrence) {
+  // The programme computes its triangle areas from the rings' planes (no call, constants per row);
+  // the band must be the one the plain recurrence gives, triangle for triangle, on convex and
+  // concave rings of every size the whole grid is solved for, with and without the span weight.
+  std::mt19937 rng(7);
+  std::uniform_int_distribution<int> size(3, 250);
+  std::uniform_real_distribution<double> u(0.0, 1.0);
+  for (int trial = 0; trial < 60; ++trial) {
+    const Polygon lower = random_ring(rng, size(rng)), upper = random_ring(rng, size(rng));
+    const double wl = 4.0 * u(rng) - 2.0, wu = wl + 0.3 + 3.0 * u(rng);
+    const int start = static_cast<int>(u(rng) * static_cast<double>(lower.size()));
+    const double span_weight = trial % 3 == 0 ? 1.0 : 0.0;
+    const std::vector<BandTriangle> band =
+        minimum_area_band(lower, wl, upper, wu, TilingOptions{}, start, span_weight);
+    ASSERT_FALSE(band.empty());
+    // The start pair: the corners of the start edge in the first triangle listed.
+    const bool first_along_lower = band[0][1].ring == 0;
+    const int r0 = first_along_lower ? band[0][1].index : band[0][0].index;
+    const int q0 = first_along_lower ? band[0][2].index : band[0][1].index;
+    EXPECT_EQ(r0, start);
+    const std::vector<BandTriangle> expected = reference_band(lower, wl, upper, wu, r0, q0, span_weight);
+    ASSERT_EQ(band.size(), expected.size()) << "trial " << trial;
+    for (std::size_t t = 0; t < band.size(); ++t) {
+      for (int k = 0; k < 3; ++k) {
+        ASSERT_EQ(band[t][k].ring, expected[t][k].ring) << "trial " << trial << " triangle " << t;
+        ASSERT_EQ(band[t][k].index, expected[t][k].index) << "trial " << trial << " triangle " << t;
+      }
+    }
+  }
 }
 
 TEST(BandTiling, QualityCountsSliversOfAFlatBand) {

@@ -3,6 +3,7 @@
 #include "detail/branching.h"
 
 #include "detail/caps.h"
+#include "detail/outline.h"
 
 #include <contourmesh/smooth/mesh_quality.h>
 
@@ -10,6 +11,7 @@
 
 #include <cmath>
 #include <numbers>
+#include <random>
 
 #include "reconstruct/detail/level_helpers.h"
 #include "reconstruct/mesh_checks.h"
@@ -38,6 +40,43 @@ Mesh closed(test::TestStack& stack, const Level& lower, const Level& upper, cons
     if (!c.is_hole) cap_end(c, holes, upper.w, 0.0, true, TilingOptions{}, above);
   }
   return stack.assemble({&below, &middle, &above});
+}
+
+TEST(Branching, TheOutlineIndexAnswersAsPointInPolygon) {
+  // Outline files each outer contour's edges in horizontal strips; its answer must be the even-odd
+  // rule's over the whole contour (holes filled), for points anywhere, on vertex heights included.
+  std::mt19937 rng(3);
+  std::uniform_real_distribution<double> u(0.0, 1.0);
+  for (int trial = 0; trial < 20; ++trial) {
+    Level level;
+    for (int k = 0; k < 3; ++k) {
+      LevelContour c;
+      const double cx = 30.0 * k, r = 8.0 + 4.0 * u(rng), depth = 0.6 * u(rng), lobes = std::floor(1 + 7 * u(rng));
+      const int n = 3 + static_cast<int>(300 * u(rng));
+      for (int i = 0; i < n; ++i) {
+        const double t = 2.0 * std::numbers::pi * i / n, rr = r * (1.0 + depth * std::sin(lobes * t));
+        c.points.emplace_back(cx + rr * std::cos(t), rr * std::sin(t));
+      }
+      c.is_hole = k == 2;  // a hole's region is not tested (filled by its outer)
+      finish_contour(c);
+      level.contours.push_back(std::move(c));
+    }
+    const Outline outline(level);
+    auto expected = [&](const Eigen::Vector2d& p) {
+      for (const LevelContour& c : level.contours) {
+        if (!c.is_hole && c.box.contains(p) && point_in_polygon(c.points, p)) return true;
+      }
+      return false;
+    };
+    for (int i = 0; i < 2000; ++i) {
+      Eigen::Vector2d p(-15.0 + 60.0 * u(rng), -15.0 + 30.0 * u(rng));
+      if (i % 4 == 0) {  // on the height of a vertex
+        const Polygon& c = level.contours[static_cast<std::size_t>(i % 2)].points;
+        p.y() = c[static_cast<std::size_t>(u(rng) * static_cast<double>(c.size())) % c.size()].y();
+      }
+      ASSERT_EQ(outline.contains(p), expected(p)) << "trial " << trial << " point " << p.transpose();
+    }
+  }
 }
 
 TEST(Branching, OneToTwoIsBridgedOnTheMidPlane) {

@@ -15,6 +15,8 @@
 //    windows stop at corners (ridges crossing the slices).
 // 3. Contour vertices move along their in-slice normals only, so they stay in their slice planes;
 //    vertices off the slices (caps, branchings) follow the harmonic extension of those displacements.
+// 3b. Then the faces around the vertices off the slices follow their bilaterally filtered normals
+//    (OffSliceFilterOptions); contour vertices stay.
 // 4. Labels: the creases of the result (detect_creases), edge or corner, in a band along them.
 // With noise-free contours the estimated noise is zero and nothing moves.
 #pragma once
@@ -35,6 +37,39 @@ enum class CrossSliceStages {
   AcrossOnly,       ///< across the slices only (the paper's per-contour noise model)
 };
 
+/// What happens to the vertices between the slices after the contour vertices have moved.
+enum class OffSliceFilter {
+  None,              ///< they follow the harmonic extension of the contour vertices' moves only
+  BilateralNormals,  ///< then the faces around them follow their bilaterally filtered normals (default)
+};
+
+/// How a vertex between the slices may move in the normal-filtering stage.
+enum class OffSliceMotion {
+  Free,       ///< in any direction, within the bounds (default)
+  AlongAxis,  ///< along the slice axis only, as off-slice heights placed it
+};
+
+/// The normal-filtering stage for the vertices between the slices (docs/smoothing.md, "Vertices between
+/// the slices"): bilateral filtering of the normals of the faces that touch them (Zheng, Fu, Au, Tai,
+/// IEEE TVCG 2011, eq. 4: a Gaussian of the distance between face centroids, of the mean such distance,
+/// times a Gaussian of the difference of the normals), then their positions fitted to those normals
+/// (eq. 6). Contour vertices never move here; a vertex between the slices stays in its slab.
+struct OffSliceFilterOptions {
+  OffSliceFilter filter = OffSliceFilter::BilateralNormals;
+  OffSliceMotion motion = OffSliceMotion::Free;
+  /// Iterations of the normal filter, >= 0.
+  int normal_iterations = 20;
+  /// Width of the range kernel as an angle between two normals, degrees, in (0, 90]: normals further
+  /// apart than this (a crease) barely mix.
+  double sigma_angle_degrees = 12.0;
+  /// Iterations of the vertex update, >= 0.
+  int vertex_iterations = 40;
+  /// Largest move of a vertex, in slice spacings, >= 0.
+  double max_move = 0.25;
+  /// Largest move of a contour vertex, in its slice plane, mm, >= 0; 0: contour vertices stay.
+  double contour_max_move = 0.0;
+};
+
 struct CrossSliceOptions {
   /// Slices on each side that a cross-slice profile may use, in [1, 30].
   int reach = 8;
@@ -49,6 +84,8 @@ struct CrossSliceOptions {
   CrossSliceStages stages = CrossSliceStages::AcrossThenAlong;
   /// Jacobi iterations of the harmonic extension to vertices off the slices, >= 0.
   int extension_iterations = 30;
+  /// The vertices between the slices, after the extension.
+  OffSliceFilterOptions off_slice;
   /// The feature labels of the result: creases of the smoothed mesh (crease_detection.h).
   CreaseOptions features;
   /// Stages "smooth" and "detect"; return false to cancel (CancelledError).
@@ -62,6 +99,7 @@ struct CrossSliceResult {
   double noise_across = 0.0;   ///< the noise levels used, mm
   double noise_along = 0.0;
   std::size_t profiles = 0;    ///< contour vertices corrected from a cross-slice profile
+  std::size_t off_slice_moved = 0;  ///< vertices between the slices moved by the normal filter
   double seconds_detect = 0.0, seconds_smooth = 0.0, seconds_total = 0.0;
 };
 

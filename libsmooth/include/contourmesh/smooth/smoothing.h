@@ -133,7 +133,8 @@ void check_smoothing_options(const SmoothingOptions& options, Index num_vertices
 
 /// Runs the baseline named by `options.method` and returns the smoothed positions (3 x n). Throws
 /// InvalidInputError for FeaturePreserving and CrossSlice: run those through smooth.h.
-[[nodiscard]] Eigen::Matrix3Xd smooth(const Mesh& mesh, const MeshAdjacency& adjacency, const SmoothingOptions& options);
+[[nodiscard]] Eigen::Matrix3Xd smooth(const Mesh& mesh, const MeshAdjacency& adjacency,
+                                      const SmoothingOptions& options);
 /// Same, building the adjacency first.
 [[nodiscard]] Eigen::Matrix3Xd smooth(const Mesh& mesh, const SmoothingOptions& options);
 

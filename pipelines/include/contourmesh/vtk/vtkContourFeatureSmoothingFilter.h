@@ -43,16 +43,17 @@
 ///
 /// Progress: UpdateProgress with detection in [0, 0.3], subdivision in [0.3, 0.4] and smoothing in
 /// [0.4, 1] for the paper's method, smoothing in [0, 0.8] and its crease labels in [0.8, 1] for
-/// cross-slice smoothing (smoothing alone spans [0, 1] for a baseline), at most once per iteration. Cancellation: setting AbortExecute (for example from a vtkCommand::ProgressEvent observer)
-/// makes the library stop at its next progress report (vtkAlgorithm::CheckAbort on VTK >= 9.3). An
-/// aborted run is not an error: the output is left empty and RequestData returns 1, as VTK filters do
-/// when they abort. The pipeline then considers the (empty) output up to date: call Modified() before
-/// the next Update() to run again.
+/// cross-slice smoothing (smoothing alone spans [0, 1] for a baseline), at most once per iteration. Cancellation:
+/// setting AbortExecute (for example from a vtkCommand::ProgressEvent observer) makes the library stop at its next
+/// progress report (vtkAlgorithm::CheckAbort on VTK >= 9.3). An aborted run is not an error: the output is left empty
+/// and RequestData returns 1, as VTK filters do when they abort. The pipeline then considers the (empty) output up to
+/// date: call Modified() before the next Update() to run again.
 class vtkContourFeatureSmoothingFilter : public vtkPolyDataAlgorithm {
  public:
   static vtkContourFeatureSmoothingFilter* New();
-  vtkTypeMacro(vtkContourFeatureSmoothingFilter, vtkPolyDataAlgorithm)  // no ";": the macro ends with "public:" (-Wpedantic)
-  void PrintSelf(ostream& os, vtkIndent indent) override;
+  vtkTypeMacro(vtkContourFeatureSmoothingFilter,
+               vtkPolyDataAlgorithm)  // no ";": the macro ends with "public:" (-Wpedantic)
+      void PrintSelf(ostream& os, vtkIndent indent) override;
 
   enum MethodType {
     METHOD_NONE = 0,                 ///< positions unchanged (with GenerateLabels: detection only)

@@ -1,0 +1,137 @@
+// SPDX-License-Identifier: BSD-3-Clause
+// Cross-slice smoothing's last stage: the vertices between the slices follow the bilaterally filtered
+// normals of their faces (OffSliceFilterOptions).
+#include "contourmesh/smooth/cross_slice.h"
+#include "contourmesh/smooth/errors.h"
+#include "contourmesh/smooth/shapes.h"
+#include "contourmesh/smooth/surface_metrics.h"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <numbers>
+#include <random>
+
+namespace contourmesh {
+namespace {
+
+constexpr double kPi = std::numbers::pi;
+
+ContourStackSpec cylinder(double radius, int slices) {
+  ContourStackSpec spec;
+  spec.curve = [radius](double t) {
+    return Eigen::Vector2d(radius * std::cos(2 * kPi * t), radius * std::sin(2 * kPi * t));
+  };
+  spec.slices = slices;
+  spec.points_per_contour = 90;
+  spec.slice_spacing = 2.0;
+  return spec;
+}
+
+struct Accuracy {
+  double rms = 0.0;           ///< of the distance of surface samples to the truth, mm
+  double normal_error = 0.0;  ///< area-weighted mean angle of face normals to the true normal, degrees
+};
+
+Accuracy measure(const Mesh& mesh, const ScalarField& sdf) {
+  const SurfaceSamples s = sample_mesh_surface(mesh.positions, mesh.triangles, 4.0, 7);
+  double w = 0.0, d2 = 0.0, angle = 0.0;
+  constexpr double h = 1e-4;
+  for (Index k = 0; k < s.size(); ++k) {
+    const Eigen::Vector3d p = s.points.col(k);
+    const Triangle& t = mesh.triangles[static_cast<std::size_t>(s.faces[k])];
+    const Eigen::Vector3d n = (mesh.positions.col(t[1]) - mesh.positions.col(t[0]))
+                                  .cross(mesh.positions.col(t[2]) - mesh.positions.col(t[0]))
+                                  .normalized();
+    Eigen::Vector3d g;
+    for (int a = 0; a < 3; ++a) {
+      const Eigen::Vector3d e = Eigen::Vector3d::Unit(a) * h;
+      g[a] = (sdf(p + e) - sdf(p - e)) / (2 * h);
+    }
+    const double d = sdf(p);
+    w += s.weights[k];
+    d2 += s.weights[k] * d * d;
+    angle += s.weights[k] * std::acos(std::clamp(n.dot(g.normalized()), -1.0, 1.0)) * 180.0 / kPi;
+  }
+  return {std::sqrt(d2 / w), angle / w};
+}
+
+// A cylinder whose odd slices are intermediate contours (vertices without ids, as a tiler's refined bands
+// have), with caps half a spacing beyond the end slices; the vertices without ids carry noise, the
+// contours are exact (so the cross-slice stages leave them in place).
+Mesh noisy_off_slice_cylinder(const ContourStackSpec& spec) {
+  Mesh mesh = make_contour_stack(spec);
+  for (Index i = 0; i < mesh.num_vertices(); ++i) {
+    if (mesh.slice_ids[i] < 0) continue;
+    if (mesh.slice_ids[i] % 2 == 1) {
+      mesh.slice_ids[i] = mesh.contour_ids[i] = kNoId;
+    } else {
+      mesh.slice_ids[i] /= 2;
+    }
+  }
+  std::mt19937_64 rng(11);
+  std::normal_distribution<double> noise(0.0, 0.15);
+  for (Index i = 0; i < mesh.num_vertices(); ++i) {
+    if (mesh.slice_ids[i] >= 0) continue;
+    for (int a = 0; a < 3; ++a) mesh.positions(a, i) += noise(rng);
+  }
+  return mesh;
+}
+
+TEST(CrossSliceOffSlice, FilteredNormalsLowerTheNormalErrorWithoutRaisingTheDistance) {
+  const ContourStackSpec spec = cylinder(10.0, 21);
+  const ScalarField sdf = contour_stack_sdf(spec);
+  const Mesh mesh = noisy_off_slice_cylinder(spec);
+  CrossSliceOptions without;
+  without.off_slice.filter = OffSliceFilter::None;
+  const CrossSliceResult before = cross_slice_smooth(mesh, without);
+  const CrossSliceResult after = cross_slice_smooth(mesh);  // the default filters
+  const Accuracy a = measure(before.mesh, sdf), b = measure(after.mesh, sdf);
+  EXPECT_EQ(before.off_slice_moved, 0u);
+  EXPECT_GT(after.off_slice_moved, 0u);
+  EXPECT_LT(b.normal_error, 0.7 * a.normal_error) << a.normal_error << " -> " << b.normal_error;
+  EXPECT_LE(b.rms, a.rms) << a.rms << " -> " << b.rms;
+}
+
+TEST(CrossSliceOffSlice, LeavesContourVerticesAndKeepsTheOthersInTheirSlabs) {
+  const ContourStackSpec spec = cylinder(10.0, 21);
+  const Mesh mesh = noisy_off_slice_cylinder(spec);
+  const CrossSliceResult r = cross_slice_smooth(mesh);
+  CrossSliceOptions without;
+  without.off_slice.filter = OffSliceFilter::None;
+  const CrossSliceResult unfiltered = cross_slice_smooth(mesh, without);
+  // The contour slices are 4 mm apart here; a vertex without ids moves at most max_move spacings.
+  const double reach = CrossSliceOptions{}.off_slice.max_move * 4.0;
+  for (Index i = 0; i < mesh.num_vertices(); ++i) {
+    const Eigen::Vector3d moved = r.mesh.positions.col(i) - unfiltered.mesh.positions.col(i);
+    if (mesh.slice_ids[i] >= 0) {
+      // The filter leaves contour vertices where the cross-slice stages put them.
+      EXPECT_EQ(moved.norm(), 0.0) << "contour vertex " << i;
+      continue;
+    }
+    EXPECT_LE(moved.norm(), reach + 1e-9) << "vertex " << i;
+    // An intermediate contour (z near 4k + 2) stays strictly inside its slab (4k, 4k + 4).
+    const double z0 = mesh.positions(2, i), z = r.mesh.positions(2, i);
+    if (z0 > 0.0 && z0 < 40.0) {
+      const double bottom = 4.0 * std::floor(z0 / 4.0);
+      EXPECT_GT(z, bottom) << "vertex " << i;
+      EXPECT_LT(z, bottom + 4.0) << "vertex " << i;
+    }
+  }
+}
+
+TEST(CrossSliceOffSlice, RejectsOptionsOutOfRange) {
+  const Mesh mesh = make_contour_stack(cylinder(10.0, 6));
+  CrossSliceOptions o;
+  o.off_slice.sigma_angle_degrees = 0.0;
+  EXPECT_THROW((void)cross_slice_smooth(mesh, o), InvalidInputError);
+  o = {};
+  o.off_slice.normal_iterations = -1;
+  EXPECT_THROW((void)cross_slice_smooth(mesh, o), InvalidInputError);
+  o = {};
+  o.off_slice.max_move = -0.1;
+  EXPECT_THROW((void)cross_slice_smooth(mesh, o), InvalidInputError);
+}
+
+}  // namespace
+}  // namespace contourmesh
