@@ -69,6 +69,10 @@ struct Workspace {
   std::vector<Triangle> corners;
   std::vector<Index> ring_offsets, ring;
   std::vector<double> ring_weights;
+  // The range kernel is symmetric: each pair of faces (a, b) that meet in a neighbourhood has one slot,
+  // computed once per iteration however many of the two neighbourhoods it is in.
+  std::vector<Index> ring_slot;      ///< per neighbourhood entry
+  std::vector<Index> slot_a, slot_b;  ///< per slot: the faces (local), as first met: face a, entry b
   // Vertices.
   std::vector<Index> vertices;  ///< local vertex -> mesh vertex
   std::vector<std::uint8_t> moves;  ///< per local vertex
@@ -93,6 +97,32 @@ void select_region(const ContourFrame& frame, const OffSliceFilterOptions& optio
   }
   std::sort(filtered.begin(), filtered.end());
   filtered.erase(std::unique(filtered.begin(), filtered.end()), filtered.end());
+}
+
+// One slot per pair of faces met in the neighbourhoods: entry g of filtered face f shares the slot of
+// entry f of g's neighbourhood when g is a filtered face already seen (neighbourhoods are symmetric:
+// two faces share a vertex or not).
+void assign_pair_slots(const std::vector<Index>& filtered_of, Workspace& w) {
+  w.ring_slot.resize(w.ring.size());
+  for (std::size_t k = 0; k < w.filtered.size(); ++k) {
+    const Index f = w.filtered[k];
+    for (Index r = w.ring_offsets[k]; r < w.ring_offsets[k + 1]; ++r) {
+      const Index g = w.ring[static_cast<std::size_t>(r)];
+      const Index kg = filtered_of[static_cast<std::size_t>(g)];
+      if (kg >= 0 && static_cast<std::size_t>(kg) < k) {
+        const auto first = w.ring.begin() + w.ring_offsets[static_cast<std::size_t>(kg)];
+        const auto last = w.ring.begin() + w.ring_offsets[static_cast<std::size_t>(kg) + 1];
+        const auto mirror = std::lower_bound(first, last, f);
+        if (mirror != last && *mirror == f) {
+          w.ring_slot[static_cast<std::size_t>(r)] = w.ring_slot[static_cast<std::size_t>(mirror - w.ring.begin())];
+          continue;
+        }
+      }
+      w.ring_slot[static_cast<std::size_t>(r)] = static_cast<Index>(w.slot_a.size());
+      w.slot_a.push_back(f);
+      w.slot_b.push_back(g);
+    }
+  }
 }
 
 // Numbers the faces and vertices (see Workspace) and the neighbourhoods of the filtered faces.
@@ -145,9 +175,12 @@ Workspace make_workspace(const ContourFrame& frame, const std::vector<Triangle>&
     w.ring.insert(w.ring.end(), local.begin(), local.end());
     w.ring_offsets[k + 1] = static_cast<Index>(w.ring.size());
   }
-  // The filtered face of each local face, for the moving vertices' faces.
+  // The filtered face of each local face (for the pair slots and the moving vertices' faces).
   std::vector<Index> filtered_of(w.faces.size(), -1);
-  for (std::size_t k = 0; k < filtered.size(); ++k) filtered_of[static_cast<std::size_t>(w.filtered[k])] = static_cast<Index>(k);
+  for (std::size_t k = 0; k < filtered.size(); ++k) {
+    filtered_of[static_cast<std::size_t>(w.filtered[k])] = static_cast<Index>(k);
+  }
+  assign_pair_slots(filtered_of, w);
   w.moves.assign(w.vertices.size(), 0);
   w.incident_offsets.assign(moving.size() + 1, 0);
   w.on_contour.resize(moving.size());
@@ -204,20 +237,26 @@ void filter_normals(const Workspace& w, const OffSliceFilterOptions& options, Ei
   const double inv_r = 1.0 / (2.0 * sigma_r * sigma_r);
   // Where a sum vanishes, a face keeps the normal of two iterations before (that of `next`).
   Eigen::Matrix3Xd next = normals;
+  std::vector<float> range(w.slot_a.size());
   for (int it = 0; it < options.normal_iterations; ++it) {
+    // The range kernel of every pair, from |n_b - n_a|^2 of unit normals, in single precision (the hot
+    // spot). The dot product is symmetric, bit for bit.
+    parallel_chunks(range.size(), 4096, [&](std::size_t, std::size_t begin, std::size_t end) {
+      for (std::size_t s = begin; s < end; ++s) {
+        const double dr = 2.0 - 2.0 * normals.col(w.slot_b[s]).dot(normals.col(w.slot_a[s]));
+        range[s] = std::exp(static_cast<float>(-dr * inv_r));
+      }
+    });
     parallel_chunks(w.filtered.size(), 1024, [&](std::size_t, std::size_t begin, std::size_t end) {
       for (std::size_t k = begin; k < end; ++k) {
-        const Index f = w.filtered[k];
         Eigen::Vector3d acc = Eigen::Vector3d::Zero();
         for (Index r = w.ring_offsets[k]; r < w.ring_offsets[k + 1]; ++r) {
-          const Index g = w.ring[static_cast<std::size_t>(r)];
-          // |n_g - n_f|^2 of unit normals; the range kernel in single precision (the hot spot).
-          const double dr = 2.0 - 2.0 * normals.col(g).dot(normals.col(f));
-          const auto range = static_cast<double>(std::exp(static_cast<float>(-dr * inv_r)));
-          acc += w.ring_weights[static_cast<std::size_t>(r)] * range * normals.col(g);
+          const auto ru = static_cast<std::size_t>(r);
+          const auto kernel = static_cast<double>(range[static_cast<std::size_t>(w.ring_slot[ru])]);
+          acc += w.ring_weights[ru] * kernel * normals.col(w.ring[ru]);
         }
         const double len = acc.norm();
-        if (len > 0.0) next.col(f) = acc / len;
+        if (len > 0.0) next.col(w.filtered[k]) = acc / len;
       }
     });
     normals.swap(next);
