@@ -154,7 +154,9 @@ Workspace make_workspace(const ContourFrame& frame, const std::vector<Triangle>&
     }
   }
   std::sort(w.faces.begin(), w.faces.end());
-  for (std::size_t l = 0; l < w.faces.size(); ++l) face_map[static_cast<std::size_t>(w.faces[l])] = static_cast<Index>(l);
+  for (std::size_t l = 0; l < w.faces.size(); ++l) {
+    face_map[static_cast<std::size_t>(w.faces[l])] = static_cast<Index>(l);
+  }
   w.filtered.resize(filtered.size());
   for (std::size_t k = 0; k < filtered.size(); ++k) w.filtered[k] = face_map[static_cast<std::size_t>(filtered[k])];
 
@@ -191,7 +193,8 @@ Workspace make_workspace(const ContourFrame& frame, const std::vector<Triangle>&
     w.moves[static_cast<std::size_t>(li)] = 1;
     w.on_contour[m] = frame.is_contour_vertex(i) ? 1 : 0;
     for (Index f : adj.incident_faces(i)) {
-      w.incident.push_back(filtered_of[static_cast<std::size_t>(face_map[static_cast<std::size_t>(f)])]);
+      const Index local_f = face_map[static_cast<std::size_t>(f)];
+      w.incident.push_back(filtered_of[static_cast<std::size_t>(local_f)]);
     }
     w.incident_offsets[m + 1] = static_cast<Index>(w.incident.size());
   }
