@@ -6,6 +6,7 @@
 #include "contourmesh/smooth/shapes.h"
 #include "smooth/test_meshes.h"
 #include "contourmesh/smooth/surface_metrics.h"
+#include "detail/parallel.h"
 
 #include <gtest/gtest.h>
 
@@ -108,6 +109,26 @@ TEST(CrossSliceOffSlice, LeavesContourVerticesAndKeepsTheOthersInTheirSlabs) {
       EXPECT_LT(z, bottom + 4.0) << "vertex " << i;
     }
   }
+}
+
+// The filter's loops run in fixed chunks, Jacobi style: the result is the same, bit for bit, on one thread
+// and on many. The cylinder is long enough for several chunks of every loop (faces, face pairs, moving
+// vertices).
+TEST(CrossSliceOffSlice, SameResultOnOneThreadAndOnSeveral) {
+  const Mesh mesh = noisy_off_slice_cylinder(cylinder(10.0, 51));
+  CrossSliceResult one, several;
+  {
+    const detail::ScopedWorkerCount threads(1);
+    one = cross_slice_smooth(mesh);
+  }
+  {
+    const detail::ScopedWorkerCount threads(5);
+    several = cross_slice_smooth(mesh);
+  }
+  EXPECT_GT(one.off_slice_moved, 2048u);
+  EXPECT_EQ(one.off_slice_moved, several.off_slice_moved);
+  EXPECT_TRUE(one.mesh.positions == several.mesh.positions);
+  EXPECT_EQ(one.labels, several.labels);
 }
 
 TEST(CrossSliceOffSlice, RejectsOptionsOutOfRange) {
