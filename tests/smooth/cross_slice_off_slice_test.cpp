@@ -115,7 +115,7 @@ TEST(CrossSliceOffSlice, LeavesContourVerticesAndKeepsTheOthersInTheirSlabs) {
 // and on many. The cylinder is long enough for several chunks of every loop (faces, face pairs, moving
 // vertices).
 TEST(CrossSliceOffSlice, SameResultOnOneThreadAndOnSeveral) {
-  const Mesh mesh = noisy_off_slice_cylinder(cylinder(10.0, 51));
+  const Mesh mesh = noisy_off_slice_cylinder(test::cylinder_spec(10.0, 51));
   CrossSliceResult one, several;
   {
     const detail::ScopedWorkerCount threads(1);
