@@ -64,8 +64,10 @@ class vtkContourTilingAlgorithm : public vtkPolyDataAlgorithm {
   ///@}
 
   ///@{
-  /// Contour pairs with m * n points up to this are tiled by the full minimum-area dynamic programme,
-  /// larger ones in a band of +/- BandFraction of the contour length (defaults 4,000,000 and 0.15).
+  /// Contour pairs of over 90,000 point pairs, both contours of 32 points or more, are tiled by the
+  /// minimum-area dynamic programme coarse to fine, whatever their size. Other pairs with m * n points
+  /// up to FullDynamicProgrammingLimit use the full programme, larger ones a band of +/- BandFraction
+  /// of the contour length around the diagonal (defaults 4,000,000 and 0.15).
   vtkSetClampMacro(FullDynamicProgrammingLimit, vtkIdType, 0, VTK_ID_MAX);
   vtkGetMacro(FullDynamicProgrammingLimit, vtkIdType);
   vtkSetClampMacro(BandFraction, double, 0.0, 1.0);
