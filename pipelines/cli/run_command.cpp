@@ -392,15 +392,16 @@ int run_run(const RunArgs& a, const std::string& output, const std::string& labe
     const auto finite_or_dash = [](double v) {
       std::ostringstream o;
       o << std::fixed << std::setprecision(3);
-      if (std::isfinite(v)) o << v; else o << "-";
+      if (std::isfinite(v)) o << v;
+      else o << "-";
       return o.str();
     };
     std::cout << std::setprecision(3) << "  accuracy    over the surface, unsmoothed -> smoothed: two-sided RMS "
               << surface_before.all.rms << " -> " << surface_after.all.rms << " mm; within " << std::setprecision(1)
-              << a.feature_radius << std::setprecision(3) << " mm of sharp features " << finite_or_dash(surface_before.feature.rms) << " -> "
-              << finite_or_dash(surface_after.feature.rms) << " mm; normal error " << std::setprecision(2)
-              << surface_before.all.normal_error_degrees << " -> " << surface_after.all.normal_error_degrees
-              << " deg\n";
+              << a.feature_radius << std::setprecision(3) << " mm of sharp features "
+              << finite_or_dash(surface_before.feature.rms) << " -> " << finite_or_dash(surface_after.feature.rms)
+              << " mm; normal error " << std::setprecision(2) << surface_before.all.normal_error_degrees << " -> "
+              << surface_after.all.normal_error_degrees << " deg\n";
   }
   std::cout << std::setprecision(2) << "  seconds     volume " << seconds_volume << ", segment "
             << rec.report.seconds_segment << ", tile " << rec.report.seconds_tile << ", smooth " << seconds_smooth
