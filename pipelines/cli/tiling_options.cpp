@@ -45,8 +45,8 @@ void add_tiling_options(CLI::App* cmd, TilingArgs& args) {
                   "... and of the larger, [0, 1) (a speck does not continue a contour 100 times its size)")
       ->capture_default_str();
   cmd->add_option("--full-dp-limit", args.full_dp_limit,
-                  "Contour pairs with m x n points up to this get the full minimum-area programme, larger ones a "
-                  "band around the diagonal")
+                  "Contour pairs that the coarse-to-fine programme cannot serve (a contour under 32 points) get "
+                  "the full minimum-area programme up to m x n points, larger ones a band around the diagonal")
       ->capture_default_str();
   cmd->add_option("--band-fraction", args.band_fraction,
                   "Half-width of that band, as a fraction of the contour's points, 0 to 1")

@@ -31,27 +31,15 @@ vtkStandardNewMacro(vtkContourPolylinesToSurfaceFilter);
 vtkContourPolylinesToSurfaceFilter::vtkContourPolylinesToSurfaceFilter()
     : SlicewiseVolume(std::numeric_limits<double>::quiet_NaN()) {
   this->SetSliceIdArrayName("SliceId");
-  this->SetContourIdArrayName("ContourId");
-  this->SetContourIndexArrayName("ContourIndex");
 }
 
 vtkContourPolylinesToSurfaceFilter::~vtkContourPolylinesToSurfaceFilter() {
   this->SetSliceIdArrayName(nullptr);
-  this->SetContourIdArrayName(nullptr);
-  this->SetContourIndexArrayName(nullptr);
 }
 
 int vtkContourPolylinesToSurfaceFilter::FillInputPortInformation(int, vtkInformation* info) {
   info->Set(vtkAlgorithm::INPUT_REQUIRED_DATA_TYPE(), "vtkPolyData");
   return 1;
-}
-
-bool vtkContourPolylinesToSurfaceFilter::AbortRequested() {
-#if VTK_MAJOR_VERSION > 9 || (VTK_MAJOR_VERSION == 9 && VTK_MINOR_VERSION >= 3)
-  return this->CheckAbort();
-#else
-  return this->GetAbortExecute() != 0;  // vtkAlgorithm::CheckAbort arrived in VTK 9.3
-#endif
 }
 
 namespace {
@@ -192,22 +180,5 @@ void vtkContourPolylinesToSurfaceFilter::PrintSelf(ostream& os, vtkIndent indent
   os << indent << "DriftAlignment: " << (this->DriftAlignment == DRIFT_ALIGNMENT_NONE ? "None" : "Centroids") << "\n";
   os << indent << "SingleSliceContours: " << (this->SingleSliceContours == SINGLE_SLICE_DROP ? "Drop" : "Slab") << "\n";
   os << indent << "SlabThickness: " << this->SlabThickness << "\n";
-  os << indent << "EndCaps: " << (this->EndCaps == END_CAPS_AT_END_SLICE ? "AtEndSlice" : "HalfSpacing") << "\n";
-  os << indent << "CapRefinement: " << (this->CapRefinement == CAP_REFINEMENT_EAR_CLIPPING ? "EarClipping" : "Interior")
-     << "\n";
-  os << indent << "MinOverlapFraction: " << this->MinOverlapFraction << "\n";
-  os << indent << "FullDynamicProgrammingLimit: " << this->FullDynamicProgrammingLimit << "\n";
-  os << indent << "BandFraction: " << this->BandFraction << "\n";
-  os << indent << "Branching: " << (this->Branching == BRANCHING_MID_PLANE ? "MidPlane" : "Interpolated") << "\n";
-  os << indent << "MaxBranchingDepth: " << this->MaxBranchingDepth << "\n";
-  os << indent << "BandRefinement: " << (this->BandRefinement == BAND_REFINEMENT_NONE ? "None" : "Interpolated")
-     << "\n";
-  os << indent << "MaxBandSliverShare: " << this->MaxBandSliverShare << "\n";
-  os << indent << "MaxBandAspect: " << this->MaxBandAspect << "\n";
-  os << indent << "MaxIntermediateContours: " << this->MaxIntermediateContours << "\n";
-  os << indent << "InterpolationGrid: " << this->InterpolationGrid << "\n";
-  os << indent << "MinOverlapOfLarger: " << this->MinOverlapOfLarger << "\n";
-  os << indent << "ContourIdArrayName: " << str(this->ContourIdArrayName) << "\n";
-  os << indent << "ContourIndexArrayName: " << str(this->ContourIndexArrayName) << "\n";
   os << indent << "SlicewiseVolume: " << this->SlicewiseVolume << "\n";
 }

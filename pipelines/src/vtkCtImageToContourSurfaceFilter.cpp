@@ -27,14 +27,10 @@ vtkStandardNewMacro(vtkCtImageToContourSurfaceFilter);
 
 vtkCtImageToContourSurfaceFilter::vtkCtImageToContourSurfaceFilter()
     : ThresholdUsed(std::numeric_limits<double>::quiet_NaN()) {
-  this->SetContourIdArrayName("ContourId");
-  this->SetContourIndexArrayName("ContourIndex");
   this->SetInputArrayToProcess(0, 0, 0, vtkDataObject::FIELD_ASSOCIATION_POINTS, vtkDataSetAttributes::SCALARS);
 }
 
 vtkCtImageToContourSurfaceFilter::~vtkCtImageToContourSurfaceFilter() {
-  this->SetContourIdArrayName(nullptr);
-  this->SetContourIndexArrayName(nullptr);
 }
 
 int vtkCtImageToContourSurfaceFilter::FillInputPortInformation(int, vtkInformation* info) {
@@ -52,14 +48,6 @@ int vtkCtImageToContourSurfaceFilter::RequestUpdateExtent(vtkInformation*, vtkIn
     in->Set(vtkStreamingDemandDrivenPipeline::EXACT_EXTENT(), 1);
   }
   return 1;
-}
-
-bool vtkCtImageToContourSurfaceFilter::AbortRequested() {
-#if VTK_MAJOR_VERSION > 9 || (VTK_MAJOR_VERSION == 9 && VTK_MINOR_VERSION >= 3)
-  return this->CheckAbort();
-#else
-  return this->GetAbortExecute() != 0;  // vtkAlgorithm::CheckAbort arrived in VTK 9.3
-#endif
 }
 
 int vtkCtImageToContourSurfaceFilter::RequestData(vtkInformation*, vtkInformationVector** inputVector,
@@ -130,7 +118,6 @@ int vtkCtImageToContourSurfaceFilter::RequestData(vtkInformation*, vtkInformatio
 
 void vtkCtImageToContourSurfaceFilter::PrintSelf(ostream& os, vtkIndent indent) {
   this->Superclass::PrintSelf(os, indent);
-  auto str = [](const char* s) { return s != nullptr ? s : "(none)"; };
   os << indent << "ThresholdMethod: " << (this->ThresholdMethod == THRESHOLD_OTSU ? "Otsu" : "Fixed") << "\n";
   os << indent << "Threshold: " << this->Threshold << "\n";
   os << indent << "ThresholdUsed: " << this->ThresholdUsed << "\n";
@@ -144,24 +131,7 @@ void vtkCtImageToContourSurfaceFilter::PrintSelf(ostream& os, vtkIndent indent) 
   os << indent << "FillHoles: " << (this->FillHoles ? "On" : "Off") << "\n";
   os << indent << "Sampling: " << this->Sampling << (this->Sampling > 0.0 ? "" : " (pixel spacing)") << "\n";
   os << indent << "MinContourLength: " << this->MinContourLength << "\n";
-  os << indent << "EndCaps: " << (this->EndCaps == END_CAPS_AT_END_SLICE ? "AtEndSlice" : "HalfSpacing") << "\n";
-  os << indent << "CapRefinement: " << (this->CapRefinement == CAP_REFINEMENT_EAR_CLIPPING ? "EarClipping" : "Interior")
-     << "\n";
   os << indent << "OffSlicePlacement: " << (this->OffSlicePlacement == OFF_SLICE_TILED ? "Tiled" : "ImageCrossing")
      << "\n";
-  os << indent << "MinOverlapFraction: " << this->MinOverlapFraction << "\n";
-  os << indent << "FullDynamicProgrammingLimit: " << this->FullDynamicProgrammingLimit << "\n";
-  os << indent << "BandFraction: " << this->BandFraction << "\n";
-  os << indent << "Branching: " << (this->Branching == BRANCHING_MID_PLANE ? "MidPlane" : "Interpolated") << "\n";
-  os << indent << "MaxBranchingDepth: " << this->MaxBranchingDepth << "\n";
-  os << indent << "BandRefinement: " << (this->BandRefinement == BAND_REFINEMENT_NONE ? "None" : "Interpolated")
-     << "\n";
-  os << indent << "MaxBandSliverShare: " << this->MaxBandSliverShare << "\n";
-  os << indent << "MaxBandAspect: " << this->MaxBandAspect << "\n";
-  os << indent << "MaxIntermediateContours: " << this->MaxIntermediateContours << "\n";
-  os << indent << "InterpolationGrid: " << this->InterpolationGrid << "\n";
-  os << indent << "MinOverlapOfLarger: " << this->MinOverlapOfLarger << "\n";
   os << indent << "MinComponentVoxels: " << this->MinComponentVoxels << "\n";
-  os << indent << "ContourIdArrayName: " << str(this->ContourIdArrayName) << "\n";
-  os << indent << "ContourIndexArrayName: " << str(this->ContourIndexArrayName) << "\n";
 }

@@ -1,8 +1,10 @@
 // SPDX-License-Identifier: BSD-3-Clause
-// Private helper of the two surface filters (CT image, contour polylines): both carry the tiler's
-// properties under the same names and enumerators; this turns them into the library's TilingOptions
-// once, so that an option added to the tiler reaches both filters through one place.
+// Private helper of the two surface filters (CT image, contour polylines): their common base
+// vtkContourTilingAlgorithm carries the tiler's properties; this turns them into the library's
+// TilingOptions, so that an option added to the tiler reaches both filters through one place.
 #pragma once
+
+#include "contourmesh/vtk/vtkContourTilingAlgorithm.h"
 
 #include <contourmesh/reconstruct/tiling.h>
 
@@ -10,10 +12,9 @@
 
 namespace contourmesh::filter_detail {
 
-/// The TilingOptions that `filter`'s tiling properties select (Filter: vtkCtImageToContourSurfaceFilter
-/// or vtkContourPolylinesToSurfaceFilter; VTK's getters are not const).
-template <typename Filter>
-[[nodiscard]] TilingOptions tiling_options(Filter& filter) {
+/// The TilingOptions that `filter`'s tiling properties select (VTK's getters are not const).
+[[nodiscard]] inline TilingOptions tiling_options(vtkContourTilingAlgorithm& filter) {
+  using Filter = vtkContourTilingAlgorithm;
   TilingOptions t;
   t.end_caps = filter.GetEndCaps() == Filter::END_CAPS_AT_END_SLICE ? EndCaps::AtEndSlice : EndCaps::HalfSpacing;
   t.cap_refinement = filter.GetCapRefinement() == Filter::CAP_REFINEMENT_EAR_CLIPPING ? CapRefinement::EarClipping

@@ -14,6 +14,7 @@
 // angle is under 10 degrees; the share of vertices without ids. Real scans (with --data): the same mesh
 // measures, at the thresholds of the tiling targets.
 #include <contourmesh/reconstruct/phantom.h>
+#include <contourmesh/reconstruct/phantom_truth.h>
 #include <contourmesh/reconstruct/reconstruction.h>
 #include <contourmesh/reconstruct/volume.h>
 #include <contourmesh/smooth/errors.h>
@@ -96,13 +97,9 @@ Row phantom_row(PhantomShape shape, double contour_noise) {
   const Reconstruction r = reconstruct(*image, ro);
   Row row = row_of(std::string(to_string(shape)), *image, r, ro.segmentation.threshold);
   row.expected_euler = phantom.euler_characteristic;
-  SurfaceTruth truth;
-  truth.distance = phantom.sdf;
-  truth.normal = phantom.normal;
-  Eigen::AlignedBox3d box = phantom.bounds;
-  box.min().array() -= 2.0;
-  box.max().array() += 2.0;
-  truth.samples = sample_implicit_surface(phantom.sdf, phantom.normal, box, 0.25);
+  PhantomTruthOptions truth_options;
+  truth_options.sample_spacing = 0.25;
+  const SurfaceTruth truth = phantom_surface_truth(phantom, truth_options);
   const SurfaceAccuracy a = surface_accuracy(r.mesh, truth);
   row.hausdorff = a.all.hausdorff;
   row.rms = a.all.rms;

@@ -374,6 +374,13 @@ TEST_F(Cli, RunWithNoInputIsTheWholePipelineOnAPhantom) {
   EXPECT_GT(j["edge_vertices"].get<int>(), 0);
   EXPECT_LT(std::abs(j["volume_change_percent"].get<double>()), 3.0);
   EXPECT_LT(j["rms_distance_after"].get<double>(), 0.5) << "mm from the analytic femur";
+  // Measured over the surfaces, as compare does: the default does no harm to the distance (the
+  // do-no-harm bar, 1.05 x + 0.01 mm) and lowers the normal error.
+  const double before = j["surface_rms_before"].get<double>();
+  EXPECT_GT(before, 0.0);
+  EXPECT_LE(j["surface_rms_after"].get<double>(), 1.05 * before + 0.01);
+  EXPECT_LT(j["normal_error_degrees_after"].get<double>(), j["normal_error_degrees_before"].get<double>());
+  EXPECT_TRUE(std::isfinite(j["surface_feature_rms_after"].get<double>()));
   for (const char* key : {"seconds_segment", "seconds_tile", "seconds_detect", "seconds_smooth"}) {
     EXPECT_TRUE(j.contains(key)) << key;
   }

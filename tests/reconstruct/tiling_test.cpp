@@ -582,21 +582,27 @@ TEST(Tiling, LimitsStopTheTilingBeforeItAllocates) {
   o.limits.max_vertices = 6100;  // the points fit, the end-cap copies do not
   EXPECT_NE(tiling_error(s, o).find("the mesh would have more than 6100 vertices"), std::string::npos);
   o.limits.max_vertices = kDefaultMaxVertices;
-  // The banded programme over +/- 15 % of the 2000 x 2000 pairs needs about 11 MB.
-  o.full_dp_limit = 1'000'000;
+  // Two slices of 6000 points: the mesh (about 3 MB) fits in 5 MB, the programme of the pair does not
+  // (coarse to fine: a corridor of about 10 MB; the full grid would need 324 MB), and is refused before
+  // it is allocated.
+  ContourStack big = stack_of(2);
+  for (auto& slice : big.slices) slice.contours.push_back(circle(0, 0, 100, 6000));
   o.limits.max_memory_bytes = 5'000'000;
-  const std::string e = tiling_error(s, o);
-  EXPECT_EQ(e.rfind("tiling: contours of 2000 and 2000 points: needs about ", 0), 0u) << e;
+  const std::string e = tiling_error(big, o);
+  EXPECT_EQ(e.rfind("tiling: contours of 6000 and 6000 points: needs about ", 0), 0u) << e;
   EXPECT_NE(e.find(" MB of memory, more than the 5 MB allowed"), std::string::npos) << e;
   o.limits.max_memory_bytes = 0;
   EXPECT_EQ(tiling_error(s, o), "");
 }
 
-TEST(Tiling, LargeContoursUseTheBandedProgramme) {
+TEST(Tiling, LargeContoursAreTiledCoarseToFine) {
+  // 2500 x 2500 point pairs: the full grid needs 56 MB, the band of +/- 15 % around the diagonal 17 MB;
+  // the coarse-to-fine corridor fits in 3 MB whatever full_dp_limit says.
   ContourStack s = stack_of(3);
   for (auto& slice : s.slices) slice.contours.push_back(circle(0, 0, 100, 2500));
   TilingOptions o;
-  o.full_dp_limit = 1000;  // force the band
+  o.full_dp_limit = 1000;
+  o.limits.max_memory_bytes = 3'000'000;
   o.cap_refinement = CapRefinement::EarClipping;  // the bands are under test, not the 31000 mm^2 caps
   expect_sound(tile_contours(s, o).mesh, 2, 1);
 }

@@ -4,7 +4,9 @@
 #include "contourmesh/smooth/cross_slice.h"
 #include "contourmesh/smooth/errors.h"
 #include "contourmesh/smooth/shapes.h"
+#include "smooth/test_meshes.h"
 #include "contourmesh/smooth/surface_metrics.h"
+#include "detail/parallel.h"
 
 #include <gtest/gtest.h>
 
@@ -16,17 +18,6 @@ namespace contourmesh {
 namespace {
 
 constexpr double kPi = std::numbers::pi;
-
-ContourStackSpec cylinder(double radius, int slices) {
-  ContourStackSpec spec;
-  spec.curve = [radius](double t) {
-    return Eigen::Vector2d(radius * std::cos(2 * kPi * t), radius * std::sin(2 * kPi * t));
-  };
-  spec.slices = slices;
-  spec.points_per_contour = 90;
-  spec.slice_spacing = 2.0;
-  return spec;
-}
 
 struct Accuracy {
   double rms = 0.0;           ///< of the distance of surface samples to the truth, mm
@@ -79,7 +70,7 @@ Mesh noisy_off_slice_cylinder(const ContourStackSpec& spec) {
 }
 
 TEST(CrossSliceOffSlice, FilteredNormalsLowerTheNormalErrorWithoutRaisingTheDistance) {
-  const ContourStackSpec spec = cylinder(10.0, 21);
+  const ContourStackSpec spec = test::cylinder_spec(10.0, 21);
   const ScalarField sdf = contour_stack_sdf(spec);
   const Mesh mesh = noisy_off_slice_cylinder(spec);
   CrossSliceOptions without;
@@ -94,7 +85,7 @@ TEST(CrossSliceOffSlice, FilteredNormalsLowerTheNormalErrorWithoutRaisingTheDist
 }
 
 TEST(CrossSliceOffSlice, LeavesContourVerticesAndKeepsTheOthersInTheirSlabs) {
-  const ContourStackSpec spec = cylinder(10.0, 21);
+  const ContourStackSpec spec = test::cylinder_spec(10.0, 21);
   const Mesh mesh = noisy_off_slice_cylinder(spec);
   const CrossSliceResult r = cross_slice_smooth(mesh);
   CrossSliceOptions without;
@@ -120,8 +111,28 @@ TEST(CrossSliceOffSlice, LeavesContourVerticesAndKeepsTheOthersInTheirSlabs) {
   }
 }
 
+// The filter's loops run in fixed chunks, Jacobi style: the result is the same, bit for bit, on one thread
+// and on many. The cylinder is long enough for several chunks of every loop (faces, face pairs, moving
+// vertices).
+TEST(CrossSliceOffSlice, SameResultOnOneThreadAndOnSeveral) {
+  const Mesh mesh = noisy_off_slice_cylinder(test::cylinder_spec(10.0, 51));
+  CrossSliceResult one, several;
+  {
+    const detail::ScopedWorkerCount threads(1);
+    one = cross_slice_smooth(mesh);
+  }
+  {
+    const detail::ScopedWorkerCount threads(5);
+    several = cross_slice_smooth(mesh);
+  }
+  EXPECT_GT(one.off_slice_moved, 2048u);
+  EXPECT_EQ(one.off_slice_moved, several.off_slice_moved);
+  EXPECT_TRUE(one.mesh.positions == several.mesh.positions);
+  EXPECT_EQ(one.labels, several.labels);
+}
+
 TEST(CrossSliceOffSlice, RejectsOptionsOutOfRange) {
-  const Mesh mesh = make_contour_stack(cylinder(10.0, 6));
+  const Mesh mesh = make_contour_stack(test::cylinder_spec(10.0, 6));
   CrossSliceOptions o;
   o.off_slice.sigma_angle_degrees = 0.0;
   EXPECT_THROW((void)cross_slice_smooth(mesh, o), InvalidInputError);

@@ -2,27 +2,14 @@
 #include "contourmesh/smooth/cross_slice.h"
 #include "contourmesh/smooth/errors.h"
 #include "contourmesh/smooth/shapes.h"
+#include "smooth/test_meshes.h"
 
 #include <gtest/gtest.h>
 
 #include <cmath>
-#include <numbers>
 
 namespace contourmesh {
 namespace {
-
-constexpr double kPi = std::numbers::pi;
-
-ContourStackSpec cylinder(double radius, int slices) {
-  ContourStackSpec spec;
-  spec.curve = [radius](double t) {
-    return Eigen::Vector2d(radius * std::cos(2 * kPi * t), radius * std::sin(2 * kPi * t));
-  };
-  spec.slices = slices;
-  spec.points_per_contour = 90;
-  spec.slice_spacing = 2.0;
-  return spec;
-}
 
 // Largest |distance from the axis - radius| over the vertices of slice s.
 double radial_error(const Mesh& mesh, int s, double radius) {
@@ -35,7 +22,7 @@ double radial_error(const Mesh& mesh, int s, double radius) {
 }
 
 TEST(CrossSlice, LeavesAnExactCylinderInPlace) {
-  const Mesh mesh = make_contour_stack(cylinder(10.0, 20));
+  const Mesh mesh = make_contour_stack(test::cylinder_spec(10.0, 20));
   CrossSliceOptions options;
   options.off_slice.filter = OffSliceFilter::None;
   const CrossSliceResult r = cross_slice_smooth(mesh, options);
@@ -51,7 +38,7 @@ TEST(CrossSlice, LeavesAnExactCylinderInPlace) {
 TEST(CrossSlice, PullsAContourDisplacedAloneBackTowardsItsNeighbours) {
   // Contour 10 is segmented 0.5 mm too large; its neighbours are right. The noise level is given (the
   // estimate from this mesh, whose other contours are exact, would be zero).
-  Mesh mesh = make_contour_stack(cylinder(10.0, 20));
+  Mesh mesh = make_contour_stack(test::cylinder_spec(10.0, 20));
   for (Index i = 0; i < mesh.num_vertices(); ++i) {
     if (mesh.slice_ids[i] == 10) mesh.positions.col(i).head<2>() *= 10.5 / 10.0;
   }
@@ -62,7 +49,7 @@ TEST(CrossSlice, PullsAContourDisplacedAloneBackTowardsItsNeighbours) {
 }
 
 TEST(CrossSlice, KeepsContourVerticesInTheirSlicePlanes) {
-  Mesh mesh = make_contour_stack(cylinder(10.0, 20));
+  Mesh mesh = make_contour_stack(test::cylinder_spec(10.0, 20));
   add_noise(mesh, {.sigma = 0.2, .seed = 3, .direction = NoiseDirection::InPlane});
   const CrossSliceResult r = cross_slice_smooth(mesh);
   for (Index i = 0; i < mesh.num_vertices(); ++i) {
@@ -75,7 +62,7 @@ TEST(CrossSlice, KeepsContourVerticesInTheirSlicePlanes) {
 // A vertex without ids inside a contour (as a repaired file may hold) breaks that contour open: its ends
 // have one contour neighbour each. Profiles that reach such an end stop there instead of walking off it.
 TEST(CrossSlice, ContoursBrokenOpenByAVertexWithoutIdsAreSmoothedToo) {
-  Mesh mesh = make_contour_stack(cylinder(10.0, 20));
+  Mesh mesh = make_contour_stack(test::cylinder_spec(10.0, 20));
   add_noise(mesh, {.sigma = 0.2, .seed = 3, .direction = NoiseDirection::InPlane});
   for (Index i = 0; i < mesh.num_vertices(); ++i) {
     if (mesh.slice_ids[i] >= 0 && i % 97 == 0) mesh.slice_ids[i] = mesh.contour_ids[i] = kNoId;
@@ -91,7 +78,7 @@ TEST(CrossSlice, ContoursBrokenOpenByAVertexWithoutIdsAreSmoothedToo) {
 // instead of to the next slice: no edge joins two contour vertices of different slices. The slice
 // spacing used to come from such edges, and smoothing refused the mesh.
 TEST(CrossSlice, ContoursJoinedOnlyThroughIntermediateContoursAreSmoothed) {
-  Mesh mesh = make_contour_stack(cylinder(10.0, 21));
+  Mesh mesh = make_contour_stack(test::cylinder_spec(10.0, 21));
   for (Index i = 0; i < mesh.num_vertices(); ++i) {
     if (mesh.slice_ids[i] < 0) continue;
     if (mesh.slice_ids[i] % 2 == 1) mesh.slice_ids[i] = mesh.contour_ids[i] = kNoId;

@@ -3,6 +3,7 @@
 #pragma once
 
 #include <contourmesh/smooth/mesh.h>
+#include <contourmesh/smooth/shapes.h>
 
 #include <cmath>
 
@@ -30,6 +31,19 @@ inline Mesh tetrahedron() {
       0, 0, 0, 1;
   m.triangles = {{0, 2, 1}, {0, 1, 3}, {0, 3, 2}, {1, 2, 3}};
   return m;
+}
+
+/// The contour-stack spec of a circular cylinder of `radius` mm: `slices` contours of 90 points,
+/// 2 mm apart (make_contour_stack caps both ends).
+inline ContourStackSpec cylinder_spec(double radius, int slices) {
+  ContourStackSpec spec;
+  spec.curve = [radius](double t) {
+    return Eigen::Vector2d(radius * std::cos(2 * M_PI * t), radius * std::sin(2 * M_PI * t));
+  };
+  spec.slices = slices;
+  spec.points_per_contour = 90;
+  spec.slice_spacing = 2.0;
+  return spec;
 }
 
 }  // namespace contourmesh::test

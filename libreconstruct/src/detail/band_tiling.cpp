@@ -203,16 +203,20 @@ std::vector<BandTriangle> minimum_area_band(const Polygon& lower, double wl, con
   const double cells = static_cast<double>(m) * static_cast<double>(n);
   std::vector<int> lo, hi;
   std::vector<std::uint8_t> moves;
-  if (cells > static_cast<double>(options.full_dp_limit)) {
-    diagonal_corridor(m, n, std::max({8, static_cast<int>(std::ceil(options.band_fraction * n)), (n + m - 1) / m + 2}),
-                      lo, hi);
-    moves = least_cost_path(P, Q, lo, hi, span_weight, options);
-  } else if (cells > kCoarseToFineCells && std::min(m, n) >= 32) {
+  // Large pairs of rings: coarse to fine, whatever their size (a few percent of the full grid's cells).
+  // Pairs it cannot serve (a ring under 32 points) get the full grid up to options.full_dp_limit cells,
+  // and above it the band around the arc-length diagonal; so would a corridor that missed the end.
+  if (cells > kCoarseToFineCells && std::min(m, n) >= 32) {
     const int k = std::max(2, static_cast<int>(std::round(std::sqrt(cells / kCoarseCells))));
     coarse_corridor(P, Q, k, 2 * k + 2, span_weight, options, lo, hi);
     moves = least_cost_path(P, Q, lo, hi, span_weight, options);
   }
-  if (moves.empty()) {  // small rings, or a corridor that missed the end
+  if (moves.empty() && cells > static_cast<double>(options.full_dp_limit)) {
+    diagonal_corridor(m, n, std::max({8, static_cast<int>(std::ceil(options.band_fraction * n)), (n + m - 1) / m + 2}),
+                      lo, hi);
+    moves = least_cost_path(P, Q, lo, hi, span_weight, options);
+  }
+  if (moves.empty()) {  // small rings, or a corridor or band that missed the end
     diagonal_corridor(m, n, n, lo, hi);
     moves = least_cost_path(P, Q, lo, hi, span_weight, options);
   }

@@ -21,9 +21,10 @@ using BandTriangle = std::array<BandCorner, 3>;
 /// (on plane wu > wl), both with the same orientation, by dynamic programming over the m x n grid of
 /// point pairs, starting at lower[lower_start] and its nearest upper point where the upper contour runs
 /// the same way. With `span_weight` > 0, each edge across adds span_weight times its squared length
-/// to the cost. The full grid while m * n is at most
-/// options.full_dp_limit, else a band of +/- options.band_fraction of the points around the arc-length
-/// diagonal. The path leaves the start edge along one ring and returns along the other, so the start
+/// to the cost. Over 90 000 pairs with both rings of 32 points or more: coarse to fine (the programme on
+/// every k-th point, then the full rings in a corridor around its path); otherwise the full grid while
+/// m * n is at most options.full_dp_limit, else a band of +/- options.band_fraction of the points around
+/// the arc-length diagonal. The path leaves the start edge along one ring and returns along the other, so the start
 /// edge is the only one used twice and the band is an annulus. Triangles are oriented so that, for
 /// counter-clockwise rings, normals point away from the enclosed region. Throws LimitError when the
 /// programme would exceed options.limits' memory budget.

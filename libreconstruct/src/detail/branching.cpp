@@ -233,7 +233,8 @@ bool tile_nested(const Level& lower, const Level& upper, const std::vector<int>&
 
 }  // namespace
 
-void tile_composite(const Level& lower, const Level& upper, const TilingOptions& options, SlabMesh& out) {
+void tile_composite(const Level& lower, const Level& upper, const TilingOptions& options, SlabMesh& out,
+                    std::vector<DeferredBand>* deferred) {
   const Correspondence links = correspond(lower, upper, options);
   const std::size_t na = lower.contours.size(), nb = upper.contours.size();
   const double w0 = lower.w, w1 = upper.w;
@@ -277,6 +278,10 @@ void tile_composite(const Level& lower, const Level& upper, const TilingOptions&
         U.size() > 1 ? composite_of(upper, U, lower, both ? w0 + 2.0 * (w1 - w0) / 3.0 : 0.5 * (w0 + w1), false, out)
                      : upper.contours[static_cast<std::size_t>(U[0])];
     const double wu = U.size() > 1 ? (both ? w0 + 2.0 * (w1 - w0) / 3.0 : 0.5 * (w0 + w1)) : w1;
+    if (deferred) {
+      deferred->push_back({lower_ring, upper_ring, wl, wu, out.triangles.size()});
+      continue;
+    }
     emit_band(lower_ring, upper_ring,
               untwisted_band(lower_ring.points, wl, upper_ring.points, wu, options,
                              0.5 * (lower_ring.spacing() + upper_ring.spacing())),
@@ -302,6 +307,23 @@ void tile_composite(const Level& lower, const Level& upper, const TilingOptions&
   };
   close_ends(lower, links.up, links.opens_up, true);
   close_ends(upper, links.down, links.opens_down, false);
+}
+
+void finish_composite(const std::vector<DeferredBand>& deferred, const TilingOptions& options, SlabMesh& out) {
+  std::vector<SlabMesh> bands(deferred.size());
+  for (std::size_t k = 0; k < deferred.size(); ++k) {
+    const DeferredBand& d = deferred[k];
+    emit_band(d.lower, d.upper,
+              untwisted_band(d.lower.points, d.wl, d.upper.points, d.wu, options,
+                             0.5 * (d.lower.spacing() + d.upper.spacing())),
+              bands[k]);
+  }
+  // From the last, so that the earlier positions still hold.
+  for (std::size_t k = deferred.size(); k-- > 0;) {
+    const auto at = static_cast<std::ptrdiff_t>(deferred[k].position);
+    out.triangles.insert(out.triangles.begin() + at, bands[k].triangles.begin(), bands[k].triangles.end());
+    out.roles.insert(out.roles.begin() + at, bands[k].roles.begin(), bands[k].roles.end());
+  }
 }
 
 }  // namespace contourmesh::detail

@@ -5,6 +5,9 @@
 
 #include "detail/tiling_types.h"
 
+#include <cstddef>
+#include <vector>
+
 namespace contourmesh::detail {
 
 /// Tiles the contours of one group between `lower` and `upper` (every contour of both levels belongs
@@ -16,6 +19,21 @@ namespace contourmesh::detail {
 /// Bridge). A hole that opens to the outside joins its outer contour's composite; a hole that ends is
 /// capped facing into the cavity (half the slab beyond its plane with EndCaps::HalfSpacing); an outer
 /// contour with no partner is capped with its holes.
-void tile_composite(const Level& lower, const Level& upper, const TilingOptions& options, SlabMesh& out);
+///
+/// With `deferred`, the bands that join a composite contour to the other side (the costly part: rings of
+/// all of a side's contours) are not solved but listed there; every other face is added. The faces
+/// added so far then have the composite's bridge area, and a lower bound of its flat and sliver area,
+/// so that a caller can decide whether it needs the composite at all before finish_composite.
+struct DeferredBand {
+  LevelContour lower, upper;
+  double wl = 0.0, wu = 0.0;
+  std::size_t position = 0;  ///< index among the mesh's faces where the band's faces belong
+};
+void tile_composite(const Level& lower, const Level& upper, const TilingOptions& options, SlabMesh& out,
+                    std::vector<DeferredBand>* deferred = nullptr);
+
+/// Solves the bands tile_composite deferred into `out` and inserts their faces where it would have
+/// added them: the mesh is then the one tile_composite makes without `deferred`, face for face.
+void finish_composite(const std::vector<DeferredBand>& deferred, const TilingOptions& options, SlabMesh& out);
 
 }  // namespace contourmesh::detail

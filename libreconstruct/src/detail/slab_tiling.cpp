@@ -328,27 +328,93 @@ class SlabTiler {
     return true;
   }
 
+  static bool wants_halves(const TilingDefects& d) {
+    // The halves cost a level of interpolation and the tilings of both; they are tried when the
+    // composite has flat bridges or leaves a noticeable share of its area flat or in slivers.
+    return d.bridge_area > 0.0 || d.score() > kGoodEnough * d.area;
+  }
+
   // A group whose topology changes: the composite of the finest level, or the halves of the slab
   // through the interpolated mid-level, whichever leaves less poorly shaped area; when both are worse
   // than parting the group, the parting.
+  //
+  // Where halves may be tried, the composite's costly bands are solved only when the choice needs them:
+  // without them the composite already has its bridges and a lower bound of its flat and sliver area
+  // (its bands only add faces), which is often enough to know that the halves beat it. The choice, and
+  // the mesh, are those of solving the composite first.
   void topology_change(const Level& lower, const Level& upper, Span span, int depth, SlabMesh& out) {
+    const bool may_halve = options_.branching == Branching::Interpolated && depth < options_.max_branching_depth;
     SlabMesh composite = out.scratch();
-    tile_composite(lower, upper, options_, composite);
+    std::vector<DeferredBand> pending;
+    tile_composite(lower, upper, options_, composite, may_halve ? &pending : nullptr);
+    const TilingDefects partial = measure_defects(composite);
+    if (pending.empty() || partial.poor_area <= 0.0) {
+      finish_composite(pending, options_, composite);
+      settle_composite(lower, upper, span, depth, std::move(composite), measure_defects(composite), out);
+      return;
+    }
+    // The composite has poorly shaped faces whatever its bands: the lifted transition is tried.
+    SlabMesh lifted = out.scratch();
+    std::optional<TilingDefects> lifted_defects;
+    if (lifted_transition(lower, upper, lifted)) lifted_defects = measure_defects(lifted);
+    if (lifted_defects && lifted_defects->score() < partial.score()) {  // it beats the composite
+      settle(lower, upper, span, depth, std::move(lifted), *lifted_defects, out);
+      return;
+    }
+    if (!(partial.bridge_area > 0.0 && (!lifted_defects || wants_halves(*lifted_defects)))) {
+      finish_composite(pending, options_, composite);
+      TilingDefects best = measure_defects(composite);
+      if (lifted_defects && lifted_defects->score() < best.score()) {
+        settle(lower, upper, span, depth, std::move(lifted), *lifted_defects, out);
+      } else {
+        settle(lower, upper, span, depth, std::move(composite), best, out);
+      }
+      return;
+    }
+    // Halves are tried whichever of the composite and the lifted transition wins.
+    Halves halves = build_halves(lower, upper, span, depth, out);
+    const bool beats_lifted = !lifted_defects || halves.defects.score() < lifted_defects->score();
+    if (halves.built && beats_lifted && halves.defects.score() < partial.score()) {
+      if (!try_parting(lower, upper, halves.defects, out)) out.absorb(std::move(halves.mesh));
+      return;
+    }
+    finish_composite(pending, options_, composite);
     TilingDefects best = measure_defects(composite);
+    SlabMesh* chosen = &composite;
+    if (lifted_defects && lifted_defects->score() < best.score()) {
+      best = *lifted_defects;
+      chosen = &lifted;
+    }
+    if (halves.built && halves.defects.score() < best.score()) {
+      if (!try_parting(lower, upper, halves.defects, out)) out.absorb(std::move(halves.mesh));
+      return;
+    }
+    halves.undo();
+    if (!try_parting(lower, upper, best, out)) out.absorb(std::move(*chosen));
+  }
+
+  // The complete composite `composite` with defects `best`: the lifted transition instead when it has
+  // less poorly shaped area, then settle.
+  void settle_composite(const Level& lower, const Level& upper, Span span, int depth, SlabMesh&& composite,
+                        TilingDefects best, SlabMesh& out) {
     if (best.poor_area > 0.0) {
       SlabMesh lifted = out.scratch();
       if (lifted_transition(lower, upper, lifted)) {
         const TilingDefects d = measure_defects(lifted);
         if (d.score() < best.score()) {
-          best = d;
-          composite = std::move(lifted);
+          settle(lower, upper, span, depth, std::move(lifted), d, out);
+          return;
         }
       }
     }
-    // The halves cost a level of interpolation and the tilings of both; they are tried when the
-    // composite has flat bridges or leaves a noticeable share of its area flat or in slivers.
+    settle(lower, upper, span, depth, std::move(composite), best, out);
+  }
+
+  // `candidate` (defects `best`) against the halves, when they are worth trying, and the parting.
+  void settle(const Level& lower, const Level& upper, Span span, int depth, SlabMesh&& candidate,
+              TilingDefects best, SlabMesh& out) {
     if (options_.branching == Branching::Interpolated && depth < options_.max_branching_depth &&
-        (best.bridge_area > 0.0 || best.score() > kGoodEnough * best.area)) {
+        wants_halves(best)) {
       SlabMesh halves = out.scratch();
       if (try_halves(lower, upper, span, depth, best, halves)) {
         best = measure_defects(halves);
@@ -356,7 +422,7 @@ class SlabTiler {
         return;
       }
     }
-    if (!try_parting(lower, upper, best, out)) out.absorb(std::move(composite));
+    if (!try_parting(lower, upper, best, out)) out.absorb(std::move(candidate));
   }
 
   // Where every way of joining the group across the slab leaves more poorly shaped area than capping
@@ -394,26 +460,47 @@ class SlabTiler {
     return true;
   }
 
+  // The slab tiled lower -> mid-level -> upper (built when the mid-level has contours for the group),
+  // with the claims on the interpolation's contours to undo if it is dropped.
+  struct Halves {
+    SlabMesh mesh;
+    TilingDefects defects;
+    bool built = false;
+    std::unique_ptr<Interpolation> owned;
+    Interpolation* interpolation = nullptr;
+    Interpolation::Claims before;
+    void undo() { interpolation->restore(before); }
+  };
+
+  // The halves as a scratch mesh of `parent`.
+  Halves build_halves(const Level& lower, const Level& upper, Span span, int depth, const SlabMesh& parent) {
+    Halves h;
+    h.mesh = parent.scratch();
+    span = with_interpolation(lower, upper, span, h.owned);
+    h.interpolation = span.interpolation;
+    h.before = span.interpolation->claims();
+    const double tm = 0.5 * (span.t0 + span.t1);
+    const std::vector<std::size_t> chosen = span.interpolation->select(tm, lower, upper);
+    if (!chosen.empty()) {
+      const Level middle = span.interpolation->take(tm, chosen, h.mesh);
+      tile(lower, middle, {span.interpolation, span.t0, tm}, depth + 1, true, false, h.mesh);
+      tile(middle, upper, {span.interpolation, tm, span.t1}, depth + 1, true, false, h.mesh);
+      h.defects = measure_defects(h.mesh);
+      h.built = true;
+    }
+    return h;
+  }
+
   // Tiles lower -> mid-level -> upper into `out` and returns true when that leaves less poorly shaped
   // area than `rival`; otherwise adds nothing.
   bool try_halves(const Level& lower, const Level& upper, Span span, int depth, const TilingDefects& rival,
                   SlabMesh& out) {
-    std::unique_ptr<Interpolation> owned;
-    span = with_interpolation(lower, upper, span, owned);
-    const Interpolation::Claims before = span.interpolation->claims();
-    const double tm = 0.5 * (span.t0 + span.t1);
-    const std::vector<std::size_t> chosen = span.interpolation->select(tm, lower, upper);
-    if (!chosen.empty()) {
-      SlabMesh halves = out.scratch();
-      const Level middle = span.interpolation->take(tm, chosen, halves);
-      tile(lower, middle, {span.interpolation, span.t0, tm}, depth + 1, true, false, halves);
-      tile(middle, upper, {span.interpolation, tm, span.t1}, depth + 1, true, false, halves);
-      if (measure_defects(halves).score() < rival.score()) {
-        out.absorb(std::move(halves));
-        return true;
-      }
+    Halves h = build_halves(lower, upper, span, depth, out);
+    if (h.built && h.defects.score() < rival.score()) {
+      out.absorb(std::move(h.mesh));
+      return true;
     }
-    span.interpolation->restore(before);
+    h.undo();
     return false;
   }
 

@@ -15,15 +15,22 @@ namespace {
 std::vector<double> slice_levels(const ContourFrame& frame, const Eigen::Matrix3Xd& positions) {
   std::map<std::int32_t, std::pair<double, double>> sums;  // slice id -> (sum of heights, count)
   const Mesh& mesh = *frame.mesh;
+  // Vertices of one slice come in runs: look the map up once per run (the sums keep their order).
+  std::int32_t last_id = 0;
+  std::pair<double, double>* s = nullptr;
   for (Index i = 0; i < static_cast<Index>(positions.cols()); ++i) {
     if (!frame.is_contour_vertex(i)) continue;
-    auto& s = sums[mesh.slice_ids[static_cast<std::size_t>(i)]];
-    s.first += frame.axis.dot(positions.col(i));
-    s.second += 1.0;
+    const std::int32_t id = mesh.slice_ids[static_cast<std::size_t>(i)];
+    if (s == nullptr || id != last_id) {
+      s = &sums[id];
+      last_id = id;
+    }
+    s->first += frame.axis.dot(positions.col(i));
+    s->second += 1.0;
   }
   std::vector<double> levels;
   levels.reserve(sums.size());
-  for (const auto& [id, s] : sums) levels.push_back(s.first / s.second);
+  for (const auto& [id, sum] : sums) levels.push_back(sum.first / sum.second);
   std::sort(levels.begin(), levels.end());
   return levels;
 }
@@ -40,102 +47,219 @@ std::pair<double, double> height_bounds(const std::vector<double>& levels, doubl
   return {lo, hi};
 }
 
-Eigen::Vector3d face_normal(const Eigen::Matrix3Xd& x, const Triangle& t, double* area = nullptr) {
+template <typename Positions>
+Eigen::Vector3d face_normal(const Positions& x, const Triangle& t, double* area = nullptr) {
   const Eigen::Vector3d c = (x.col(t[1]) - x.col(t[0])).cross(x.col(t[2]) - x.col(t[0]));
   const double len = c.norm();
   if (area) *area = 0.5 * len;
   return len > 0.0 ? Eigen::Vector3d(c / len) : Eigen::Vector3d::Zero();
 }
 
-// The vertices that move and the faces whose normals are filtered (those touching one).
-struct Region {
-  std::vector<Index> vertices, faces;
-  std::vector<std::uint8_t> moves;  ///< per vertex of the mesh
+// Everything the filter touches, numbered compactly and built once: the work is proportional to the
+// region around the vertices without ids, not to the mesh (a few per cent of a large bone's vertices).
+//
+// Faces: the filtered ones (touching a moving vertex), and the faces sharing a vertex with one (their
+// neighbourhoods), numbered in ascending mesh order. Vertices: those of the filtered faces, ascending.
+struct Workspace {
+  // Faces of the neighbourhoods, in mesh order; the filtered ones among them.
+  std::vector<Index> faces;     ///< local face -> mesh face
+  std::vector<Index> filtered;  ///< filtered face k -> local face (ascending)
+  // Per filtered face: the corners (local vertices), and its neighbourhood in CSR (local faces, the face
+  // itself included, ascending) with area x spatial kernel per entry.
+  std::vector<Triangle> corners;
+  std::vector<Index> ring_offsets, ring;
+  std::vector<double> ring_weights;
+  // The range kernel is symmetric: each pair of faces (a, b) that meet in a neighbourhood has one slot,
+  // computed once per iteration however many of the two neighbourhoods it is in.
+  std::vector<Index> ring_slot;      ///< per neighbourhood entry
+  std::vector<Index> slot_a, slot_b;  ///< per slot: the faces (local), as first met: face a, entry b
+  // Vertices.
+  std::vector<Index> vertices;  ///< local vertex -> mesh vertex
+  std::vector<std::uint8_t> moves;  ///< per local vertex
+  std::vector<Index> moving;    ///< local ids of the moving vertices, ascending
+  // Per moving vertex: its faces (filtered face ids, in the adjacency's order) in CSR, whether it is a
+  // contour vertex, and for the others the heights it may take.
+  std::vector<Index> incident_offsets, incident;
+  std::vector<std::uint8_t> on_contour;
+  std::vector<double> low, high;
 };
 
-Region select_region(const ContourFrame& frame, std::size_t num_faces, const OffSliceFilterOptions& options) {
+// The moving vertices (mesh ids, ascending) and the filtered faces (mesh ids, ascending).
+void select_region(const ContourFrame& frame, std::size_t num_faces, const OffSliceFilterOptions& options,
+                   std::vector<Index>& moving, std::vector<Index>& filtered) {
   const MeshAdjacency& adj = frame.adjacency;
   const Index n = adj.num_vertices();
-  Region r;
-  r.moves.assign(static_cast<std::size_t>(n), 0);
-  std::vector<std::uint8_t> active(num_faces, 0);
   const bool contour_moves = options.contour_max_move > 0.0;
+  std::vector<std::uint8_t> active(num_faces, 0);  // a byte per face: cheaper than sorting the faces' ids
   for (Index i = 0; i < n; ++i) {
     if ((!contour_moves && frame.is_contour_vertex(i)) || adj.valence(i) == 0) continue;
-    r.vertices.push_back(i);
-    r.moves[static_cast<std::size_t>(i)] = 1;
+    moving.push_back(i);
     for (Index f : adj.incident_faces(i)) active[static_cast<std::size_t>(f)] = 1;
   }
   for (std::size_t f = 0; f < num_faces; ++f) {
-    if (active[f]) r.faces.push_back(static_cast<Index>(f));
+    if (active[f]) filtered.push_back(static_cast<Index>(f));
   }
-  return r;
 }
 
-// The neighbourhood of every filtered face in CSR: the faces sharing a vertex with it (itself included),
-// each with its area times the spatial kernel (fixed while the normals are filtered: nothing moves then).
-struct FaceRings {
-  std::vector<Index> offsets, faces;
-  std::vector<double> weights;
-};
+// One slot per pair of faces met in the neighbourhoods: entry g of filtered face f shares the slot of
+// entry f of g's neighbourhood when g is a filtered face already seen (neighbourhoods are symmetric:
+// two faces share a vertex or not).
+void assign_pair_slots(const std::vector<Index>& filtered_of, Workspace& w) {
+  w.ring_slot.resize(w.ring.size());
+  for (std::size_t k = 0; k < w.filtered.size(); ++k) {
+    const Index f = w.filtered[k];
+    for (Index r = w.ring_offsets[k]; r < w.ring_offsets[k + 1]; ++r) {
+      const Index g = w.ring[static_cast<std::size_t>(r)];
+      const Index kg = filtered_of[static_cast<std::size_t>(g)];
+      if (kg >= 0 && static_cast<std::size_t>(kg) < k) {
+        const auto first = w.ring.begin() + w.ring_offsets[static_cast<std::size_t>(kg)];
+        const auto last = w.ring.begin() + w.ring_offsets[static_cast<std::size_t>(kg) + 1];
+        const auto mirror = std::lower_bound(first, last, f);
+        if (mirror != last && *mirror == f) {
+          w.ring_slot[static_cast<std::size_t>(r)] = w.ring_slot[static_cast<std::size_t>(mirror - w.ring.begin())];
+          continue;
+        }
+      }
+      w.ring_slot[static_cast<std::size_t>(r)] = static_cast<Index>(w.slot_a.size());
+      w.slot_a.push_back(f);
+      w.slot_b.push_back(g);
+    }
+  }
+}
 
-FaceRings face_rings(const MeshAdjacency& adj, const std::vector<Triangle>& triangles, const std::vector<Index>& faces,
-                     const Eigen::Matrix3Xd& centroids, const Eigen::VectorXd& areas) {
-  FaceRings rings;
-  rings.offsets.assign(faces.size() + 1, 0);
+// Numbers the faces and vertices (see Workspace) and the neighbourhoods of the filtered faces.
+Workspace make_workspace(const ContourFrame& frame, const std::vector<Triangle>& triangles,
+                         const OffSliceFilterOptions& options) {
+  const MeshAdjacency& adj = frame.adjacency;
+  Workspace w;
+  std::vector<Index> moving, filtered;
+  select_region(frame, triangles.size(), options, moving, filtered);
+  if (moving.empty()) return w;
+
+  // Local vertices: the corners of the filtered faces; local faces: the faces around them, which are
+  // the neighbourhoods' faces. Both numbered in mesh order, through scratch maps from mesh ids.
+  // (Marks in maps over the mesh and a scan in mesh order: cheaper than sorting the ids.)
+  std::vector<Index> vertex_map(static_cast<std::size_t>(adj.num_vertices()), -1);
+  for (Index f : filtered) {
+    for (Index v : triangles[static_cast<std::size_t>(f)]) vertex_map[static_cast<std::size_t>(v)] = 0;
+  }
+  for (std::size_t v = 0; v < vertex_map.size(); ++v) {
+    if (vertex_map[v] < 0) continue;
+    vertex_map[v] = static_cast<Index>(w.vertices.size());
+    w.vertices.push_back(static_cast<Index>(v));
+  }
+  std::vector<Index> face_map(triangles.size(), -1);
+  for (Index v : w.vertices) {
+    for (Index g : adj.incident_faces(v)) face_map[static_cast<std::size_t>(g)] = 0;
+  }
+  for (std::size_t g = 0; g < face_map.size(); ++g) {
+    if (face_map[g] < 0) continue;
+    face_map[g] = static_cast<Index>(w.faces.size());
+    w.faces.push_back(static_cast<Index>(g));
+  }
+  w.filtered.resize(filtered.size());
+  for (std::size_t k = 0; k < filtered.size(); ++k) w.filtered[k] = face_map[static_cast<std::size_t>(filtered[k])];
+
+  // Per filtered face: its corners and its neighbourhood, the faces around its corners (local ids,
+  // ascending as mesh ids are).
+  w.corners.resize(filtered.size());
+  w.ring_offsets.assign(filtered.size() + 1, 0);
   std::vector<Index> local;
-  for (std::size_t k = 0; k < faces.size(); ++k) {
-    const Triangle& t = triangles[static_cast<std::size_t>(faces[k])];
+  for (std::size_t k = 0; k < filtered.size(); ++k) {
+    const Triangle& t = triangles[static_cast<std::size_t>(filtered[k])];
     local.clear();
     for (int c = 0; c < 3; ++c) {
-      for (Index g : adj.incident_faces(t[c])) local.push_back(g);
+      w.corners[k][static_cast<std::size_t>(c)] = vertex_map[static_cast<std::size_t>(t[c])];
+      for (Index g : adj.incident_faces(t[c])) local.push_back(face_map[static_cast<std::size_t>(g)]);
     }
     std::sort(local.begin(), local.end());
     local.erase(std::unique(local.begin(), local.end()), local.end());
-    rings.faces.insert(rings.faces.end(), local.begin(), local.end());
-    rings.offsets[k + 1] = static_cast<Index>(rings.faces.size());
+    w.ring.insert(w.ring.end(), local.begin(), local.end());
+    w.ring_offsets[k + 1] = static_cast<Index>(w.ring.size());
   }
-  // The spatial kernel's width: the mean distance between the centroids of neighbouring faces.
-  double sum = 0.0;
-  for (std::size_t k = 0; k < faces.size(); ++k) {
-    for (Index r = rings.offsets[k]; r < rings.offsets[k + 1]; ++r) {
-      sum += (centroids.col(rings.faces[static_cast<std::size_t>(r)]) - centroids.col(faces[k])).norm();
+  // The filtered face of each local face (for the pair slots and the moving vertices' faces).
+  std::vector<Index> filtered_of(w.faces.size(), -1);
+  for (std::size_t k = 0; k < filtered.size(); ++k) {
+    filtered_of[static_cast<std::size_t>(w.filtered[k])] = static_cast<Index>(k);
+  }
+  assign_pair_slots(filtered_of, w);
+  w.moves.assign(w.vertices.size(), 0);
+  w.incident_offsets.assign(moving.size() + 1, 0);
+  w.on_contour.resize(moving.size());
+  for (std::size_t m = 0; m < moving.size(); ++m) {
+    const Index i = moving[m];
+    const Index li = vertex_map[static_cast<std::size_t>(i)];
+    w.moving.push_back(li);
+    w.moves[static_cast<std::size_t>(li)] = 1;
+    w.on_contour[m] = frame.is_contour_vertex(i) ? 1 : 0;
+    for (Index f : adj.incident_faces(i)) {
+      const Index local_f = face_map[static_cast<std::size_t>(f)];
+      w.incident.push_back(filtered_of[static_cast<std::size_t>(local_f)]);
     }
+    w.incident_offsets[m + 1] = static_cast<Index>(w.incident.size());
   }
-  const double sigma_s = sum > 0.0 ? sum / static_cast<double>(rings.faces.size()) : 1.0;
-  const double inv_s = 1.0 / (2.0 * sigma_s * sigma_s);
-  rings.weights.resize(rings.faces.size());
-  for (std::size_t k = 0; k < faces.size(); ++k) {
-    for (Index r = rings.offsets[k]; r < rings.offsets[k + 1]; ++r) {
-      const Index g = rings.faces[static_cast<std::size_t>(r)];
-      rings.weights[static_cast<std::size_t>(r)] =
-          areas[g] * std::exp(-(centroids.col(g) - centroids.col(faces[k])).squaredNorm() * inv_s);
-    }
-  }
-  return rings;
+  return w;
 }
 
-// Bilateral filtering of the normals of `faces` (Zheng et al. 2011, eq. 4), Jacobi style; the other
-// faces' normals are read as they are.
-void filter_normals(const std::vector<Index>& faces, const FaceRings& rings, const OffSliceFilterOptions& options,
-                    Eigen::Matrix3Xd& normals) {
+// The spatial part of the neighbourhoods' weights: area of the neighbour x a Gaussian of the distance
+// between centroids, whose width is the mean such distance (fixed while the normals are filtered: nothing
+// moves then).
+void spatial_weights(const Eigen::Matrix3Xd& centroids, const Eigen::VectorXd& areas, Workspace& w) {
+  const std::size_t nk = w.filtered.size();
+  std::vector<double> distance(w.ring.size());
+  parallel_chunks(nk, 1024, [&](std::size_t, std::size_t begin, std::size_t end) {
+    for (std::size_t k = begin; k < end; ++k) {
+      const Index f = w.filtered[k];
+      for (Index r = w.ring_offsets[k]; r < w.ring_offsets[k + 1]; ++r) {
+        const auto ru = static_cast<std::size_t>(r);
+        distance[ru] = (centroids.col(w.ring[ru]) - centroids.col(f)).norm();
+      }
+    }
+  });
+  double sum = 0.0;  // in ring order, as one serial sum
+  for (double d : distance) sum += d;
+  const double sigma_s = sum > 0.0 ? sum / static_cast<double>(w.ring.size()) : 1.0;
+  const double inv_s = 1.0 / (2.0 * sigma_s * sigma_s);
+  w.ring_weights.resize(w.ring.size());
+  parallel_chunks(nk, 1024, [&](std::size_t, std::size_t begin, std::size_t end) {
+    for (std::size_t k = begin; k < end; ++k) {
+      const Index f = w.filtered[k];
+      for (Index r = w.ring_offsets[k]; r < w.ring_offsets[k + 1]; ++r) {
+        const auto ru = static_cast<std::size_t>(r);
+        const Index g = w.ring[ru];
+        w.ring_weights[ru] = areas[g] * std::exp(-(centroids.col(g) - centroids.col(f)).squaredNorm() * inv_s);
+      }
+    }
+  });
+}
+
+// Bilateral filtering of the normals of the filtered faces (Zheng et al. 2011, eq. 4), Jacobi style; the
+// other local faces' normals are read as they are. `normals` holds every local face's normal.
+void filter_normals(const Workspace& w, const OffSliceFilterOptions& options, Eigen::Matrix3Xd& normals) {
   const double sigma_r = 2.0 * std::sin(0.5 * options.sigma_angle_degrees * M_PI / 180.0);  // as |n_i - n_j|
   const double inv_r = 1.0 / (2.0 * sigma_r * sigma_r);
+  // Where a sum vanishes, a face keeps the normal of two iterations before (that of `next`).
   Eigen::Matrix3Xd next = normals;
+  std::vector<float> range(w.slot_a.size());
   for (int it = 0; it < options.normal_iterations; ++it) {
-    parallel_chunks(faces.size(), 1024, [&](std::size_t, std::size_t begin, std::size_t end) {
+    // The range kernel of every pair, from |n_b - n_a|^2 of unit normals, in single precision (the hot
+    // spot). The dot product is symmetric, bit for bit.
+    parallel_chunks(range.size(), 4096, [&](std::size_t, std::size_t begin, std::size_t end) {
+      for (std::size_t s = begin; s < end; ++s) {
+        const double dr = 2.0 - 2.0 * normals.col(w.slot_b[s]).dot(normals.col(w.slot_a[s]));
+        range[s] = std::exp(static_cast<float>(-dr * inv_r));
+      }
+    });
+    parallel_chunks(w.filtered.size(), 1024, [&](std::size_t, std::size_t begin, std::size_t end) {
       for (std::size_t k = begin; k < end; ++k) {
-        const Index f = faces[k];
         Eigen::Vector3d acc = Eigen::Vector3d::Zero();
-        for (Index r = rings.offsets[k]; r < rings.offsets[k + 1]; ++r) {
-          const Index g = rings.faces[static_cast<std::size_t>(r)];
-          // |n_g - n_f|^2 of unit normals; the range kernel in single precision (the hot spot).
-          const double dr = 2.0 - 2.0 * normals.col(g).dot(normals.col(f));
-          const auto range = static_cast<double>(std::exp(static_cast<float>(-dr * inv_r)));
-          acc += rings.weights[static_cast<std::size_t>(r)] * range * normals.col(g);
+        for (Index r = w.ring_offsets[k]; r < w.ring_offsets[k + 1]; ++r) {
+          const auto ru = static_cast<std::size_t>(r);
+          const auto kernel = static_cast<double>(range[static_cast<std::size_t>(w.ring_slot[ru])]);
+          acc += w.ring_weights[ru] * kernel * normals.col(w.ring[ru]);
         }
         const double len = acc.norm();
-        if (len > 0.0) next.col(f) = acc / len;
+        if (len > 0.0) next.col(w.filtered[k]) = acc / len;
       }
     });
     normals.swap(next);
@@ -143,71 +267,69 @@ void filter_normals(const std::vector<Index>& faces, const FaceRings& rings, con
 }
 
 // The vertex update (eq. 6), Jacobi style: each moving vertex goes towards the planes of its faces with
-// the filtered normals, within its bounds (see filter_off_slice_normals).
-void update_vertices(const ContourFrame& frame, const std::vector<Triangle>& triangles, const Region& region,
-                     const Eigen::Matrix3Xd& normals, const OffSliceFilterOptions& options,
-                     const Eigen::Matrix3Xd& start, Eigen::Matrix3Xd& positions) {
-  const MeshAdjacency& adj = frame.adjacency;
-  const std::vector<double> levels = slice_levels(frame, start);
-  const double spacing = frame.slice_spacing, reach = options.max_move * frame.slice_spacing;
+// the filtered normals `normals` (per filtered face), within its bounds (see filter_off_slice_normals).
+// `x` and `start` hold the local vertices.
+void update_vertices(const ContourFrame& frame, const Workspace& w, const Eigen::Matrix3Xd& normals,
+                     const OffSliceFilterOptions& options, const Eigen::Matrix3Xd& start, Eigen::Matrix3Xd& x) {
+  const double reach = options.max_move * frame.slice_spacing;
   const Eigen::Vector3d& axis = frame.axis;
-  Eigen::Matrix3Xd centroids(3, static_cast<Index>(triangles.size()));
-  Eigen::Matrix3Xd updated(3, static_cast<Index>(region.vertices.size()));
+  const std::size_t nk = w.filtered.size(), nm = w.moving.size();
+  Eigen::Matrix3Xd centroids(3, static_cast<Index>(nk));
+  Eigen::Matrix3Xd updated(3, static_cast<Index>(nm));
   for (int it = 0; it < options.vertex_iterations; ++it) {
-    parallel_chunks(region.faces.size(), 4096, [&](std::size_t, std::size_t begin, std::size_t end) {
+    parallel_chunks(nk, 4096, [&](std::size_t, std::size_t begin, std::size_t end) {
       for (std::size_t k = begin; k < end; ++k) {
-        const Index f = region.faces[k];
-        const Triangle& t = triangles[static_cast<std::size_t>(f)];
-        centroids.col(f) = (positions.col(t[0]) + positions.col(t[1]) + positions.col(t[2])) / 3.0;
+        const Triangle& t = w.corners[k];
+        centroids.col(static_cast<Index>(k)) = (x.col(t[0]) + x.col(t[1]) + x.col(t[2])) / 3.0;
       }
     });
-    parallel_chunks(region.vertices.size(), 2048, [&](std::size_t, std::size_t begin, std::size_t end) {
-      for (std::size_t k = begin; k < end; ++k) {
-        const Index i = region.vertices[k];
+    parallel_chunks(nm, 2048, [&](std::size_t, std::size_t begin, std::size_t end) {
+      for (std::size_t m = begin; m < end; ++m) {
+        const Index i = w.moving[m];
         Eigen::Vector3d step = Eigen::Vector3d::Zero();
-        const auto incident = adj.incident_faces(i);
-        for (Index f : incident) step += normals.col(f) * normals.col(f).dot(centroids.col(f) - positions.col(i));
-        step /= static_cast<double>(incident.size());
+        const Index first = w.incident_offsets[m], last = w.incident_offsets[m + 1];
+        for (Index r = first; r < last; ++r) {
+          const Index f = w.incident[static_cast<std::size_t>(r)];
+          step += normals.col(f) * normals.col(f).dot(centroids.col(f) - x.col(i));
+        }
+        step /= static_cast<double>(last - first);
         const Eigen::Vector3d x0 = start.col(i);
         Eigen::Vector3d d;
-        if (frame.is_contour_vertex(i)) {
+        if (w.on_contour[m]) {
           // A contour vertex stays in its slice plane, within the fidelity bound of where it was.
           step -= axis * axis.dot(step);
-          d = positions.col(i) + step - x0;
+          d = x.col(i) + step - x0;
           if (d.norm() > options.contour_max_move) d *= options.contour_max_move / d.norm();
         } else {
           if (options.motion == OffSliceMotion::AlongAxis) step = axis * axis.dot(step);
           // Within `reach` of the start, and in the start's slab.
-          d = positions.col(i) + step - x0;
+          d = x.col(i) + step - x0;
           if (d.norm() > reach) d *= reach / d.norm();
           const double h0 = axis.dot(x0);
-          const auto [lo, hi] = height_bounds(levels, h0, spacing, reach);
-          const double h = std::clamp(h0 + axis.dot(d), lo, hi);
+          const double h = std::clamp(h0 + axis.dot(d), w.low[m], w.high[m]);
           d += axis * (h - h0 - axis.dot(d));
         }
-        updated.col(static_cast<Index>(k)) = x0 + d;
+        updated.col(static_cast<Index>(m)) = x0 + d;
       }
     });
-    for (std::size_t k = 0; k < region.vertices.size(); ++k) {
-      positions.col(region.vertices[k]) = updated.col(static_cast<Index>(k));
-    }
+    for (std::size_t m = 0; m < nm; ++m) x.col(w.moving[m]) = updated.col(static_cast<Index>(m));
   }
 }
 
 // A face that turned over (its normal against its unfiltered one) gets its moving vertices back, until
 // none does.
-void undo_turned_faces(const std::vector<Triangle>& triangles, const Region& region,
-                       const Eigen::Matrix3Xd& initial_normals, const Eigen::Matrix3Xd& start,
-                       Eigen::Matrix3Xd& positions) {
+void undo_turned_faces(const Workspace& w, const Eigen::Matrix3Xd& initial_normals, const Eigen::Matrix3Xd& start,
+                       Eigen::Matrix3Xd& x) {
   for (int round = 0; round < 8; ++round) {
     bool any = false;
-    for (Index f : region.faces) {
-      const Triangle& t = triangles[static_cast<std::size_t>(f)];
-      if (initial_normals.col(f).isZero() || face_normal(positions, t).dot(initial_normals.col(f)) > 0.0) continue;
+    for (std::size_t k = 0; k < w.filtered.size(); ++k) {
+      const Triangle& t = w.corners[k];
+      const auto kk = static_cast<Index>(k);
+      if (initial_normals.col(kk).isZero() || face_normal(x, t).dot(initial_normals.col(kk)) > 0.0) continue;
       for (int c = 0; c < 3; ++c) {
-        const Index v = t[c];
-        if (region.moves[static_cast<std::size_t>(v)] && positions.col(v) != start.col(v)) {
-          positions.col(v) = start.col(v);
+        const Index v = t[static_cast<std::size_t>(c)];
+        if (w.moves[static_cast<std::size_t>(v)] && x.col(v) != start.col(v)) {
+          x.col(v) = start.col(v);
           any = true;
         }
       }
@@ -221,29 +343,57 @@ void undo_turned_faces(const std::vector<Triangle>& triangles, const Region& reg
 std::size_t filter_off_slice_normals(const ContourFrame& frame, const std::vector<Triangle>& triangles,
                                      const OffSliceFilterOptions& options, Eigen::Matrix3Xd& positions) {
   if (options.filter == OffSliceFilter::None) return 0;
-  const Region region = select_region(frame, triangles.size(), options);
-  if (region.vertices.empty()) return 0;
+  Workspace w = make_workspace(frame, triangles, options);
+  if (w.moving.empty()) return 0;
 
-  // Face normals, areas and centroids of the whole mesh.
-  const auto nf = static_cast<Index>(triangles.size());
-  Eigen::Matrix3Xd normals(3, nf), centroids(3, nf);
-  Eigen::VectorXd areas(nf);
-  for (Index f = 0; f < nf; ++f) {
-    const Triangle& t = triangles[static_cast<std::size_t>(f)];
-    double a = 0.0;
-    normals.col(f) = face_normal(positions, t, &a);
-    areas[f] = a;
-    centroids.col(f) = (positions.col(t[0]) + positions.col(t[1]) + positions.col(t[2])) / 3.0;
+  // Normals, areas and centroids of the local faces, from the mesh's positions.
+  const auto nl = static_cast<Index>(w.faces.size());
+  Eigen::Matrix3Xd normals(3, nl), centroids(3, nl);
+  Eigen::VectorXd areas(nl);
+  parallel_chunks(w.faces.size(), 4096, [&](std::size_t, std::size_t begin, std::size_t end) {
+    for (std::size_t l = begin; l < end; ++l) {
+      const Triangle& t = triangles[static_cast<std::size_t>(w.faces[l])];
+      const auto ll = static_cast<Index>(l);
+      double a = 0.0;
+      normals.col(ll) = face_normal(positions, t, &a);
+      areas[ll] = a;
+      centroids.col(ll) = (positions.col(t[0]) + positions.col(t[1]) + positions.col(t[2])) / 3.0;
+    }
+  });
+  const auto nk = static_cast<Index>(w.filtered.size());
+  Eigen::Matrix3Xd initial_normals(3, nk);
+  for (Index k = 0; k < nk; ++k) initial_normals.col(k) = normals.col(w.filtered[static_cast<std::size_t>(k)]);
+
+  // The local vertices where they start, and the heights each moving vertex off the contours may take.
+  const auto nv = static_cast<Index>(w.vertices.size());
+  Eigen::Matrix3Xd start(3, nv);
+  for (Index v = 0; v < nv; ++v) start.col(v) = positions.col(w.vertices[static_cast<std::size_t>(v)]);
+  {
+    const std::vector<double> levels = slice_levels(frame, positions);
+    const double reach = options.max_move * frame.slice_spacing;
+    w.low.assign(w.moving.size(), 0.0);
+    w.high.assign(w.moving.size(), 0.0);
+    for (std::size_t m = 0; m < w.moving.size(); ++m) {
+      if (w.on_contour[m]) continue;
+      const double h0 = frame.axis.dot(start.col(w.moving[m]));
+      std::tie(w.low[m], w.high[m]) = height_bounds(levels, h0, frame.slice_spacing, reach);
+    }
   }
-  const Eigen::Matrix3Xd initial_normals = normals;
-  const Eigen::Matrix3Xd start = positions;
 
-  filter_normals(region.faces, face_rings(frame.adjacency, triangles, region.faces, centroids, areas), options,
-                 normals);
-  update_vertices(frame, triangles, region, normals, options, start, positions);
-  undo_turned_faces(triangles, region, initial_normals, start, positions);
+  spatial_weights(centroids, areas, w);
+  filter_normals(w, options, normals);
+  Eigen::Matrix3Xd filtered_normals(3, nk);
+  for (Index k = 0; k < nk; ++k) filtered_normals.col(k) = normals.col(w.filtered[static_cast<std::size_t>(k)]);
+
+  Eigen::Matrix3Xd x = start;
+  update_vertices(frame, w, filtered_normals, options, start, x);
+  undo_turned_faces(w, initial_normals, start, x);
   std::size_t moved = 0;
-  for (Index i : region.vertices) moved += positions.col(i) != start.col(i) ? 1 : 0;
+  for (Index v : w.moving) {
+    if (x.col(v) == start.col(v)) continue;
+    positions.col(w.vertices[static_cast<std::size_t>(v)]) = x.col(v);
+    ++moved;
+  }
   return moved;
 }
 

@@ -14,8 +14,30 @@
 
 namespace contourmesh::detail {
 
-/// Number of worker threads: hardware concurrency, at least 1, at most 64.
-inline unsigned worker_count() { return std::clamp(std::thread::hardware_concurrency(), 1u, 64u); }
+/// When non-zero, the number of worker threads instead of the cores' (tests: results must not depend on
+/// it). Set it through ScopedWorkerCount.
+inline std::atomic<unsigned>& worker_count_override() {
+  static std::atomic<unsigned> count{0};
+  return count;
+}
+
+/// Number of worker threads: hardware concurrency (or the override), at least 1, at most 64.
+inline unsigned worker_count() {
+  const unsigned forced = worker_count_override();
+  return std::clamp(forced != 0 ? forced : std::thread::hardware_concurrency(), 1u, 64u);
+}
+
+/// Runs parallel loops on `count` threads while it lives (even beyond the number of cores).
+class ScopedWorkerCount {
+ public:
+  explicit ScopedWorkerCount(unsigned count) : previous_(worker_count_override().exchange(count)) {}
+  ~ScopedWorkerCount() { worker_count_override() = previous_; }
+  ScopedWorkerCount(const ScopedWorkerCount&) = delete;
+  ScopedWorkerCount& operator=(const ScopedWorkerCount&) = delete;
+
+ private:
+  unsigned previous_;
+};
 
 /// Calls body(chunk, begin, end) for the chunks [k * chunk_size, min(n, (k + 1) * chunk_size)), on all
 /// cores. The first exception thrown by a body is rethrown after every thread has stopped.

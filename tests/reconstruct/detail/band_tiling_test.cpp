@@ -3,6 +3,7 @@
 #include "detail/band_tiling.h"
 
 #include <contourmesh/reconstruct/contours.h>
+#include <contourmesh/smooth/errors.h>
 
 #include <gtest/gtest.h>
 
@@ -11,6 +12,7 @@
 #include <map>
 #include <numbers>
 #include <random>
+#include <string>
 
 #include "reconstruct/detail/level_helpers.h"
 
@@ -56,6 +58,50 @@ TEST(BandTiling, LargeContoursSolvedCoarseToFineKeepTheLeastArea) {
   const double frustum = std::numbers::pi * (50.0 + 45.0) * std::hypot(5.0, 2.0);
   EXPECT_NEAR(q.area / frustum, 1.0, 2e-3);
   EXPECT_EQ(band.size(), 600u + 540u);
+}
+
+TEST(BandTiling, LargeContoursAreSolvedCoarseToFineWhateverTheirSize) {
+  // 2000 x 2000 point pairs, over full_dp_limit: the full grid needs 36 MB, the band of +/- 15 % around
+  // the diagonal 11 MB, the coarse-to-fine corridor about 1 MB, which is what fits in 5 MB.
+  const Polygon lower = circle_points(0, 0, 100, 2000), upper = circle_points(0.5, 0, 98, 2000);
+  TilingOptions o;
+  o.full_dp_limit = 1'000'000;
+  o.limits.max_memory_bytes = 5'000'000;
+  const std::vector<BandTriangle> band = minimum_area_band(lower, 0.0, upper, 2.0, o);
+  EXPECT_EQ(band.size(), 4000u);
+  // The corridor's own memory is checked before it is allocated.
+  o.limits.max_memory_bytes = 600'000;
+  try {
+    (void)minimum_area_band(lower, 0.0, upper, 2.0, o);
+    FAIL() << "no LimitError";
+  } catch (const LimitError& e) {
+    const std::string what = e.what();
+    EXPECT_EQ(what.rfind("tiling: contours of 2000 and 2000 points: needs about ", 0), 0u) << what;
+  }
+}
+
+TEST(BandTiling, ASmallContourAgainstALargeOneUsesTheDiagonalBandAboveTheLimit) {
+  // 24 x 3000 point pairs: too few points on one side for the coarse grid. The full grid needs about
+  // 0.65 MB, the band of +/- 15 % of the points around the diagonal about 0.2 MB.
+  const Polygon lower = circle_points(0, 0, 100, 24), upper = circle_points(0, 0, 100, 3000);
+  TilingOptions o;
+  o.limits.max_memory_bytes = 400'000;
+  try {
+    (void)minimum_area_band(lower, 0.0, upper, 2.0, o);  // the full grid, under the default limit
+    FAIL() << "no LimitError";
+  } catch (const LimitError& e) {
+    const std::string what = e.what();
+    EXPECT_EQ(what.rfind("tiling: contours of 24 and 3000 points: needs about 675 kB", 0), 0u) << what;
+  }
+  o.full_dp_limit = 1000;
+  const std::vector<BandTriangle> band = minimum_area_band(lower, 0.0, upper, 2.0, o);
+  EXPECT_EQ(band.size(), 3024u);
+  // Each lower edge spans the upper points of its arc: the band follows the diagonal.
+  for (const BandTriangle& t : band) {
+    if (t[0].ring == 0 && t[1].ring == 0) {
+      EXPECT_NEAR(std::abs(t[2].index - t[0].index * 125 - 62.5), 0.0, 64.0) << t[0].index << " " << t[2].index;
+    }
+  }
 }
 
 // The least-area band by the textbook recurrence over the whole grid, triangle areas from Eigen

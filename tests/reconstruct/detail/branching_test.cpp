@@ -100,6 +100,33 @@ TEST(Branching, OneToTwoIsBridgedOnTheMidPlane) {
   EXPECT_EQ(t.euler, 2);
 }
 
+TEST(Branching, ADeferredCompositeFinishedLaterIsTheSameMeshFaceForFace) {
+  // A composite band and, after it, the cap of a contour with no partner: the band's faces must go back
+  // where they were, before the cap's.
+  test::TestStack stack;
+  const Level lower{0.0,
+                    {stack.contour(circle_points(0, 0, 10, 64), 0.0), stack.contour(circle_points(40, 0, 3, 24), 0.0)}};
+  const Level upper{2.0,
+                    {stack.contour(circle_points(-8, 0, 5, 32), 2.0), stack.contour(circle_points(8, 0, 5, 32), 2.0)}};
+  SlabMesh direct = stack.slab();
+  tile_composite(lower, upper, TilingOptions{}, direct);
+  SlabMesh lazy = stack.slab();
+  std::vector<DeferredBand> pending;
+  tile_composite(lower, upper, TilingOptions{}, lazy, &pending);
+  ASSERT_EQ(pending.size(), 1u);
+  EXPECT_LT(pending[0].position, lazy.triangles.size()) << "faces follow the band";
+  EXPECT_EQ(lazy.triangles.size() + 64 + 64, direct.triangles.size());  // the band: one face per point
+  const TilingDefects partial = measure_defects(lazy);
+  finish_composite(pending, TilingOptions{}, lazy);
+  const TilingDefects full = measure_defects(lazy);
+  EXPECT_EQ(partial.bridge_area, full.bridge_area);
+  EXPECT_LE(partial.score(), full.score());
+  ASSERT_EQ(lazy.triangles.size(), direct.triangles.size());
+  EXPECT_TRUE(lazy.triangles == direct.triangles);
+  EXPECT_TRUE(lazy.roles == direct.roles);
+  EXPECT_EQ(lazy.vertices, direct.vertices);
+}
+
 TEST(Branching, ContoursInsideOneAreJoinedByAWellShapedFill) {
   // Three small discs inside a large one (the noisy end of a flat-topped bone): the composite's band
   // would fan slivers across the flat region between them; the nested fill triangulates it.

@@ -84,8 +84,13 @@ struct TilingOptions {
   /// continue it.
   double min_overlap_of_larger = 0.01;
   /// One-to-one pairs are tiled by the minimum-area dynamic programme of Fuchs, Kedem and Uselton
-  /// (1977) over the full m x n grid while m * n is at most this; larger pairs use a band of
-  /// +/- `band_fraction` of the contour length around the arc-length diagonal.
+  /// (1977) over the grid of m x n point pairs. Pairs of over 90 000 point pairs whose contours both have
+  /// at least 32 points are solved coarse to fine, whatever their size: first on every k-th point (about
+  /// 40 000 pairs), then at full resolution in a corridor of about 2 k points either side of that path
+  /// (docs/reconstruction.md, "Tiling"). The other pairs (a contour of under 32 points) use the full grid
+  /// while m * n is at most `full_dp_limit`, and above it a band of +/- `band_fraction` of the points
+  /// around the arc-length diagonal; the full grid is the last resort when a corridor or band cannot
+  /// reach the end.
   std::size_t full_dp_limit = 4'000'000;
   double band_fraction = 0.15;
   /// Vertex cap of the tiled mesh and memory budget of each contour pair's dynamic programme

@@ -4,7 +4,7 @@
 // the same mesh as reconstruct() and as `contourmesh reconstruct` with the same options.
 #pragma once
 
-#include <vtkPolyDataAlgorithm.h>
+#include "contourmesh/vtk/vtkContourTilingAlgorithm.h"
 
 /// Segments a CT volume slice by slice (index axis k is the slice axis) and tiles the contours of
 /// adjacent slices into a closed, outward-oriented triangle mesh.
@@ -27,11 +27,11 @@
 /// AbortExecute (vtkAlgorithm::CheckAbort on VTK >= 9.3), checked once per slice: an aborted run
 /// leaves the output empty and returns 1 (not an error); call Modified() before the next Update() to
 /// run again.
-class vtkCtImageToContourSurfaceFilter : public vtkPolyDataAlgorithm {
+class vtkCtImageToContourSurfaceFilter : public vtkContourTilingAlgorithm {
  public:
   static vtkCtImageToContourSurfaceFilter* New();
   vtkTypeMacro(vtkCtImageToContourSurfaceFilter,
-               vtkPolyDataAlgorithm)  // no ";": the macro ends with "public:" (-Wpedantic)
+               vtkContourTilingAlgorithm)  // no ";": the macro ends with "public:" (-Wpedantic)
       void PrintSelf(ostream& os, vtkIndent indent) override;
 
   enum ThresholdMethodType {
@@ -43,25 +43,9 @@ class vtkCtImageToContourSurfaceFilter : public vtkPolyDataAlgorithm {
     DENOISING_MEDIAN = 1,                 ///< 3 x 3 median in each slice plane
     DENOISING_CURVATURE_ANISOTROPIC = 2,  ///< 5 steps of curvature anisotropic diffusion, 3-D
   };
-  enum EndCapsType {
-    END_CAPS_HALF_SPACING = 0,  ///< half a slice spacing beyond the last contour (default)
-    END_CAPS_AT_END_SLICE = 1,  ///< in the plane of the last contour
-  };
   enum OffSlicePlacementType {
     OFF_SLICE_IMAGE_CROSSING = 0,  ///< vertices between the slices where the image crosses the threshold (default)
     OFF_SLICE_TILED = 1,           ///< where the tiler put them (caps half a spacing beyond the last contour)
-  };
-  enum CapRefinementType {
-    CAP_REFINEMENT_INTERIOR = 0,      ///< constrained Delaunay with interior vertices (default)
-    CAP_REFINEMENT_EAR_CLIPPING = 1,  ///< ear clipping only
-  };
-  enum BranchingType {
-    BRANCHING_INTERPOLATED = 0,  ///< shape-based interpolation, composites only at the finest level (default)
-    BRANCHING_MID_PLANE = 1,     ///< mid-plane composites only
-  };
-  enum BandRefinementType {
-    BAND_REFINEMENT_INTERPOLATED = 0,  ///< bands of slivers tiled again through interpolated contours (default)
-    BAND_REFINEMENT_NONE = 1,          ///< every one-to-one pair is one minimum-area band
   };
 
   ///@{
@@ -126,14 +110,6 @@ class vtkCtImageToContourSurfaceFilter : public vtkPolyDataAlgorithm {
   ///@}
 
   ///@{
-  /// Where objects end (default half a spacing beyond the last contour).
-  vtkSetClampMacro(EndCaps, int, END_CAPS_HALF_SPACING, END_CAPS_AT_END_SLICE);
-  vtkGetMacro(EndCaps, int);
-  void SetEndCapsToHalfSpacing() { this->SetEndCaps(END_CAPS_HALF_SPACING); }
-  void SetEndCapsToAtEndSlice() { this->SetEndCaps(END_CAPS_AT_END_SLICE); }
-  ///@}
-
-  ///@{
   /// Heights of the vertices between the slices (end caps, intermediate contours): from the image
   /// (default) or as tiled.
   vtkSetClampMacro(OffSlicePlacement, int, OFF_SLICE_IMAGE_CROSSING, OFF_SLICE_TILED);
@@ -143,80 +119,10 @@ class vtkCtImageToContourSurfaceFilter : public vtkPolyDataAlgorithm {
   ///@}
 
   ///@{
-  /// How caps are triangulated (default interior vertices, refined).
-  vtkSetClampMacro(CapRefinement, int, CAP_REFINEMENT_INTERIOR, CAP_REFINEMENT_EAR_CLIPPING);
-  vtkGetMacro(CapRefinement, int);
-  void SetCapRefinementToInterior() { this->SetCapRefinement(CAP_REFINEMENT_INTERIOR); }
-  void SetCapRefinementToEarClipping() { this->SetCapRefinement(CAP_REFINEMENT_EAR_CLIPPING); }
-  ///@}
-
-  ///@{
-  /// Contours of adjacent slices correspond when their regions overlap by more than this fraction of
-  /// the smaller one, in (0, 1] (default 0.05).
-  vtkSetClampMacro(MinOverlapFraction, double, 0.0, 1.0);
-  vtkGetMacro(MinOverlapFraction, double);
-  ///@}
-
-  ///@{
-  /// ... and by more than this fraction of the larger one, in [0, 1) (default 0.01): a speck inside a
-  /// large contour does not continue it.
-  vtkSetClampMacro(MinOverlapOfLarger, double, 0.0, 1.0);
-  vtkGetMacro(MinOverlapOfLarger, double);
-  ///@}
-
-  ///@{
-  /// Contour pairs with m * n points up to this are tiled by the full minimum-area dynamic programme,
-  /// larger ones in a band of +/- BandFraction of the contour length (defaults 4,000,000 and 0.15).
-  vtkSetClampMacro(FullDynamicProgrammingLimit, vtkIdType, 0, VTK_ID_MAX);
-  vtkGetMacro(FullDynamicProgrammingLimit, vtkIdType);
-  vtkSetClampMacro(BandFraction, double, 0.0, 1.0);
-  vtkGetMacro(BandFraction, double);
-  ///@}
-
-  ///@{
-  /// Where contours split, merge or a hole opens or closes between slices: shape-based interpolation
-  /// (default) or mid-plane composites only; and how many times such a slab is halved, >= 0 (default 3).
-  vtkSetClampMacro(Branching, int, BRANCHING_INTERPOLATED, BRANCHING_MID_PLANE);
-  vtkGetMacro(Branching, int);
-  void SetBranchingToInterpolated() { this->SetBranching(BRANCHING_INTERPOLATED); }
-  void SetBranchingToMidPlane() { this->SetBranching(BRANCHING_MID_PLANE); }
-  vtkSetClampMacro(MaxBranchingDepth, int, 0, VTK_INT_MAX);
-  vtkGetMacro(MaxBranchingDepth, int);
-  ///@}
-
-  ///@{
-  /// Whether a band whose faces under 10 degrees hold more than MaxBandSliverShare of its area (in
-  /// [0, 1], default 0.01) is tiled again through intermediate contours (default) or kept; the
-  /// intermediate contours are at most MaxBandAspect contour spacings apart across the band (> 0,
-  /// default 3), MaxIntermediateContours of them at most (>= 1, default 15), interpolated on a grid of
-  /// InterpolationGrid contour spacings (in (0, 1], default 0.5).
-  vtkSetClampMacro(BandRefinement, int, BAND_REFINEMENT_INTERPOLATED, BAND_REFINEMENT_NONE);
-  vtkGetMacro(BandRefinement, int);
-  void SetBandRefinementToInterpolated() { this->SetBandRefinement(BAND_REFINEMENT_INTERPOLATED); }
-  void SetBandRefinementToNone() { this->SetBandRefinement(BAND_REFINEMENT_NONE); }
-  vtkSetClampMacro(MaxBandSliverShare, double, 0.0, 1.0);
-  vtkGetMacro(MaxBandSliverShare, double);
-  vtkSetClampMacro(MaxBandAspect, double, 0.0, VTK_DOUBLE_MAX);
-  vtkGetMacro(MaxBandAspect, double);
-  vtkSetClampMacro(MaxIntermediateContours, int, 1, VTK_INT_MAX);
-  vtkGetMacro(MaxIntermediateContours, int);
-  vtkSetClampMacro(InterpolationGrid, double, 0.0, 1.0);
-  vtkGetMacro(InterpolationGrid, double);
-  ///@}
-
-  ///@{
   /// Mesh components enclosing less than this many voxel volumes are dropped, >= 0 (default 4; 0 keeps
   /// everything).
   vtkSetClampMacro(MinComponentVoxels, double, 0.0, VTK_DOUBLE_MAX);
   vtkGetMacro(MinComponentVoxels, double);
-  ///@}
-
-  ///@{
-  /// Names of the id point arrays of the output.
-  vtkSetStringMacro(ContourIdArrayName);
-  vtkGetStringMacro(ContourIdArrayName);
-  vtkSetStringMacro(ContourIndexArrayName);
-  vtkGetStringMacro(ContourIndexArrayName);
   ///@}
 
  protected:
@@ -238,27 +144,10 @@ class vtkCtImageToContourSurfaceFilter : public vtkPolyDataAlgorithm {
   vtkTypeBool FillHoles = 0;
   double Sampling = 0.0;
   double MinContourLength = 3.0;
-  int EndCaps = END_CAPS_HALF_SPACING;
-  int CapRefinement = CAP_REFINEMENT_INTERIOR;
   int OffSlicePlacement = OFF_SLICE_IMAGE_CROSSING;
-  double MinOverlapFraction = 0.05;
-  vtkIdType FullDynamicProgrammingLimit = 4'000'000;
-  double BandFraction = 0.15;
-  int Branching = BRANCHING_INTERPOLATED;
-  int MaxBranchingDepth = 3;
-  int BandRefinement = BAND_REFINEMENT_INTERPOLATED;
-  double MaxBandSliverShare = 0.01;
-  double MaxBandAspect = 3.0;
-  int MaxIntermediateContours = 15;
-  double InterpolationGrid = 0.5;
-  double MinOverlapOfLarger = 0.01;
   double MinComponentVoxels = 4.0;
-  char* ContourIdArrayName = nullptr;
-  char* ContourIndexArrayName = nullptr;
 
  private:
   vtkCtImageToContourSurfaceFilter(const vtkCtImageToContourSurfaceFilter&) = delete;
   void operator=(const vtkCtImageToContourSurfaceFilter&) = delete;
-
-  bool AbortRequested();
 };
