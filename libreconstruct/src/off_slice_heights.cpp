@@ -143,10 +143,6 @@ OffSliceResult fit_off_slice_heights(Mesh mesh, const CtImage& image, double thr
     const double x = index.x() - options.inward_pixels * nu, y = index.y() - options.inward_pixels * nvv;
     double t = 0.0;
     if (!crossing(sampler, x, y, k, threshold, t)) continue;
-    if (std::abs(nw) > 1e-3) {
-      const double rise = options.inward_pixels * (nu * nu * sampler.spacing(0) + nvv * nvv * sampler.spacing(1)) / nw;
-      t -= std::clamp(rise / h, -0.25, 0.25);
-    }
     t = std::clamp(t, options.min_fraction, 1.0 - options.min_fraction);
     target[v] = (t - frac) * h;
     weight[v] = std::abs(nw);

@@ -43,9 +43,6 @@ struct OffSliceOptions {
   double min_fraction = 0.1;
   /// The image is read this many pixels inwards along the vertex's in-plane normal (scaled by the
   /// normal's in-plane part), >= 0: at a cap's rim the boundary column itself is blurred in the plane.
-  /// On a face tilted off the slices the column read there crosses at another height than the vertex's
-  /// own; that rise, inward_pixels * (n_u^2 s_u + n_v^2 s_v) / n_w for the vertex normal n and pixel
-  /// sizes s, is taken off the reading (at most a quarter spacing).
   double inward_pixels = 1.0;
 };
 
