@@ -75,18 +75,28 @@ void check(const Mesh& mesh, const OffSliceOptions& o) {
 }
 
 // Where between slices k (t = 0) and k + 1 (t = 1) the column at in-plane index (x, y) crosses the
-// threshold, normalised by the levels one slice further inside and outside; false without a crossing.
+// threshold; false without a crossing. With the levels one slice further inside and outside, the two
+// values are normalised by them to the shares a', b' in [0, 1] of the voxels that lie inside, and the
+// boundary is where those shares put it: a voxel value is the mean over the voxel's slice profile, and
+// profiles that tile the axis (a box as wide as the spacing, or its blur) make a' + b' grow linearly
+// with the boundary's height, so t = a' + b' - 1/2 (inside towards slice k; 3/2 - a' - b' the other
+// way). Interpolating the threshold linearly between the slice centres instead reads a step's height
+// with half the slope around the mid-plane and twice near the slices, and lays a gently tilted wall
+// out as flat terraces at the mid-planes. Without those levels (the image's first or last slices), the
+// linear interpolation of the threshold.
 bool crossing(const SliceSampler& s, double x, double y, long k, double threshold, double& t) {
   const double va = s.at(x, y, k), vb = s.at(x, y, k + 1);
-  double a = va - threshold, b = vb - threshold;
+  const double a = va - threshold, b = vb - threshold;
   if (a * b >= 0.0) return false;
   const long inside = a > 0.0 ? k - 1 : k + 2, outside = a > 0.0 ? k + 2 : k - 1;
   if (s.has_slice(inside) && s.has_slice(outside)) {
     const double vin = s.at(x, y, inside), vout = s.at(x, y, outside);
     if (vin > threshold && vout < threshold) {
-      a = (va - vout) / (vin - vout) - 0.5;
-      b = (vb - vout) / (vin - vout) - 0.5;
-      if (a * b >= 0.0) return false;
+      const double share_a = std::clamp((va - vout) / (vin - vout), 0.0, 1.0);
+      const double share_b = std::clamp((vb - vout) / (vin - vout), 0.0, 1.0);
+      const double sum = share_a + share_b;
+      t = a > 0.0 ? sum - 0.5 : 1.5 - sum;
+      return true;
     }
   }
   t = a / (a - b);

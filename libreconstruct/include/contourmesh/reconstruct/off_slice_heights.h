@@ -62,8 +62,12 @@ struct OffSliceResult {
 /// height where the image crosses `threshold`, regularised by a membrane over the mesh's edges in which
 /// vertices with ids hold still. Per vertex at (u, v) between slices k and k + 1, with values a and b
 /// there (bilinear in the plane) and the values beyond, i = k - 1 inside and o = k + 2 outside (or the
-/// reverse), the values are normalised by the column's own levels, (x - o) / (i - o), so that partial
-/// volume in the plane cancels, and the crossing of 1/2 is interpolated linearly: t = a' / (a' - b').
+/// reverse), the values are normalised by the column's own levels to the shares of the two voxels that
+/// lie inside, a' = (a - o) / (i - o) and b' likewise in [0, 1], so that partial volume in the plane
+/// cancels. A voxel value is the mean over its slice profile; profiles that tile the axis (a box as wide
+/// as the spacing, blurred or not) make a' + b' grow linearly with the boundary's height, so t = a' + b'
+/// - 1/2 when slice k is the inside one (3/2 - a' - b' otherwise). Without the levels beyond (the first
+/// and last slices) the threshold is interpolated linearly, t = (a - c) / (a - b) for threshold c.
 /// The data weight is |n_w| of the vertex normal (the crossing along the axis is well posed only where
 /// the surface faces it). Moves stay within the slab, `min_fraction` away from its slices, and are
 /// halved on the vertices of any face that would turn by more than about 80 degrees. Vertices with ids
