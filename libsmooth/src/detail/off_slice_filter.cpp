@@ -5,6 +5,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstring>
 #include <map>
 
 namespace contourmesh::detail {
@@ -241,17 +242,43 @@ void filter_normals(const Workspace& w, const OffSliceFilterOptions& options, Ei
   // Where a sum vanishes, a face keeps the normal of two iterations before (that of `next`).
   Eigen::Matrix3Xd next = normals;
   std::vector<float> range(w.slot_a.size());
+  // Only what changed is recomputed. A face's sum reads the normals of its neighbourhood only (the face's
+  // own included, and each pair's range kernel reads the pair's two normals): where none of them changed
+  // bit for bit in the last iteration, the sum and its normal are those of the last iteration, and so is
+  // a kernel whose two faces kept their normals. The filtered normals start moving near the region's
+  // features and spread a ring per iteration; flat caps keep theirs.
+  const std::size_t nl = w.faces.size(), nk = w.filtered.size();
+  // Per local face: its normal changed in the last iteration (never, for the faces not filtered); the first
+  // iteration computes everything.
+  std::vector<std::uint8_t> changed(nl, 0), changes(nl, 0);
+  std::vector<std::uint8_t> summed(nk, 0);  // per filtered face: its last sum was not zero (its normal set)
+  const auto same = [](const auto& a, const auto& b) {  // bit for bit (-0 against 0 too)
+    return std::memcmp(a.data(), b.data(), 3 * sizeof(double)) == 0;
+  };
   for (int it = 0; it < options.normal_iterations; ++it) {
     // The range kernel of every pair, from |n_b - n_a|^2 of unit normals, in single precision (the hot
     // spot). The dot product is symmetric, bit for bit.
     parallel_chunks(range.size(), 4096, [&](std::size_t, std::size_t begin, std::size_t end) {
       for (std::size_t s = begin; s < end; ++s) {
+        if (it > 0 && !changed[static_cast<std::size_t>(w.slot_a[s])] && !changed[static_cast<std::size_t>(w.slot_b[s])]) {
+          continue;
+        }
         const double dr = 2.0 - 2.0 * normals.col(w.slot_b[s]).dot(normals.col(w.slot_a[s]));
         range[s] = std::exp(static_cast<float>(-dr * inv_r));
       }
     });
-    parallel_chunks(w.filtered.size(), 1024, [&](std::size_t, std::size_t begin, std::size_t end) {
+    parallel_chunks(nk, 1024, [&](std::size_t, std::size_t begin, std::size_t end) {
       for (std::size_t k = begin; k < end; ++k) {
+        const Index f = w.filtered[k];
+        bool stale = it == 0 || summed[k] == 0;  // a face whose last sum vanished is summed again
+        for (Index r = w.ring_offsets[k]; r < w.ring_offsets[k + 1] && !stale; ++r) {
+          stale = changed[static_cast<std::size_t>(w.ring[static_cast<std::size_t>(r)])] != 0;
+        }
+        if (!stale) {  // the last sum again: the normal stays
+          next.col(f) = normals.col(f);
+          changes[static_cast<std::size_t>(f)] = 0;
+          continue;
+        }
         Eigen::Vector3d acc = Eigen::Vector3d::Zero();
         for (Index r = w.ring_offsets[k]; r < w.ring_offsets[k + 1]; ++r) {
           const auto ru = static_cast<std::size_t>(r);
@@ -259,10 +286,13 @@ void filter_normals(const Workspace& w, const OffSliceFilterOptions& options, Ei
           acc += w.ring_weights[ru] * kernel * normals.col(w.ring[ru]);
         }
         const double len = acc.norm();
-        if (len > 0.0) next.col(w.filtered[k]) = acc / len;
+        summed[k] = len > 0.0 ? 1 : 0;
+        if (len > 0.0) next.col(f) = acc / len;
+        changes[static_cast<std::size_t>(f)] = same(next.col(f), normals.col(f)) ? 0 : 1;
       }
     });
     normals.swap(next);
+    changed.swap(changes);
   }
 }
 
