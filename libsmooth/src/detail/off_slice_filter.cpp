@@ -260,9 +260,8 @@ void filter_normals(const Workspace& w, const OffSliceFilterOptions& options, Ei
     // spot). The dot product is symmetric, bit for bit.
     parallel_chunks(range.size(), 4096, [&](std::size_t, std::size_t begin, std::size_t end) {
       for (std::size_t s = begin; s < end; ++s) {
-        if (it > 0 && !changed[static_cast<std::size_t>(w.slot_a[s])] && !changed[static_cast<std::size_t>(w.slot_b[s])]) {
-          continue;
-        }
+        const auto a = static_cast<std::size_t>(w.slot_a[s]), b = static_cast<std::size_t>(w.slot_b[s]);
+        if (it > 0 && !changed[a] && !changed[b]) continue;
         const double dr = 2.0 - 2.0 * normals.col(w.slot_b[s]).dot(normals.col(w.slot_a[s]));
         range[s] = std::exp(static_cast<float>(-dr * inv_r));
       }
