@@ -305,18 +305,34 @@ void update_vertices(const ContourFrame& frame, const Workspace& w, const Eigen:
   const std::size_t nk = w.filtered.size(), nm = w.moving.size();
   Eigen::Matrix3Xd centroids(3, static_cast<Index>(nk));
   Eigen::Matrix3Xd updated(3, static_cast<Index>(nm));
+  // Only what changed is recomputed: a vertex's update reads the corners of its faces (through their
+  // centroids) and fixed data. Where none of them moved, bit for bit, in the last iteration, the update is
+  // the last one again, which is where the vertex is; a centroid whose corners stayed is the same too.
+  std::vector<std::uint8_t> moved(static_cast<std::size_t>(x.cols()), 0);  // per local vertex, last iteration
+  std::vector<std::uint8_t> face_moved(nk, 0);  // per filtered face: a corner moved (its centroid is new)
   for (int it = 0; it < options.vertex_iterations; ++it) {
     parallel_chunks(nk, 4096, [&](std::size_t, std::size_t begin, std::size_t end) {
       for (std::size_t k = begin; k < end; ++k) {
         const Triangle& t = w.corners[k];
-        centroids.col(static_cast<Index>(k)) = (x.col(t[0]) + x.col(t[1]) + x.col(t[2])) / 3.0;
+        const auto c0 = static_cast<std::size_t>(t[0]), c1 = static_cast<std::size_t>(t[1]),
+                   c2 = static_cast<std::size_t>(t[2]);
+        face_moved[k] = it == 0 || moved[c0] || moved[c1] || moved[c2] ? 1 : 0;
+        if (face_moved[k]) centroids.col(static_cast<Index>(k)) = (x.col(t[0]) + x.col(t[1]) + x.col(t[2])) / 3.0;
       }
     });
     parallel_chunks(nm, 2048, [&](std::size_t, std::size_t begin, std::size_t end) {
       for (std::size_t m = begin; m < end; ++m) {
         const Index i = w.moving[m];
-        Eigen::Vector3d step = Eigen::Vector3d::Zero();
         const Index first = w.incident_offsets[m], last = w.incident_offsets[m + 1];
+        bool stale = false;
+        for (Index r = first; r < last && !stale; ++r) {
+          stale = face_moved[static_cast<std::size_t>(w.incident[static_cast<std::size_t>(r)])] != 0;
+        }
+        if (!stale) {  // the last update again
+          updated.col(static_cast<Index>(m)) = x.col(i);
+          continue;
+        }
+        Eigen::Vector3d step = Eigen::Vector3d::Zero();
         for (Index r = first; r < last; ++r) {
           const Index f = w.incident[static_cast<std::size_t>(r)];
           step += normals.col(f) * normals.col(f).dot(centroids.col(f) - x.col(i));
@@ -341,7 +357,12 @@ void update_vertices(const ContourFrame& frame, const Workspace& w, const Eigen:
         updated.col(static_cast<Index>(m)) = x0 + d;
       }
     });
-    for (std::size_t m = 0; m < nm; ++m) x.col(w.moving[m]) = updated.col(static_cast<Index>(m));
+    for (std::size_t m = 0; m < nm; ++m) {
+      const Index i = w.moving[m];
+      const auto u = updated.col(static_cast<Index>(m));
+      moved[static_cast<std::size_t>(i)] = std::memcmp(u.data(), x.col(i).data(), 3 * sizeof(double)) != 0 ? 1 : 0;
+      x.col(i) = u;
+    }
   }
 }
 
