@@ -206,30 +206,28 @@ Workspace make_workspace(const ContourFrame& frame, const std::vector<Triangle>&
 // between centroids, whose width is the mean such distance (fixed while the normals are filtered: nothing
 // moves then).
 void spatial_weights(const Eigen::Matrix3Xd& centroids, const Eigen::VectorXd& areas, Workspace& w) {
-  const std::size_t nk = w.filtered.size();
-  std::vector<double> distance(w.ring.size());
-  parallel_chunks(nk, 1024, [&](std::size_t, std::size_t begin, std::size_t end) {
-    for (std::size_t k = begin; k < end; ++k) {
-      const Index f = w.filtered[k];
-      for (Index r = w.ring_offsets[k]; r < w.ring_offsets[k + 1]; ++r) {
-        const auto ru = static_cast<std::size_t>(r);
-        distance[ru] = (centroids.col(w.ring[ru]) - centroids.col(f)).norm();
-      }
+  // Per pair of faces (slot), once: the distance between the centroids and its Gaussian are symmetric bit
+  // for bit (the difference only changes sign), as the range kernel is.
+  const std::size_t ns = w.slot_a.size();
+  std::vector<double> squared(ns), distance(ns);
+  parallel_chunks(ns, 4096, [&](std::size_t, std::size_t begin, std::size_t end) {
+    for (std::size_t s = begin; s < end; ++s) {
+      squared[s] = (centroids.col(w.slot_b[s]) - centroids.col(w.slot_a[s])).squaredNorm();
+      distance[s] = std::sqrt(squared[s]);  // as norm()
     }
   });
   double sum = 0.0;  // in ring order, as one serial sum
-  for (double d : distance) sum += d;
+  for (Index slot : w.ring_slot) sum += distance[static_cast<std::size_t>(slot)];
   const double sigma_s = sum > 0.0 ? sum / static_cast<double>(w.ring.size()) : 1.0;
   const double inv_s = 1.0 / (2.0 * sigma_s * sigma_s);
+  std::vector<double>& kernel = distance;  // reused
+  parallel_chunks(ns, 4096, [&](std::size_t, std::size_t begin, std::size_t end) {
+    for (std::size_t s = begin; s < end; ++s) kernel[s] = std::exp(-squared[s] * inv_s);
+  });
   w.ring_weights.resize(w.ring.size());
-  parallel_chunks(nk, 1024, [&](std::size_t, std::size_t begin, std::size_t end) {
-    for (std::size_t k = begin; k < end; ++k) {
-      const Index f = w.filtered[k];
-      for (Index r = w.ring_offsets[k]; r < w.ring_offsets[k + 1]; ++r) {
-        const auto ru = static_cast<std::size_t>(r);
-        const Index g = w.ring[ru];
-        w.ring_weights[ru] = areas[g] * std::exp(-(centroids.col(g) - centroids.col(f)).squaredNorm() * inv_s);
-      }
+  parallel_chunks(w.ring.size(), 16384, [&](std::size_t, std::size_t begin, std::size_t end) {
+    for (std::size_t r = begin; r < end; ++r) {
+      w.ring_weights[r] = areas[w.ring[r]] * kernel[static_cast<std::size_t>(w.ring_slot[r])];
     }
   });
 }
