@@ -10,7 +10,6 @@
 
 #include <chrono>
 #include <cmath>
-#include <cstring>
 #include <string>
 
 namespace contourmesh {
@@ -131,31 +130,16 @@ void extend_displacements(const detail::ContourFrame& frame, int iterations, Eig
     if (!frame.is_contour_vertex(i) && frame.adjacency.valence(i) > 0) free.push_back(i);
   }
   if (free.empty()) return;
-  // Each iteration's averages, for the free vertices only (the others are held), then written back. An
-  // average whose ring did not change, bit for bit, in the last iteration is the last one again, which is
-  // the vertex's value: only the vertices near a change are summed (the displacements spread from the
-  // contours a ring per iteration; the middle of a large cap stays put).
+  // Each iteration's averages, for the free vertices only (the others are held), then written back.
   Eigen::Matrix3Xd next(3, static_cast<Index>(free.size()));
-  std::vector<std::uint8_t> changed(static_cast<std::size_t>(n), 0);  // in the last iteration
   for (int it = 0; it < iterations; ++it) {
     for (std::size_t k = 0; k < free.size(); ++k) {
-      const auto ring = frame.adjacency.ring(free[k]);
-      bool stale = it == 0;
-      for (auto j = ring.begin(); j != ring.end() && !stale; ++j) stale = changed[static_cast<std::size_t>(*j)] != 0;
-      if (!stale) {
-        next.col(static_cast<Index>(k)) = displacement.col(free[k]);
-        continue;
-      }
       Eigen::Vector3d sum = Eigen::Vector3d::Zero();
+      const auto ring = frame.adjacency.ring(free[k]);
       for (Index j : ring) sum += displacement.col(j);
       next.col(static_cast<Index>(k)) = sum / static_cast<double>(ring.size());
     }
-    for (std::size_t k = 0; k < free.size(); ++k) {
-      const auto v = displacement.col(free[k]);
-      const auto u = next.col(static_cast<Index>(k));
-      changed[static_cast<std::size_t>(free[k])] = std::memcmp(u.data(), v.data(), 3 * sizeof(double)) != 0 ? 1 : 0;
-      displacement.col(free[k]) = u;
-    }
+    for (std::size_t k = 0; k < free.size(); ++k) displacement.col(free[k]) = next.col(static_cast<Index>(k));
   }
 }
 
