@@ -170,9 +170,12 @@ CrossSliceResult cross_slice_smooth(const Mesh& mesh, const CrossSliceOptions& o
                                     });
   if (options.progress && !options.progress("smooth", 0.5)) throw CancelledError("smoothing");
 
-  // 2. Along the contours, on the positions after step 1.
+  // 2. Along the contours, on the positions after step 1 (held in the result's positions, which take
+  // the final ones below: no buffer of their own).
+  result.mesh = mesh;
   if (options.stages == CrossSliceStages::AcrossThenAlong) {
-    const Eigen::Matrix3Xd across = mesh.positions + displacement;
+    Eigen::Matrix3Xd& across = result.mesh.positions;
+    across += displacement;
     const Eigen::Matrix3Xd across_normals = vertex_normals(across, mesh.triangles);
     result.noise_along = options.noise_along.value_or(detail::profile_noise(frame, across, across_normals, false));
     lpa.sigma = result.noise_along;
@@ -186,8 +189,7 @@ CrossSliceResult cross_slice_smooth(const Mesh& mesh, const CrossSliceOptions& o
 
   // 3. Vertices off the slices follow.
   extend_displacements(frame, options.extension_iterations, displacement);
-  result.mesh = mesh;
-  result.mesh.positions += displacement;
+  result.mesh.positions = mesh.positions + displacement;
   result.off_slice_moved =
       detail::filter_off_slice_normals(frame, mesh.triangles, options.off_slice, result.mesh.positions);
   result.seconds_smooth = seconds_since(t);

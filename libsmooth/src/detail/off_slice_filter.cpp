@@ -5,6 +5,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstring>
 #include <map>
 
 namespace contourmesh::detail {
@@ -205,30 +206,28 @@ Workspace make_workspace(const ContourFrame& frame, const std::vector<Triangle>&
 // between centroids, whose width is the mean such distance (fixed while the normals are filtered: nothing
 // moves then).
 void spatial_weights(const Eigen::Matrix3Xd& centroids, const Eigen::VectorXd& areas, Workspace& w) {
-  const std::size_t nk = w.filtered.size();
-  std::vector<double> distance(w.ring.size());
-  parallel_chunks(nk, 1024, [&](std::size_t, std::size_t begin, std::size_t end) {
-    for (std::size_t k = begin; k < end; ++k) {
-      const Index f = w.filtered[k];
-      for (Index r = w.ring_offsets[k]; r < w.ring_offsets[k + 1]; ++r) {
-        const auto ru = static_cast<std::size_t>(r);
-        distance[ru] = (centroids.col(w.ring[ru]) - centroids.col(f)).norm();
-      }
+  // Per pair of faces (slot), once: the distance between the centroids and its Gaussian are symmetric bit
+  // for bit (the difference only changes sign), as the range kernel is.
+  const std::size_t ns = w.slot_a.size();
+  std::vector<double> squared(ns), distance(ns);
+  parallel_chunks(ns, 4096, [&](std::size_t, std::size_t begin, std::size_t end) {
+    for (std::size_t s = begin; s < end; ++s) {
+      squared[s] = (centroids.col(w.slot_b[s]) - centroids.col(w.slot_a[s])).squaredNorm();
+      distance[s] = std::sqrt(squared[s]);  // as norm()
     }
   });
   double sum = 0.0;  // in ring order, as one serial sum
-  for (double d : distance) sum += d;
+  for (Index slot : w.ring_slot) sum += distance[static_cast<std::size_t>(slot)];
   const double sigma_s = sum > 0.0 ? sum / static_cast<double>(w.ring.size()) : 1.0;
   const double inv_s = 1.0 / (2.0 * sigma_s * sigma_s);
+  std::vector<double>& kernel = distance;  // reused
+  parallel_chunks(ns, 4096, [&](std::size_t, std::size_t begin, std::size_t end) {
+    for (std::size_t s = begin; s < end; ++s) kernel[s] = std::exp(-squared[s] * inv_s);
+  });
   w.ring_weights.resize(w.ring.size());
-  parallel_chunks(nk, 1024, [&](std::size_t, std::size_t begin, std::size_t end) {
-    for (std::size_t k = begin; k < end; ++k) {
-      const Index f = w.filtered[k];
-      for (Index r = w.ring_offsets[k]; r < w.ring_offsets[k + 1]; ++r) {
-        const auto ru = static_cast<std::size_t>(r);
-        const Index g = w.ring[ru];
-        w.ring_weights[ru] = areas[g] * std::exp(-(centroids.col(g) - centroids.col(f)).squaredNorm() * inv_s);
-      }
+  parallel_chunks(w.ring.size(), 16384, [&](std::size_t, std::size_t begin, std::size_t end) {
+    for (std::size_t r = begin; r < end; ++r) {
+      w.ring_weights[r] = areas[w.ring[r]] * kernel[static_cast<std::size_t>(w.ring_slot[r])];
     }
   });
 }
@@ -241,17 +240,42 @@ void filter_normals(const Workspace& w, const OffSliceFilterOptions& options, Ei
   // Where a sum vanishes, a face keeps the normal of two iterations before (that of `next`).
   Eigen::Matrix3Xd next = normals;
   std::vector<float> range(w.slot_a.size());
+  // Only what changed is recomputed. A face's sum reads the normals of its neighbourhood only (the face's
+  // own included, and each pair's range kernel reads the pair's two normals): where none of them changed
+  // bit for bit in the last iteration, the sum and its normal are those of the last iteration, and so is
+  // a kernel whose two faces kept their normals. The filtered normals start moving near the region's
+  // features and spread a ring per iteration; flat caps keep theirs.
+  const std::size_t nl = w.faces.size(), nk = w.filtered.size();
+  // Per local face: its normal changed in the last iteration (never, for the faces not filtered); the first
+  // iteration computes everything.
+  std::vector<std::uint8_t> changed(nl, 0), changes(nl, 0);
+  std::vector<std::uint8_t> summed(nk, 0);  // per filtered face: its last sum was not zero (its normal set)
+  const auto same = [](const auto& a, const auto& b) {  // bit for bit (-0 against 0 too)
+    return std::memcmp(a.data(), b.data(), 3 * sizeof(double)) == 0;
+  };
   for (int it = 0; it < options.normal_iterations; ++it) {
     // The range kernel of every pair, from |n_b - n_a|^2 of unit normals, in single precision (the hot
     // spot). The dot product is symmetric, bit for bit.
     parallel_chunks(range.size(), 4096, [&](std::size_t, std::size_t begin, std::size_t end) {
       for (std::size_t s = begin; s < end; ++s) {
+        const auto a = static_cast<std::size_t>(w.slot_a[s]), b = static_cast<std::size_t>(w.slot_b[s]);
+        if (it > 0 && !changed[a] && !changed[b]) continue;
         const double dr = 2.0 - 2.0 * normals.col(w.slot_b[s]).dot(normals.col(w.slot_a[s]));
         range[s] = std::exp(static_cast<float>(-dr * inv_r));
       }
     });
-    parallel_chunks(w.filtered.size(), 1024, [&](std::size_t, std::size_t begin, std::size_t end) {
+    parallel_chunks(nk, 1024, [&](std::size_t, std::size_t begin, std::size_t end) {
       for (std::size_t k = begin; k < end; ++k) {
+        const Index f = w.filtered[k];
+        bool stale = it == 0 || summed[k] == 0;  // a face whose last sum vanished is summed again
+        for (Index r = w.ring_offsets[k]; r < w.ring_offsets[k + 1] && !stale; ++r) {
+          stale = changed[static_cast<std::size_t>(w.ring[static_cast<std::size_t>(r)])] != 0;
+        }
+        if (!stale) {  // the last sum again: the normal stays
+          next.col(f) = normals.col(f);
+          changes[static_cast<std::size_t>(f)] = 0;
+          continue;
+        }
         Eigen::Vector3d acc = Eigen::Vector3d::Zero();
         for (Index r = w.ring_offsets[k]; r < w.ring_offsets[k + 1]; ++r) {
           const auto ru = static_cast<std::size_t>(r);
@@ -259,10 +283,13 @@ void filter_normals(const Workspace& w, const OffSliceFilterOptions& options, Ei
           acc += w.ring_weights[ru] * kernel * normals.col(w.ring[ru]);
         }
         const double len = acc.norm();
-        if (len > 0.0) next.col(w.filtered[k]) = acc / len;
+        summed[k] = len > 0.0 ? 1 : 0;
+        if (len > 0.0) next.col(f) = acc / len;
+        changes[static_cast<std::size_t>(f)] = same(next.col(f), normals.col(f)) ? 0 : 1;
       }
     });
     normals.swap(next);
+    changed.swap(changes);
   }
 }
 
@@ -276,18 +303,34 @@ void update_vertices(const ContourFrame& frame, const Workspace& w, const Eigen:
   const std::size_t nk = w.filtered.size(), nm = w.moving.size();
   Eigen::Matrix3Xd centroids(3, static_cast<Index>(nk));
   Eigen::Matrix3Xd updated(3, static_cast<Index>(nm));
+  // Only what changed is recomputed: a vertex's update reads the corners of its faces (through their
+  // centroids) and fixed data. Where none of them moved, bit for bit, in the last iteration, the update is
+  // the last one again, which is where the vertex is; a centroid whose corners stayed is the same too.
+  std::vector<std::uint8_t> moved(static_cast<std::size_t>(x.cols()), 0);  // per local vertex, last iteration
+  std::vector<std::uint8_t> face_moved(nk, 0);  // per filtered face: a corner moved (its centroid is new)
   for (int it = 0; it < options.vertex_iterations; ++it) {
     parallel_chunks(nk, 4096, [&](std::size_t, std::size_t begin, std::size_t end) {
       for (std::size_t k = begin; k < end; ++k) {
         const Triangle& t = w.corners[k];
-        centroids.col(static_cast<Index>(k)) = (x.col(t[0]) + x.col(t[1]) + x.col(t[2])) / 3.0;
+        const auto c0 = static_cast<std::size_t>(t[0]), c1 = static_cast<std::size_t>(t[1]),
+                   c2 = static_cast<std::size_t>(t[2]);
+        face_moved[k] = it == 0 || moved[c0] || moved[c1] || moved[c2] ? 1 : 0;
+        if (face_moved[k]) centroids.col(static_cast<Index>(k)) = (x.col(t[0]) + x.col(t[1]) + x.col(t[2])) / 3.0;
       }
     });
     parallel_chunks(nm, 2048, [&](std::size_t, std::size_t begin, std::size_t end) {
       for (std::size_t m = begin; m < end; ++m) {
         const Index i = w.moving[m];
-        Eigen::Vector3d step = Eigen::Vector3d::Zero();
         const Index first = w.incident_offsets[m], last = w.incident_offsets[m + 1];
+        bool stale = false;
+        for (Index r = first; r < last && !stale; ++r) {
+          stale = face_moved[static_cast<std::size_t>(w.incident[static_cast<std::size_t>(r)])] != 0;
+        }
+        if (!stale) {  // the last update again
+          updated.col(static_cast<Index>(m)) = x.col(i);
+          continue;
+        }
+        Eigen::Vector3d step = Eigen::Vector3d::Zero();
         for (Index r = first; r < last; ++r) {
           const Index f = w.incident[static_cast<std::size_t>(r)];
           step += normals.col(f) * normals.col(f).dot(centroids.col(f) - x.col(i));
@@ -312,7 +355,12 @@ void update_vertices(const ContourFrame& frame, const Workspace& w, const Eigen:
         updated.col(static_cast<Index>(m)) = x0 + d;
       }
     });
-    for (std::size_t m = 0; m < nm; ++m) x.col(w.moving[m]) = updated.col(static_cast<Index>(m));
+    for (std::size_t m = 0; m < nm; ++m) {
+      const Index i = w.moving[m];
+      const auto u = updated.col(static_cast<Index>(m));
+      moved[static_cast<std::size_t>(i)] = std::memcmp(u.data(), x.col(i).data(), 3 * sizeof(double)) != 0 ? 1 : 0;
+      x.col(i) = u;
+    }
   }
 }
 
