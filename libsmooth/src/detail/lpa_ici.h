@@ -72,8 +72,8 @@ struct LpaIciResult {
 /// matrix, the circle does not hold the window as a graph (a sample beyond its centre's abscissa
 /// +- its radius), 2 |c2| max |yn| > 1 (a sample beyond the near half of the circle, where a sample's
 /// residual, which moves by 1 - 2 c2 yn per unit of its noise, would stop following it), or
-/// 1 - 4 c0 c2 < 1/4 (the root would be more than 4/3 of c0: a circle barely reaching x = 0). The sums are over the window: n, x, x^2, w, x w,
-/// w^2 and y, x y, w y (y in its own unit). lpa_ici floors the variance at the parabola's on the same
+/// 1 - 4 c0 c2 < 1/4 (the root would be more than 4/3 of c0: a circle barely reaching x = 0). The sums
+/// are over the window: n, x, x^2, w, x w, w^2 and y, x y, w y (y in its own unit). lpa_ici floors the variance at the parabola's on the same
 /// window (equal to first order in c2 yn), since the linearisation leaves the noise in w out.
 struct CircleSums {
   double s1 = 0, sx = 0, sxx = 0, sw = 0, sxw = 0, sww = 0;
