@@ -62,19 +62,19 @@ struct LpaIciResult {
 };
 
 /// The circle through a window's samples (algebraic least squares, linear in three parameters), at x = 0.
-/// With x and y in units of x_unit (yn = y / x_unit, w = x^2 + yn^2), every circle not tangent to the
-/// y direction is yn = c0 + c1 x + c2 w exactly (c2 = 0: a line), so the normal equations of
-/// (1, x, w) give (c0, c1, c2), and the circle meets x = 0 at the root of c2 yn^2 - yn + c0 = 0 nearer
-/// to c0: yn0 = 2 c0 / (1 + sqrt(1 - 4 c0 c2)). Its variance in units of sigma^2 is the linearised
-/// J M^-1 J^T, J = (1, 0, yn0^2) / (1 - 2 c2 yn0), with M the normal matrix: the noise of y inside w is
-/// left out (it scales a sample's noise by 1 - yn / R, R the radius). Returns false, for the caller to
-/// fall back to the parabola, when the window has fewer than four samples or a near-singular normal
-/// matrix, the circle does not hold the window as a graph (a sample beyond its centre's abscissa
-/// +- its radius), 2 |c2| max |yn| > 1 (a sample beyond the near half of the circle, where a sample's
-/// residual, which moves by 1 - 2 c2 yn per unit of its noise, would stop following it), or
-/// 1 - 4 c0 c2 < 1/4 (the root would be more than 4/3 of c0: a circle barely reaching x = 0). The sums
-/// are over the window: n, x, x^2, w, x w, w^2 and y, x y, w y (y in its own unit). lpa_ici floors the variance at the parabola's on the same
-/// window (equal to first order in c2 yn), since the linearisation leaves the noise in w out.
+/// With x and y in units of x_unit (yn = y / x_unit, w = x^2 + yn^2), every circle not tangent to the y
+/// direction is yn = c0 + c1 x + c2 w exactly (c2 = 0: a line), so the normal equations of (1, x, w) give
+/// (c0, c1, c2), and the circle meets x = 0 at the root of c2 yn^2 - yn + c0 = 0 nearer to c0: yn0 = 2 c0 /
+/// (1 + sqrt(1 - 4 c0 c2)). Its variance in units of sigma^2 is the linearised J M^-1 J^T, J = (1, 0, yn0^2)
+/// / (1 - 2 c2 yn0), with M the normal matrix: the noise of y inside w is left out (it scales a sample's
+/// noise by 1 - yn / R, R the radius). Returns false, for the caller to fall back to the parabola, when the
+/// window has fewer than four samples or a near-singular normal matrix, the circle does not hold the window
+/// as a graph (a sample beyond its centre's abscissa +- its radius), 2 |c2| max |yn| > 1 (a sample beyond the
+/// near half of the circle, where a sample's residual, which moves by 1 - 2 c2 yn per unit of its noise,
+/// would stop following it), or 1 - 4 c0 c2 < 1/4 (the root would be more than 4/3 of c0: a circle barely
+/// reaching x = 0). The sums are over the window: n, x, x^2, w, x w, w^2 and y, x y, w y (y in its own unit).
+/// lpa_ici floors the variance at the parabola's on the same window (equal to first order in c2 yn), since
+/// the linearisation leaves the noise in w out.
 struct CircleSums {
   double s1 = 0, sx = 0, sxx = 0, sw = 0, sxw = 0, sww = 0;
   double ty = 0, txy = 0, twy = 0;
