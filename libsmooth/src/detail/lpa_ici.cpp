@@ -185,7 +185,12 @@ struct Grown {
 
 }  // namespace
 
-LpaIciResult lpa_ici(const Profile& p, const LpaIciOptions& o) {
+namespace {
+
+// The estimator, with the circle model compiled in or out: the parabola-only instantiation is the code
+// it was before the circle model existed (the default's cost and output unchanged).
+template <bool kCircle>
+LpaIciResult lpa_ici_impl(const Profile& p, const LpaIciOptions& o) {
   LpaIciResult r;
   int centre = -1;
   for (int k = 0; k < p.size; ++k) {
@@ -200,8 +205,8 @@ LpaIciResult lpa_ici(const Profile& p, const LpaIciOptions& o) {
   Moments down, up;  // the samples below and above the centre taken so far
   Moments centre_only;
   centre_only.add(0.0, r.value);
-  CircleSums circle_down, circle_up, circle_centre;  // the same for the circle model (with o.circle only)
-  if (o.circle) circle_centre.add(0.0, r.value, o.x_unit);
+  CircleSums circle_down, circle_up, circle_centre;  // the same for the circle model (kCircle only)
+  if constexpr (kCircle) circle_centre.add(0.0, r.value, o.x_unit);
   std::array<Grown, kKinds> g;
   int lo = centre - 1, hi = centre + 1;
   for (int h = 1; h <= o.max_half_width; ++h) {
@@ -209,13 +214,13 @@ LpaIciResult lpa_ici(const Profile& p, const LpaIciOptions& o) {
     bool added_down = false, added_up = false;
     while (lo >= 0 && p.x[static_cast<std::size_t>(lo)] >= -reach) {
       down.add(p.x[static_cast<std::size_t>(lo)], p.y[static_cast<std::size_t>(lo)]);
-      if (o.circle) circle_down.add(p.x[static_cast<std::size_t>(lo)], p.y[static_cast<std::size_t>(lo)], o.x_unit);
+      if constexpr (kCircle) circle_down.add(p.x[static_cast<std::size_t>(lo)], p.y[static_cast<std::size_t>(lo)], o.x_unit);
       --lo;
       added_down = true;
     }
     while (hi < p.size && p.x[static_cast<std::size_t>(hi)] <= reach) {
       up.add(p.x[static_cast<std::size_t>(hi)], p.y[static_cast<std::size_t>(hi)]);
-      if (o.circle) circle_up.add(p.x[static_cast<std::size_t>(hi)], p.y[static_cast<std::size_t>(hi)], o.x_unit);
+      if constexpr (kCircle) circle_up.add(p.x[static_cast<std::size_t>(hi)], p.y[static_cast<std::size_t>(hi)], o.x_unit);
       ++hi;
       added_up = true;
     }
@@ -226,10 +231,11 @@ LpaIciResult lpa_ici(const Profile& p, const LpaIciOptions& o) {
     const bool grow_both = (added_down || added_up) && (grow_symmetric || grow_line || grow_mean);
     double value = 0.0, variance = 0.0;
     // The curved model of a window: its circle where that is well posed (o.circle), else its parabola.
+    // (Without kCircle the sums are never read and the calls reduce to fit_parabola.)
     const auto fit_curve = [&](const Moments& m, const CircleSums& c) {
       if (!fit_parabola(m, value, variance)) return false;
       double circle_value = 0.0, circle_variance = 0.0;
-      if (o.circle && fit_circle(c, o.x_unit, circle_value, circle_variance)) {
+      if (kCircle && fit_circle(c, o.x_unit, circle_value, circle_variance)) {
         // The circle's linearised variance leaves out the noise inside w; where that matters it is
         // below the truth, so the parabola's variance on the same window (equal to first order in
         // c2 yn: the same design with x^2 for w) is its floor.
@@ -240,17 +246,17 @@ LpaIciResult lpa_ici(const Profile& p, const LpaIciOptions& o) {
     };
     if (grow_below || grow_both) {
       const Moments below = centre_only + down;
-      const CircleSums circle_below = o.circle ? circle_centre + circle_down : CircleSums{};
+      const CircleSums circle_below = kCircle ? circle_centre + circle_down : circle_centre;
       if (grow_below && fit_curve(below, circle_below)) g[kBelow].offer(value, variance, h, o);
       if (grow_both) {
         const Moments both = below + up;
-        const CircleSums circle_both = o.circle ? circle_below + circle_up : CircleSums{};
+        const CircleSums circle_both = kCircle ? circle_below + circle_up : circle_centre;
         if (grow_symmetric && fit_curve(both, circle_both)) g[kSymmetric].offer(value, variance, h, o);
         if (grow_line && fit_line(both, value, variance)) g[kLine].offer(value, variance, h, o);
         if (grow_mean && fit_mean(both, value, variance)) g[kMean].offer(value, variance, h, o);
       }
     }
-    if (grow_above && fit_curve(centre_only + up, o.circle ? circle_centre + circle_up : CircleSums{})) {
+    if (grow_above && fit_curve(centre_only + up, kCircle ? circle_centre + circle_up : circle_centre)) {
       g[kAbove].offer(value, variance, h, o);
     }
     const bool more = lo >= 0 || hi < p.size;
@@ -290,6 +296,12 @@ LpaIciResult lpa_ici(const Profile& p, const LpaIciOptions& o) {
     r.valid = true;
   }
   return r;
+}
+
+}  // namespace
+
+LpaIciResult lpa_ici(const Profile& p, const LpaIciOptions& o) {
+  return o.circle ? lpa_ici_impl<true>(p, o) : lpa_ici_impl<false>(p, o);
 }
 
 }  // namespace contourmesh::detail
