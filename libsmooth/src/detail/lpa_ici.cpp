@@ -213,14 +213,16 @@ LpaIciResult lpa_ici_impl(const Profile& p, const LpaIciOptions& o) {
     const double reach = static_cast<double>(h) + 0.5;
     bool added_down = false, added_up = false;
     while (lo >= 0 && p.x[static_cast<std::size_t>(lo)] >= -reach) {
-      down.add(p.x[static_cast<std::size_t>(lo)], p.y[static_cast<std::size_t>(lo)]);
-      if constexpr (kCircle) circle_down.add(p.x[static_cast<std::size_t>(lo)], p.y[static_cast<std::size_t>(lo)], o.x_unit);
+      const double xs = p.x[static_cast<std::size_t>(lo)], ys = p.y[static_cast<std::size_t>(lo)];
+      down.add(xs, ys);
+      if constexpr (kCircle) circle_down.add(xs, ys, o.x_unit);
       --lo;
       added_down = true;
     }
     while (hi < p.size && p.x[static_cast<std::size_t>(hi)] <= reach) {
-      up.add(p.x[static_cast<std::size_t>(hi)], p.y[static_cast<std::size_t>(hi)]);
-      if constexpr (kCircle) circle_up.add(p.x[static_cast<std::size_t>(hi)], p.y[static_cast<std::size_t>(hi)], o.x_unit);
+      const double xs = p.x[static_cast<std::size_t>(hi)], ys = p.y[static_cast<std::size_t>(hi)];
+      up.add(xs, ys);
+      if constexpr (kCircle) circle_up.add(xs, ys, o.x_unit);
       ++hi;
       added_up = true;
     }
