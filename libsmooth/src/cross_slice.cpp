@@ -31,6 +31,9 @@ void check_options(const CrossSliceOptions& o) {
     if (noise && !(*noise >= 0.0 && std::isfinite(*noise))) fail("a noise level must be a finite number >= 0 mm");
   }
   if (o.extension_iterations < 0) fail("extension iterations must be >= 0");
+  if (o.across_model != ProfileModel::Parabola && o.across_model != ProfileModel::Circle) {
+    fail("unknown profile model " + std::to_string(static_cast<int>(o.across_model)));
+  }
   const OffSliceFilterOptions& f = o.off_slice;
   if (f.normal_iterations < 0 || f.vertex_iterations < 0) fail("off-slice filter iterations must be >= 0");
   if (!(f.sigma_angle_degrees > 0.0 && f.sigma_angle_degrees <= 90.0)) {
@@ -162,6 +165,8 @@ CrossSliceResult cross_slice_smooth(const Mesh& mesh, const CrossSliceOptions& o
   result.noise_across = options.noise_across.value_or(detail::profile_noise(frame, mesh.positions, normals, true));
   lpa.sigma = result.noise_across;
   lpa.max_half_width = options.reach;
+  lpa.circle = options.across_model == ProfileModel::Circle;
+  lpa.x_unit = frame.slice_spacing;  // the tangent frame's abscissa is in slice spacings, its ordinate in mm
   const detail::NextCuts cuts = detail::next_cuts(frame, mesh.positions, normals);
   result.profiles = smooth_profiles(frame, mesh.positions, normals, lpa, ProfileFrame::Tangent, displacement,
                                     [&](const Eigen::Matrix3Xd& x, const Eigen::Matrix3Xd&, Index i,
@@ -180,6 +185,7 @@ CrossSliceResult cross_slice_smooth(const Mesh& mesh, const CrossSliceOptions& o
     result.noise_along = options.noise_along.value_or(detail::profile_noise(frame, across, across_normals, false));
     lpa.sigma = result.noise_along;
     lpa.max_half_width = options.along_reach;
+    lpa.circle = false;
     (void)smooth_profiles(frame, across, across_normals, lpa, ProfileFrame::InSlice, displacement,
                           [&](const Eigen::Matrix3Xd& x, const Eigen::Matrix3Xd&, Index i, const Eigen::Vector3d& m,
                               detail::Profile& p) {

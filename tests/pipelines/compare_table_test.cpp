@@ -63,6 +63,8 @@ TEST(MethodTable, VariantsParseIntoRowsOfTheirOwn) {
   EXPECT_EQ(v.method, SmoothingMethod::CrossSlice);
   EXPECT_EQ(v.options.cross_slice.stages, CrossSliceStages::AcrossOnly);
   EXPECT_EQ(v.options.cross_slice.reach, 4);
+  EXPECT_EQ(v.options.cross_slice.across_model, ProfileModel::Parabola);
+  EXPECT_EQ(parse_variant("circle:profile-model=circle").options.cross_slice.across_model, ProfileModel::Circle);
   v = parse_variant("paper-normal:preset=xu2006,measure=normal,in-slice=along-line");
   EXPECT_EQ(v.method, SmoothingMethod::FeaturePreserving);
   EXPECT_EQ(v.options.paper.detection.measure, UmbrellaMeasure::NormalComponent);
@@ -73,7 +75,8 @@ TEST(MethodTable, VariantsParseIntoRowsOfTheirOwn) {
   EXPECT_EQ(parse_variant("plain").method, preset(Preset::Default).method);
 
   for (const char* bad : {":reach=3", "a b:reach=3", "x:reach", "x:reach=three", "x:colour=red", "x:measure=normal",
-                          "x:method=taubin,reach=3", "x:stages=sideways", "x:method=bilateral"}) {
+                          "x:method=taubin,reach=3", "x:stages=sideways", "x:method=bilateral",
+                          "x:profile-model=ellipse"}) {
     EXPECT_THROW((void)parse_variant(bad), InvalidInputError) << bad;
   }
   try {

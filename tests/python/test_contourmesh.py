@@ -123,6 +123,17 @@ def test_cross_slice_off_slice_filter_options(box_mesh):
         cm.smooth(*box_mesh[:4], method="cross-slice", normal_sigma=0.0)
 
 
+def test_cross_slice_profile_model(box_mesh):
+    """The curve fitted across the slices is an option of cross-slice smoothing (parabola by default)."""
+    default = cm.smooth(*box_mesh[:4])
+    parabola = cm.smooth(*box_mesh[:4], method="cross-slice", profile_model="parabola")
+    assert np.array_equal(default.points, parabola.points)
+    circle = cm.smooth(*box_mesh[:4], method="cross-slice", profile_model="circle")
+    assert circle.points.shape == default.points.shape and np.isfinite(circle.points).all()
+    with pytest.raises(cm.InvalidInputError, match="profile_model must be"):
+        cm.smooth(*box_mesh[:4], method="cross-slice", profile_model="ellipse")
+
+
 def test_errors_are_typed():
     with pytest.raises(cm.InvalidInputError) as e:
         cm.smooth(np.zeros((3, 3)), [[0, 1, 5]])

@@ -81,6 +81,82 @@ bool fit_line(const Moments& m, double& value, double& variance) {
   return std::isfinite(value);
 }
 
+}  // namespace
+
+void CircleSums::add(double x, double y, double x_unit) {
+  const double yn = y / x_unit;
+  const double w = x * x + yn * yn;
+  s1 += 1.0;
+  sx += x;
+  sxx += x * x;
+  sw += w;
+  sxw += x * w;
+  sww += w * w;
+  ty += y;
+  txy += x * y;
+  twy += w * y;
+  min_x = std::min(min_x, x);
+  max_x = std::max(max_x, x);
+  max_abs_yn = std::max(max_abs_yn, std::abs(yn));
+  ++count;
+}
+
+CircleSums CircleSums::operator+(const CircleSums& o) const {
+  CircleSums m = *this;
+  m.s1 += o.s1;
+  m.sx += o.sx;
+  m.sxx += o.sxx;
+  m.sw += o.sw;
+  m.sxw += o.sxw;
+  m.sww += o.sww;
+  m.ty += o.ty;
+  m.txy += o.txy;
+  m.twy += o.twy;
+  m.min_x = std::min(min_x, o.min_x);
+  m.max_x = std::max(max_x, o.max_x);
+  m.max_abs_yn = std::max(max_abs_yn, o.max_abs_yn);
+  m.count += o.count;
+  return m;
+}
+
+bool fit_circle(const CircleSums& m, double x_unit, double& value, double& variance) {
+  if (m.count < 4 || !(x_unit > 0.0)) return false;
+  // M = [[s1 sx sw] [sx sxx sxw] [sw sxw sww]], symmetric; its inverse from the cofactors.
+  const double a = m.s1, b = m.sx, c = m.sw, d = m.sxx, e = m.sxw, f = m.sww;
+  const double i00 = d * f - e * e, i01 = c * e - b * f, i02 = b * e - c * d;
+  const double i11 = a * f - c * c, i12 = b * c - a * e, i22 = a * d - b * b;
+  const double det = a * i00 + b * i01 + c * i02;
+  const double scale = std::max({a * d * f, b * b * f, c * c * d, 1e-300});
+  if (!(std::abs(det) > 1e-9 * scale)) return false;
+  // Coefficients of y (in y's unit) = C0 + C1 x + C2 w; in units of x_unit, c_k = C_k / x_unit.
+  const double c0 = (i00 * m.ty + i01 * m.txy + i02 * m.twy) / det / x_unit;
+  const double c1 = (i01 * m.ty + i11 * m.txy + i12 * m.twy) / det / x_unit;
+  const double c2 = (i02 * m.ty + i12 * m.txy + i22 * m.twy) / det / x_unit;
+  const double disc = 1.0 - 4.0 * c0 * c2;
+  if (!(disc >= 0.25)) return false;
+  // Every sample on the near half of the circle (|yn| at most about the radius 1 / (2 |c2|)): a sample's
+  // algebraic residual moves by 1 - 2 c2 yn per unit of its noise, which stays within [0, 2].
+  if (2.0 * std::abs(c2) * m.max_abs_yn > 1.0) return false;
+  // The circle must hold the window as a graph: its centre's abscissa -c1 / (2 c2) within its radius
+  // sqrt(1 + c1^2 - 4 c0 c2) / (2 |c2|) of every sample's.
+  if (c2 != 0.0) {
+    const double root = std::sqrt(1.0 + c1 * c1 - 4.0 * c0 * c2);
+    const double lo = -c1 - root, hi = -c1 + root;  // 2 c2 (centre -+ radius), ordered for c2 > 0
+    const double x_lo = 2.0 * c2 * (c2 > 0.0 ? m.min_x : m.max_x), x_hi = 2.0 * c2 * (c2 > 0.0 ? m.max_x : m.min_x);
+    if (x_lo < lo || x_hi > hi) return false;
+  }
+  const double yn0 = 2.0 * c0 / (1.0 + std::sqrt(disc));
+  // Linearised: d yn0 = (d c0 + yn0^2 d c2) / (1 - 2 c2 yn0); in y's unit d y0 = d C0 + (yn0^2 / x_unit) d C2
+  // over the same factor, with Var(C) = sigma^2 M^-1.
+  const double g = 1.0 / (1.0 - 2.0 * c2 * yn0);
+  const double j0 = g, j2 = g * yn0 * yn0 / x_unit;
+  value = yn0 * x_unit;
+  variance = (j0 * j0 * i00 + 2.0 * j0 * j2 * i02 + j2 * j2 * i22) / det;
+  return std::isfinite(value) && std::isfinite(variance) && variance > 0.0;
+}
+
+namespace {
+
 // The window kinds: below (x <= 0), above (x >= 0), and over both sides a parabola, a line, the mean.
 enum Kind { kBelow = 0, kAbove = 1, kSymmetric = 2, kLine = 3, kMean = 4, kKinds = 5 };
 
@@ -109,7 +185,12 @@ struct Grown {
 
 }  // namespace
 
-LpaIciResult lpa_ici(const Profile& p, const LpaIciOptions& o) {
+namespace {
+
+// The estimator, with the circle model compiled in or out: the parabola-only instantiation is the code
+// it was before the circle model existed (the default's cost and output unchanged).
+template <bool kCircle>
+LpaIciResult lpa_ici_impl(const Profile& p, const LpaIciOptions& o) {
   LpaIciResult r;
   int centre = -1;
   for (int k = 0; k < p.size; ++k) {
@@ -124,18 +205,24 @@ LpaIciResult lpa_ici(const Profile& p, const LpaIciOptions& o) {
   Moments down, up;  // the samples below and above the centre taken so far
   Moments centre_only;
   centre_only.add(0.0, r.value);
+  CircleSums circle_down, circle_up, circle_centre;  // the same for the circle model (kCircle only)
+  if constexpr (kCircle) circle_centre.add(0.0, r.value, o.x_unit);
   std::array<Grown, kKinds> g;
   int lo = centre - 1, hi = centre + 1;
   for (int h = 1; h <= o.max_half_width; ++h) {
     const double reach = static_cast<double>(h) + 0.5;
     bool added_down = false, added_up = false;
     while (lo >= 0 && p.x[static_cast<std::size_t>(lo)] >= -reach) {
-      down.add(p.x[static_cast<std::size_t>(lo)], p.y[static_cast<std::size_t>(lo)]);
+      const double xs = p.x[static_cast<std::size_t>(lo)], ys = p.y[static_cast<std::size_t>(lo)];
+      down.add(xs, ys);
+      if constexpr (kCircle) circle_down.add(xs, ys, o.x_unit);
       --lo;
       added_down = true;
     }
     while (hi < p.size && p.x[static_cast<std::size_t>(hi)] <= reach) {
-      up.add(p.x[static_cast<std::size_t>(hi)], p.y[static_cast<std::size_t>(hi)]);
+      const double xs = p.x[static_cast<std::size_t>(hi)], ys = p.y[static_cast<std::size_t>(hi)];
+      up.add(xs, ys);
+      if constexpr (kCircle) circle_up.add(xs, ys, o.x_unit);
       ++hi;
       added_up = true;
     }
@@ -145,17 +232,35 @@ LpaIciResult lpa_ici(const Profile& p, const LpaIciOptions& o) {
                grow_mean = o.symmetric_mean && !g[kMean].stopped;
     const bool grow_both = (added_down || added_up) && (grow_symmetric || grow_line || grow_mean);
     double value = 0.0, variance = 0.0;
+    // The curved model of a window: its circle where that is well posed (o.circle), else its parabola.
+    // (Without kCircle the sums are never read and the calls reduce to fit_parabola.)
+    const auto fit_curve = [&](const Moments& m, const CircleSums& c) {
+      if (!fit_parabola(m, value, variance)) return false;
+      double circle_value = 0.0, circle_variance = 0.0;
+      if (kCircle && fit_circle(c, o.x_unit, circle_value, circle_variance)) {
+        // The circle's linearised variance leaves out the noise inside w; where that matters it is
+        // below the truth, so the parabola's variance on the same window (equal to first order in
+        // c2 yn: the same design with x^2 for w) is its floor.
+        value = circle_value;
+        variance = std::max(variance, circle_variance);
+      }
+      return true;
+    };
     if (grow_below || grow_both) {
       const Moments below = centre_only + down;
-      if (grow_below && fit_parabola(below, value, variance)) g[kBelow].offer(value, variance, h, o);
+      const CircleSums circle_below = kCircle ? circle_centre + circle_down : circle_centre;
+      if (grow_below && fit_curve(below, circle_below)) g[kBelow].offer(value, variance, h, o);
       if (grow_both) {
         const Moments both = below + up;
-        if (grow_symmetric && fit_parabola(both, value, variance)) g[kSymmetric].offer(value, variance, h, o);
+        const CircleSums circle_both = kCircle ? circle_below + circle_up : circle_centre;
+        if (grow_symmetric && fit_curve(both, circle_both)) g[kSymmetric].offer(value, variance, h, o);
         if (grow_line && fit_line(both, value, variance)) g[kLine].offer(value, variance, h, o);
         if (grow_mean && fit_mean(both, value, variance)) g[kMean].offer(value, variance, h, o);
       }
     }
-    if (grow_above && fit_parabola(centre_only + up, value, variance)) g[kAbove].offer(value, variance, h, o);
+    if (grow_above && fit_curve(centre_only + up, kCircle ? circle_centre + circle_up : circle_centre)) {
+      g[kAbove].offer(value, variance, h, o);
+    }
     const bool more = lo >= 0 || hi < p.size;
     if (!more) break;
     bool all_stopped = true;
@@ -193,6 +298,12 @@ LpaIciResult lpa_ici(const Profile& p, const LpaIciOptions& o) {
     r.valid = true;
   }
   return r;
+}
+
+}  // namespace
+
+LpaIciResult lpa_ici(const Profile& p, const LpaIciOptions& o) {
+  return o.circle ? lpa_ici_impl<true>(p, o) : lpa_ici_impl<false>(p, o);
 }
 
 }  // namespace contourmesh::detail

@@ -43,6 +43,12 @@ struct LpaIciOptions {
   /// Add a line (degree 1) over the two-sided windows, which replaces the parabola when it agrees
   /// with it within gamma of the parabola's deviation (straight profiles: a third of its variance).
   bool symmetric_mean = true;
+  /// Fit circles instead of parabolas (see fit_circle below): y = c0 + c1 x + c2 (x^2 + (y / x_unit)^2),
+  /// exact on any arc, a line where c2 = 0. A window where the circle is ill-posed falls back to the
+  /// parabola. Needs x and y in one frame scaled by x_unit (a rigid frame: the tangent frame across slices).
+  bool circle = false;
+  /// The length of one x unit in y's unit (mm per slice spacing); used by the circle model only, > 0.
+  double x_unit = 1.0;
 };
 
 /// The chosen windows of one estimate, for diagnostics and feature detection.
@@ -55,9 +61,35 @@ struct LpaIciResult {
   bool valid = false;     ///< false when no window could be fitted (then value = y(0))
 };
 
+/// The circle through a window's samples (algebraic least squares, linear in three parameters), at x = 0.
+/// With x and y in units of x_unit (yn = y / x_unit, w = x^2 + yn^2), every circle not tangent to the y
+/// direction is yn = c0 + c1 x + c2 w exactly (c2 = 0: a line), so the normal equations of (1, x, w) give
+/// (c0, c1, c2), and the circle meets x = 0 at the root of c2 yn^2 - yn + c0 = 0 nearer to c0: yn0 = 2 c0 /
+/// (1 + sqrt(1 - 4 c0 c2)). Its variance in units of sigma^2 is the linearised J M^-1 J^T, J = (1, 0, yn0^2)
+/// / (1 - 2 c2 yn0), with M the normal matrix: the noise of y inside w is left out (it scales a sample's
+/// noise by 1 - yn / R, R the radius). Returns false, for the caller to fall back to the parabola, when the
+/// window has fewer than four samples or a near-singular normal matrix, the circle does not hold the window
+/// as a graph (a sample beyond its centre's abscissa +- its radius), 2 |c2| max |yn| > 1 (a sample beyond the
+/// near half of the circle, where a sample's residual, which moves by 1 - 2 c2 yn per unit of its noise,
+/// would stop following it), or 1 - 4 c0 c2 < 1/4 (the root would be more than 4/3 of c0: a circle barely
+/// reaching x = 0). The sums are over the window: n, x, x^2, w, x w, w^2 and y, x y, w y (y in its own unit).
+/// lpa_ici floors the variance at the parabola's on the same window (equal to first order in c2 yn), since
+/// the linearisation leaves the noise in w out.
+struct CircleSums {
+  double s1 = 0, sx = 0, sxx = 0, sw = 0, sxw = 0, sww = 0;
+  double ty = 0, txy = 0, twy = 0;
+  double min_x = 1e300, max_x = -1e300, max_abs_yn = 0;
+  int count = 0;
+  void add(double x, double y, double x_unit);
+  CircleSums operator+(const CircleSums& o) const;
+};
+[[nodiscard]] bool fit_circle(const CircleSums& sums, double x_unit, double& value, double& variance);
+
 /// Estimates y(0) from `profile`, which must hold a sample at x = 0 (returns it unchanged otherwise).
 /// One-sided windows fit parabolas (their estimate at the window's end is biased by third-order terms
-/// only), two-sided windows a parabola and, optionally, a line.
+/// only), two-sided windows a parabola and, optionally, a line; with `circle`, circles replace the
+/// parabolas of both (exact on arcs), each window falling back to the parabola where its circle is
+/// ill-posed.
 [[nodiscard]] LpaIciResult lpa_ici(const Profile& profile, const LpaIciOptions& options);
 
 }  // namespace contourmesh::detail

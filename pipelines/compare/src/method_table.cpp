@@ -190,7 +190,8 @@ std::string cross_slice_settings(const SmoothOptions& o) {
     << (c.stages == CrossSliceStages::AcrossThenAlong ? ", then along " + std::to_string(c.along_reach) +
                                                             " contour vertices each way"
                                                       : " only")
-    << ", LPA-ICI windows (gamma " << c.gamma << ") for a noise level "
+    << ", LPA-ICI windows (gamma " << c.gamma << ", "
+    << (c.across_model == ProfileModel::Circle ? "circles" : "parabolas") << " across) for a noise level "
     << (c.noise_across ? number(*c.noise_across) + " mm" : std::string("estimated from the mesh"))
     << (c.off_slice.filter == OffSliceFilter::BilateralNormals
             ? "; vertices between the slices fitted to bilaterally filtered normals (" +

@@ -99,6 +99,11 @@ const std::vector<Key>& keys() {
       {"gamma", kCrossSlice, [](SmoothOptions& o, const Value& v) { o.cross_slice.gamma = v.number(); }},
       {"noise-across", kCrossSlice, [](SmoothOptions& o, const Value& v) { o.cross_slice.noise_across = v.number(); }},
       {"noise-along", kCrossSlice, [](SmoothOptions& o, const Value& v) { o.cross_slice.noise_along = v.number(); }},
+      {"profile-model", kCrossSlice,
+       [](SmoothOptions& o, const Value& v) {
+         o.cross_slice.across_model =
+             v.choice<ProfileModel>({{"parabola", ProfileModel::Parabola}, {"circle", ProfileModel::Circle}});
+       }},
       {"stages", kCrossSlice,
        [](SmoothOptions& o, const Value& v) {
          o.cross_slice.stages = v.choice<CrossSliceStages>(

@@ -184,6 +184,12 @@ MethodConfig method_config(const py::object& method_arg, Options& o, Mesh& mesh)
     o.take_double("noise_across", co.noise_across);
     o.take_double("noise_along", co.noise_along);
     o.take_int("extension_iterations", co.extension_iterations);
+    o.take("profile_model", [&](const py::object& v) {
+      const std::string s = as_string(v, "profile_model");
+      if (s == "parabola") co.across_model = ProfileModel::Parabola;
+      else if (s == "circle") co.across_model = ProfileModel::Circle;
+      else throw InvalidInputError("profile_model must be 'parabola' or 'circle', got '" + s + "'");
+    });
     o.take("stages", [&](const py::object& v) {
       const std::string s = as_string(v, "stages");
       if (s == "across-then-along") co.stages = CrossSliceStages::AcrossThenAlong;

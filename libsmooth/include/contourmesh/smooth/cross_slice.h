@@ -10,7 +10,8 @@
 //    in-slice normal, against their height, form the profile. A local polynomial fit of the profile,
 //    with windows grown by the intersection of confidence intervals (LPA-ICI) from the measured noise
 //    level, gives the vertex's corrected offset: windows that would reach across a kink (a ridge within
-//    a slice plane, the end of a feature) stop before it, those on the smooth side grow.
+//    a slice plane, the end of a feature) stop before it, those on the smooth side grow. The local
+//    fit is a parabola, or (ProfileModel::Circle) an algebraic circle.
 // 2. Along the contour: the same on the profile of the contour's own vertices (in-slice jitter), where
 //    windows stop at corners (ridges crossing the slices).
 // 3. Contour vertices move along their in-slice normals only, so they stay in their slice planes;
@@ -35,6 +36,15 @@ namespace contourmesh {
 enum class CrossSliceStages {
   AcrossThenAlong,  ///< across the slices, then along the contours (default)
   AcrossOnly,       ///< across the slices only (the paper's per-contour noise model)
+};
+
+/// The curve a cross-slice profile is fitted with, in each window (docs/smoothing.md, "Under contour
+/// noise"). A line or the window's mean replaces it where consistent with it, as for both.
+enum class ProfileModel {
+  Parabola,  ///< a local parabola (default): biased where a profile bends more than a parabola does
+  Circle,    ///< an algebraic circle in the tangent frame: exact on the arcs of spheres, cylinders seen
+             ///< across their axis and tori; a window where it is ill-posed (too few or collinear
+             ///< samples, a circle smaller than the window) falls back to the parabola
 };
 
 /// What happens to the vertices between the slices after the contour vertices have moved.
@@ -81,6 +91,9 @@ struct CrossSliceOptions {
   /// Noise standard deviation of the contour offsets across the slices and along the contours, mm.
   /// Unset: estimated from the mesh (robust fourth differences of the profiles; docs/smoothing.md).
   std::optional<double> noise_across, noise_along;
+  /// The curve fitted to the profiles across the slices (the along-contour profiles always use
+  /// parabolas: their abscissa is arc length, not a rigid frame).
+  ProfileModel across_model = ProfileModel::Parabola;
   CrossSliceStages stages = CrossSliceStages::AcrossThenAlong;
   /// Jacobi iterations of the harmonic extension to vertices off the slices, >= 0.
   int extension_iterations = 30;
