@@ -29,6 +29,15 @@ const double kOffCentreHeight = 0.5 / std::tan(10.0 * std::numbers::pi / 180.0);
 // A point is inserted only inside its face, this share of the face's barycentric range from each edge.
 constexpr double kMinBarycentric = 0.02;
 
+// A face whose normal is within 10 degrees of the slice axis is part of a shelf.
+const double kShelfCosine = std::cos(10.0 * std::numbers::pi / 180.0);
+
+// Twice the area of a face with normal n (its length) when the face is part of a shelf, else 0.
+double shelf_area(const Eigen::Vector3d& n) {
+  const double length = n.norm();
+  return std::abs(n.z()) >= kShelfCosine * length ? length : 0.0;
+}
+
 // Twice the signed area of the triangle (a, b, c) in the (u, v) plane: > 0 when counter-clockwise.
 double orient(const Eigen::Vector2d& a, const Eigen::Vector2d& b, const Eigen::Vector2d& c) {
   return (b.x() - a.x()) * (c.y() - a.y()) - (b.y() - a.y()) * (c.x() - a.x());
@@ -118,7 +127,9 @@ class SurfacePatch {
     // A chord between two vertices the tiler put on one plane would lie in that plane, across a contour;
     // between two vertices without ids (composites, intermediate contours) it may where both faces lie
     // nearly in the slice planes: the chord stays inside the ground the faces cover.
-    if (c < original_vertices_ && d < original_vertices_ && std::abs(C.z() - D.z()) <= 1e-9 * (1.0 + std::abs(C.z()))) {
+    const bool chord =
+        c < original_vertices_ && d < original_vertices_ && std::abs(C.z() - D.z()) <= 1e-9 * (1.0 + std::abs(C.z()));
+    if (chord) {
       const bool without_ids =
           is_local(refs_[static_cast<std::size_t>(c)]) && is_local(refs_[static_cast<std::size_t>(d)]);
       if (!without_ids || side_f == 0 || (side_g != side_f && !folded)) return 0.0;
@@ -139,6 +150,12 @@ class SurfacePatch {
             folds_outside(d, b, side_2) >
         folds_outside(b, c, side_f) + folds_outside(c, a, side_f) + folds_outside(a, d, side_g) +
             folds_outside(d, b, side_g) + (folded && unfold_budget_ > 0 ? 1 : 0)) {
+      return 0.0;
+    }
+    // An unfolding flip or a chord in a plane may not lay more area within 10 degrees of the slice
+    // planes (a shelf) than there was.
+    if ((folded || chord) &&
+        shelf_area(n1) + shelf_area(n2) > shelf_area(n_f) + shelf_area(n_g) + 1e-12 * (n_f.norm() + n_g.norm())) {
       return 0.0;
     }
     if (folded) {

@@ -37,7 +37,8 @@ struct SlabRemeshing {
 /// flip never joins two contour vertices of one plane (a chord across a contour would lie in its
 /// plane; two vertices without ids of one plane only where both faces lie nearly in the slice planes),
 /// never creates an edge that exists, never turns a face over against its old ones (unfolding flips
-/// excepted) and never folds the surface. Does nothing when the slab has no slivers. Faces keep their
+/// excepted) and never folds the surface; an unfolding flip or a chord in a plane never adds area
+/// within 10 degrees of the slice planes. Does nothing when the slab has no slivers. Faces keep their
 /// roles.
 SlabRemeshing improve_slab_faces(SlabMesh& mesh, double max_deviation, double min_split_length);
 
