@@ -69,9 +69,6 @@ class SurfacePatch {
       origin_.push_back(w);
     }
     original_vertices_ = static_cast<int>(points_.size());
-    // Unfolding flips that leave as many folds around them as they undo (a pleated fan is undone one
-    // pleat at a time) are allowed this many times.
-    unfold_budget_ = 2 * faces_.size();
     edges_.reserve(3 * faces_.size());
     for (std::size_t f = 0; f < faces_.size(); ++f) {
       for (int k = 0; k < 3; ++k) {
@@ -119,54 +116,44 @@ class SurfacePatch {
     const int d = third(g, b, a);
     if (c == d || edges_.count(key(c, d)) || edges_.count(key(d, c))) return 0.0;
     const Eigen::Vector3d &A = points_[a], &B = points_[b], &C = points_[c], &D = points_[d];
-    // Two faces that lie nearly in the slice planes, one facing up and one down, are a fold: a fan whose
-    // far contour runs back towards its apex covers the same ground twice. A flip that leaves both new
-    // faces facing the way the pair faces as a whole unfolds it, whatever the angles.
     const int side_f = level_side(f), side_g = level_side(g);
-    const bool folded = side_f != 0 && side_g == -side_f;
     // A chord between two vertices the tiler put on one plane would lie in that plane, across a contour;
     // between two vertices without ids (composites, intermediate contours) it may where both faces lie
-    // nearly in the slice planes: the chord stays inside the ground the faces cover.
+    // nearly in the slice planes on one side: the chord stays inside the ground the faces cover.
     const bool chord =
         c < original_vertices_ && d < original_vertices_ && std::abs(C.z() - D.z()) <= 1e-9 * (1.0 + std::abs(C.z()));
     if (chord) {
       const bool without_ids =
           is_local(refs_[static_cast<std::size_t>(c)]) && is_local(refs_[static_cast<std::size_t>(d)]);
-      if (!without_ids || side_f == 0 || (side_g != side_f && !folded)) return 0.0;
+      if (!without_ids || side_f == 0 || side_g != side_f) return 0.0;
     }
     const double before = std::max(sharpness(A, B, C), sharpness(B, A, D));
     const double after = std::max(sharpness(C, A, D), sharpness(D, B, C));
-    if (!folded && !(after < before - 1e-9)) return 0.0;
+    if (!(after < before - 1e-9)) return 0.0;
     // The surface moves by the distance between the old and the new diagonal.
     const Eigen::Vector3d n = (B - A).cross(D - C);
     if (!(n.norm() > 0.0) || std::abs((C - A).dot(n)) > max_deviation * n.norm()) return 0.0;
     const Eigen::Vector3d n_f = (B - A).cross(C - A), n_g = (A - B).cross(D - B);
     const Eigen::Vector3d n1 = (A - C).cross(D - C), n2 = (B - D).cross(C - D);
-    // No flip may fold the surface against the faces around the two: the number of folds only falls
-    // (unfolding flips) and the angles only improve (the others), so the flips come to an end.
+    // No flip may fold the surface (one face nearly in the slice planes facing up next to one facing
+    // down) between the new faces or against the faces around them more than it was.
     const int side_1 = side_of(n1), side_2 = side_of(n2);
     if (side_1 != 0 && side_2 == -side_1) return 0.0;
     if (folds_outside(b, c, side_2) + folds_outside(c, a, side_1) + folds_outside(a, d, side_1) +
             folds_outside(d, b, side_2) >
         folds_outside(b, c, side_f) + folds_outside(c, a, side_f) + folds_outside(a, d, side_g) +
-            folds_outside(d, b, side_g) + (folded && unfold_budget_ > 0 ? 1 : 0)) {
+            folds_outside(d, b, side_g)) {
       return 0.0;
     }
-    // An unfolding flip or a chord in a plane may not lay more area within 10 degrees of the slice
-    // planes (a shelf) than there was.
-    if ((folded || chord) &&
+    // A chord in a plane may not lay more area within 10 degrees of the slice planes (a shelf) than
+    // there was.
+    if (chord &&
         shelf_area(n1) + shelf_area(n2) > shelf_area(n_f) + shelf_area(n_g) + 1e-12 * (n_f.norm() + n_g.norm())) {
       return 0.0;
     }
-    if (folded) {
-      // Both new faces face the way of the pair's vector area (which the flip keeps: n1 + n2 = n_f + n_g).
-      const Eigen::Vector3d whole = n_f + n_g;
-      if (!(n1.dot(n2) > 0.0 && n1.dot(whole) > 0.0 && n2.dot(whole) > 0.0)) return 0.0;
-    } else if (!(n1.dot(n_f) > 0.0 && n1.dot(n_g) > 0.0 && n2.dot(n_f) > 0.0 && n2.dot(n_g) > 0.0)) {
-      return 0.0;  // neither new face may turn over against either old one
-    }
+    // Neither new face may turn over against either old one.
+    if (!(n1.dot(n_f) > 0.0 && n1.dot(n_g) > 0.0 && n2.dot(n_f) > 0.0 && n2.dot(n_g) > 0.0)) return 0.0;
     if (apply) {
-      if (folded && unfold_budget_ > 0) --unfold_budget_;
       unlink(f);
       unlink(g);
       faces_[static_cast<std::size_t>(f)] = {c, a, d};
@@ -174,7 +161,7 @@ class SurfacePatch {
       link(f);
       link(g);
     }
-    return folded ? 1.0 + std::max(0.0, before - after) : before - after;
+    return before - after;
   }
 
   // 1 when the face beyond the directed edge (u, v) lies nearly in the slice planes on the other side
@@ -338,7 +325,6 @@ class SurfacePatch {
   std::vector<int> origin_;  // the face of the slab mesh, -1 for a face a split added
   std::unordered_map<std::uint64_t, int> edges_;
   int original_vertices_ = 0;
-  std::size_t unfold_budget_ = 0;
   bool valid_ = true;
 };
 
@@ -442,8 +428,8 @@ SlabRemeshing improve_slab_faces(SlabMesh& mesh, double max_deviation, double mi
   // Each sliver may be split a few times over (a fan across a wide band needs a row of vertices per few
   // contour spacings); the cap only stops a runaway.
   const std::size_t max_splits = 8 * work.size() + 64;
-  // Flips raise the angles or undo folds and the splits are capped, so the work ends; the steps are
-  // capped all the same.
+  // Flips raise the angles and the splits are capped, so the work ends; the steps are capped all the
+  // same.
   std::size_t steps = 64 * patch.size() + 1024;
   while (!work.empty() && steps-- > 0) {
     const int f = work.front();
