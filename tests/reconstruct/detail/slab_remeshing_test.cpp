@@ -8,9 +8,12 @@
 
 #include <gtest/gtest.h>
 
+#include <cmath>
 #include <map>
+#include <numbers>
 #include <set>
 #include <utility>
+#include <vector>
 
 #include "reconstruct/detail/level_helpers.h"
 
@@ -61,12 +64,94 @@ struct FlatBand {
   }
 };
 
+// Vertices the slab adds itself (a composite's or an intermediate contour's), without ids.
+LevelContour local_contour(const Polygon& points, double w, SlabMesh& mesh) {
+  LevelContour c;
+  c.points = points;
+  for (const Eigen::Vector2d& p : points) c.ids.push_back(mesh.add_vertex(p, w));
+  finish_contour(c);
+  return c;
+}
+
+// The same nearly flat band between two rings of vertices without ids (two composites of a branching,
+// 0.4 mm apart): a fan from the small ring's vertices across the whole gap.
+struct FlatCompositeBand {
+  test::TestStack stack;
+  LevelContour lower, upper;
+  SlabMesh mesh;
+  FlatCompositeBand() {
+    mesh = stack.slab();
+    lower = local_contour(circle_points(0, 0, 10, 64), 0.0, mesh);
+    upper = local_contour(circle_points(4, 1, 2, 14), 0.4, mesh);
+    emit_band(lower, upper, minimum_area_band(lower.points, 0.0, upper.points, 0.4, TilingOptions{}), mesh);
+  }
+};
+
+TEST(SlabRemeshing, AFanBetweenCompositesGetsPointsInsideAndNoSliversAreLeft) {
+  FlatCompositeBand band;
+  const double before = sliver_share(band.mesh);
+  ASSERT_GT(before, 0.3);
+  const std::size_t vertices = band.mesh.vertices.size();
+  const SlabRemeshing done = improve_slab_faces(band.mesh, 0.1, 0.5);
+  EXPECT_GT(done.insertions, 0u);
+  EXPECT_GT(band.mesh.vertices.size(), vertices);
+  EXPECT_LT(sliver_share(band.mesh), 0.02);
+}
+
+// Interior edges whose two faces lie within 30 degrees of the slice planes, one facing up, one down.
+int folds(const SlabMesh& m) {
+  std::map<std::pair<VertexRef, VertexRef>, int> face_of;
+  auto side = [&](std::size_t f) {
+    const Triangle& t = m.triangles[f];
+    const Eigen::Vector3d n = (m.position(t[1]) - m.position(t[0])).cross(m.position(t[2]) - m.position(t[0]));
+    const double c = std::cos(30.0 * std::numbers::pi / 180.0) * n.norm();
+    return n.z() >= c ? 1 : n.z() <= -c ? -1 : 0;
+  };
+  for (std::size_t f = 0; f < m.triangles.size(); ++f) {
+    for (int k = 0; k < 3; ++k) face_of[{m.triangles[f][k], m.triangles[f][(k + 1) % 3]}] = static_cast<int>(f);
+  }
+  int count = 0;
+  for (const auto& [e, f] : face_of) {
+    const auto it = face_of.find({e.second, e.first});
+    const int s = side(static_cast<std::size_t>(f));
+    if (it != face_of.end() && s != 0 && side(static_cast<std::size_t>(it->second)) == -s) ++count;
+  }
+  return count / 2;
+}
+
+TEST(SlabRemeshing, AFanBetweenCompositesKeepsItsRingsAndGainsNoFolds) {
+  FlatCompositeBand band;
+  const auto edges_before = directed_edges(band.mesh);
+  std::set<std::pair<VertexRef, VertexRef>> rings;
+  for (const auto& [e, n] : edges_before) {
+    if (!edges_before.count({e.second, e.first})) rings.insert(e);
+  }
+  ASSERT_EQ(rings.size(), 64u + 14u);
+  const std::vector<Eigen::Vector3d> ring_points(band.mesh.vertices.begin(), band.mesh.vertices.end());
+  const int folds_before = folds(band.mesh);
+  improve_slab_faces(band.mesh, 0.1, 0.5);
+  EXPECT_LE(folds(band.mesh), folds_before);  // no flip folds the surface
+  const auto edges = directed_edges(band.mesh);
+  std::set<std::pair<VertexRef, VertexRef>> after;
+  for (const auto& [e, n] : edges) {
+    EXPECT_EQ(n, 1) << "a directed edge used twice";
+    if (!edges.count({e.second, e.first})) after.insert(e);
+  }
+  EXPECT_EQ(after, rings);
+  for (std::size_t v = 0; v < ring_points.size(); ++v) EXPECT_EQ(band.mesh.vertices[v], ring_points[v]);
+  // New vertices lie on the band, between the two planes.
+  for (std::size_t v = ring_points.size(); v < band.mesh.vertices.size(); ++v) {
+    EXPECT_GE(band.mesh.vertices[v].z(), 0.0);
+    EXPECT_LE(band.mesh.vertices[v].z(), 0.4);
+  }
+}
+
 TEST(SlabRemeshing, AFlatFanLosesMostOfItsSliverArea) {
   FlatBand band;
   const double before = sliver_share(band.mesh);
   ASSERT_GT(before, 0.3);  // the fan is mostly slivers
   const SlabRemeshing done = improve_slab_faces(band.mesh, 0.1, 0.5);
-  EXPECT_GT(done.flips + done.splits, 0u);
+  EXPECT_GT(done.flips + done.splits + done.insertions, 0u);
   EXPECT_LT(sliver_share(band.mesh), 0.25 * before);
 }
 
