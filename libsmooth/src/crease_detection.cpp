@@ -16,6 +16,9 @@ namespace contourmesh {
 
 namespace {
 
+// The most vertices a ball neighbourhood gathers (a safeguard against degenerate, very dense meshes).
+constexpr std::size_t kMaxBall = 512;
+
 void check(const Mesh& mesh, const MeshAdjacency& adjacency, const CreaseOptions& o) {
   const auto fail = [](const std::string& what) { throw InvalidInputError("crease detection: " + what); };
   if (adjacency.num_vertices() != mesh.num_vertices()) fail("the adjacency belongs to another mesh");
@@ -24,6 +27,11 @@ void check(const Mesh& mesh, const MeshAdjacency& adjacency, const CreaseOptions
   if (!(o.corner_threshold > 0.0 && o.corner_threshold <= 1.0 / 3.0)) fail("corner threshold must be in (0, 1/3]");
   if (!(o.min_extent >= 0.0 && std::isfinite(o.min_extent))) fail("min extent must be a finite number >= 0");
   if (!(o.band >= 0.0 && std::isfinite(o.band))) fail("band must be a finite number >= 0");
+  if (!(o.confirm_radius > 0.0 && std::isfinite(o.confirm_radius))) fail("confirm radius must be a finite number > 0");
+  if (!(o.confirm_threshold > 0.0 && o.confirm_threshold <= 0.5)) fail("confirm threshold must be in (0, 0.5]");
+  if (!(o.confirm_corner_threshold > 0.0 && o.confirm_corner_threshold <= 1.0 / 3.0)) {
+    fail("confirm corner threshold must be in (0, 1/3]");
+  }
 }
 
 // Multi-source shortest paths along the edges, up to `limit`; sources at distance 0.
@@ -80,7 +88,11 @@ CreaseDetection detect_creases(const Mesh& mesh, const MeshAdjacency& adjacency,
     for (Index v : tri) own[static_cast<std::size_t>(v)] += wt;
   }
   const double r2 = options.radius * options.radius;
+  const double c2 = options.confirm_radius * options.confirm_radius;
+  result.confirm_strength = Eigen::VectorXd::Zero(n);
+  result.confirm_corner_strength = Eigen::VectorXd::Zero(n);
   detail::parallel_chunks(static_cast<std::size_t>(n), 4096, [&](std::size_t, std::size_t begin, std::size_t end) {
+    std::vector<Index> ball;
     for (std::size_t k = begin; k < end; ++k) {
       const Index i = static_cast<Index>(k);
       const Eigen::Vector3d centre = mesh.positions.col(i);
@@ -97,10 +109,29 @@ CreaseDetection detect_creases(const Mesh& mesh, const MeshAdjacency& adjacency,
       const Eigen::Vector3d l = eigen.eigenvalues();  // increasing
       result.edge_strength[i] = std::max(0.0, l[1]) / trace;
       result.corner_strength[i] = std::max(0.0, l[0]) / trace;
-      if (result.edge_strength[i] >= options.edge_threshold) {
-        eigen.computeDirect(tensor);  // the crease direction, for the suppression below
-        along.col(i) = eigen.eigenvectors().col(0);
+      if (result.edge_strength[i] < options.edge_threshold && result.corner_strength[i] < options.corner_threshold) {
+        continue;
       }
+      eigen.computeDirect(tensor);  // the crease direction, for the suppression below
+      along.col(i) = eigen.eigenvectors().col(0);
+      if (options.confirm == CreaseConfirmation::None) continue;
+      // The same tensor over the ball of confirm_radius: a crease is a change of the normal that
+      // persists at that scale, not a step or fold of a few tenths of a millimetre.
+      Eigen::Matrix<double, 6, 1> tb = own[k];
+      ball.assign(1, i);
+      for (std::size_t b = 0; b < ball.size() && ball.size() < kMaxBall; ++b) {
+        for (Index j : adjacency.ring(ball[b])) {
+          if ((mesh.positions.col(j) - centre).squaredNorm() > c2) continue;
+          if (std::find(ball.begin(), ball.end(), j) != ball.end()) continue;
+          ball.push_back(j);
+          tb += own[static_cast<std::size_t>(j)];
+        }
+      }
+      Eigen::Matrix3d tensor_b;
+      tensor_b << tb[0], tb[3], tb[4], tb[3], tb[1], tb[5], tb[4], tb[5], tb[2];
+      eigen.computeDirect(tensor_b, Eigen::EigenvaluesOnly);
+      result.confirm_strength[i] = std::max(0.0, eigen.eigenvalues()[1]) / tensor_b.trace();
+      result.confirm_corner_strength[i] = std::max(0.0, eigen.eigenvalues()[0]) / tensor_b.trace();
     }
   });
 
@@ -109,8 +140,14 @@ CreaseDetection detect_creases(const Mesh& mesh, const MeshAdjacency& adjacency,
   //    Then grouped along the edges; groups shorter than min_extent are noise.
   std::vector<std::uint8_t> core(static_cast<std::size_t>(n), 0);
   for (Index i = 0; i < n; ++i) {
-    const bool corner = result.corner_strength[i] >= options.corner_threshold;
+    const bool confirm = options.confirm == CreaseConfirmation::Ball;
+    const bool corner = result.corner_strength[i] >= options.corner_threshold &&
+                        (!confirm || result.confirm_corner_strength[i] >= options.confirm_corner_threshold);
     if (!corner && result.edge_strength[i] < options.edge_threshold) continue;
+    if (confirm && result.confirm_strength[i] < options.confirm_threshold) {
+      result.labels[static_cast<std::size_t>(i)] = VertexLabel::Noise;  // not a crease at the ball's scale
+      continue;
+    }
     bool maximum = true;
     if (!corner) {
       const Eigen::Vector3d t = along.col(i);
@@ -153,7 +190,11 @@ CreaseDetection detect_creases(const Mesh& mesh, const MeshAdjacency& adjacency,
         continue;
       }
       kept.push_back(v);
-      if (result.corner_strength[v] >= options.corner_threshold) kept_corners.push_back(v);
+      if (result.corner_strength[v] >= options.corner_threshold &&
+          (options.confirm == CreaseConfirmation::None ||
+           result.confirm_corner_strength[v] >= options.confirm_corner_threshold)) {
+        kept_corners.push_back(v);
+      }
     }
   }
   result.core_vertices = kept.size();

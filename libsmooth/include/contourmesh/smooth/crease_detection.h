@@ -3,15 +3,22 @@
 // kept when they extend along a line, and widened to a band. The cross-slice smoother labels its
 // result with it (docs/results.md, "Feature labels of the paper's method").
 //
-// 1. Core vertices: the normal tensor T = sum_f A_f n_f n_f^T / 3 over the faces of the vertex and of
+// 1. Candidates: the normal tensor T = sum_f A_f n_f n_f^T / 3 over the faces of the vertex and of
 //    its ring neighbours within `radius` (faces counted once per such vertex they touch) has eigenvalues
 //    l1 >= l2 >= l3. Its normals spread in two directions
 //    (a crease) when l2 / trace >= `edge_threshold`: two planes meeting at a dihedral angle theta give
 //    l2 / trace = sin^2(theta / 2) / ... up to the split of areas, about 0.07 at 30 degrees and 0.25 at
 //    60; a smooth patch of curvature kappa gives about (radius kappa)^2 / 4. In three directions (a
 //    corner) when l3 / trace >= `corner_threshold`.
-// 2. Lines, not specks: connected groups of core vertices spanning less than `min_extent` are noise.
-// 3. Band: every vertex within `band` of a kept core vertex (along the mesh's edges) takes its label,
+// 2. Confirmation at the feature's scale (CreaseConfirmation::Ball): the same tensor over every vertex
+//    within `confirm_radius` connected to the candidate through such vertices. A crease keeps
+//    l2 / trace >= `confirm_threshold` there; a step or fold of a few tenths of a millimetre (a cap's
+//    rim on a contour stack, a jagged end face), whose faces fill little of the ball, does not. A
+//    corner keeps l3 / trace >= `confirm_corner_threshold` (three faces meeting: up to 1/3); otherwise
+//    it is examined as an edge. Candidates not confirmed are labelled noise.
+// 3. Core vertices: confirmed candidates strongest across their crease (non-maximum suppression).
+//    Lines, not specks: connected groups of core vertices spanning less than `min_extent` are noise.
+// 4. Band: every vertex within `band` of a kept core vertex (along the mesh's edges) takes its label,
 //    edge or corner (corner wins), as the evaluation's feature region counts vertices near a feature.
 #pragma once
 
@@ -25,18 +32,36 @@
 
 namespace contourmesh {
 
+/// Whether a crease found on the ring must persist at a larger scale.
+enum class CreaseConfirmation {
+  None,  ///< the ring's tensor alone
+  Ball,  ///< also the tensor over every vertex within `confirm_radius` connected to it (default)
+};
+
 struct CreaseOptions {
   double radius = 1.0;            ///< mm (input units) around each vertex for its normal tensor, > 0
   double edge_threshold = 0.05;   ///< l2 / trace of a crease, in (0, 0.5]
   double corner_threshold = 0.08; ///< l3 / trace of a corner, in (0, 1/3]
+  CreaseConfirmation confirm = CreaseConfirmation::Ball;
+  /// mm: the ball of the confirming tensor, > 0; about a slice spacing and more, so that it spans
+  /// the faces on both sides of a crease between two contours.
+  double confirm_radius = 2.5;
+  /// l2 / trace of a crease over the ball, in (0, 0.5]; 0.2 is two planes about 53 degrees apart with
+  /// the ball centred on their line.
+  double confirm_threshold = 0.2;
+  /// l3 / trace of a corner over the ball, in (0, 1/3]: three planes meeting at right angles give
+  /// 1/3 with the ball centred on the corner.
+  double confirm_corner_threshold = 0.3;
   double min_extent = 3.0;        ///< mm: groups of core vertices shorter than this are noise, >= 0
   double band = 1.5;              ///< mm: labels reach vertices this far from a core vertex, >= 0
 };
 
 struct CreaseDetection {
-  std::vector<VertexLabel> labels;  ///< Smooth, Edge, Corner, or Noise (a rejected core vertex)
+  std::vector<VertexLabel> labels;  ///< Smooth, Edge, Corner, or Noise (a rejected candidate or core vertex)
   Eigen::VectorXd edge_strength;    ///< l2 / trace per vertex
   Eigen::VectorXd corner_strength;  ///< l3 / trace per vertex
+  /// l2 / trace and l3 / trace over the ball, per candidate vertex (0 elsewhere and without confirmation)
+  Eigen::VectorXd confirm_strength, confirm_corner_strength;
   std::size_t core_vertices = 0;    ///< core vertices kept
   std::size_t edges = 0, corners = 0, noise = 0;
 };
