@@ -144,6 +144,13 @@ const std::vector<Key>& keys() {
        [](SmoothOptions& o, const Value& v) { o.cross_slice.features.confirm_radius = v.number(); }},
       {"confirm-threshold", kCrossSlice,
        [](SmoothOptions& o, const Value& v) { o.cross_slice.features.confirm_threshold = v.number(); }},
+      {"crease-sampling", kCrossSlice,
+       [](SmoothOptions& o, const Value& v) {
+         o.cross_slice.features.sampling = v.choice<CreaseSampling>(
+             {{"slice-aware", CreaseSampling::SliceAware}, {"isotropic", CreaseSampling::Isotropic}});
+       }},
+      {"steep-confirm-threshold", kCrossSlice,
+       [](SmoothOptions& o, const Value& v) { o.cross_slice.features.steep_confirm_threshold = v.number(); }},
       {"confirm-corner-threshold", kCrossSlice,
        [](SmoothOptions& o, const Value& v) { o.cross_slice.features.confirm_corner_threshold = v.number(); }},
   };

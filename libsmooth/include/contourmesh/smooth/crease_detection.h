@@ -38,20 +38,34 @@ enum class CreaseConfirmation {
   Ball,  ///< also the tensor over every vertex within `confirm_radius` connected to it (default)
 };
 
+/// How the confirming threshold depends on the slices.
+enum class CreaseSampling {
+  Isotropic,   ///< `confirm_threshold` everywhere
+  /// `steep_confirm_threshold` / sin^2 of the angle between the ball's mean normal and the slice axis,
+  /// at most `confirm_threshold` (default); meshes without contour ids, or whose slices do not span
+  /// planes, are examined isotropically
+  SliceAware,
+};
+
 struct CreaseOptions {
   double radius = 1.0;            ///< mm (input units) around each vertex for its normal tensor, > 0
   double edge_threshold = 0.05;   ///< l2 / trace of a crease, in (0, 0.5]
   double corner_threshold = 0.08; ///< l3 / trace of a corner, in (0, 1/3]
   CreaseConfirmation confirm = CreaseConfirmation::Ball;
-  /// mm: the ball of the confirming tensor, > 0; about a slice spacing and more, so that it spans
-  /// the faces on both sides of a crease between two contours.
+  /// mm: the ball of the confirming tensor, > 0; more than a slice spacing, so that it holds faces
+  /// on both sides of a crease that runs between two contours (2.5 suits 2 mm slices).
   double confirm_radius = 2.5;
-  /// l2 / trace of a crease over the ball, in (0, 0.5]; 0.2 is two planes about 53 degrees apart with
-  /// the ball centred on their line.
-  double confirm_threshold = 0.2;
+  /// l2 / trace of a crease over the ball, in (0, 0.5]: the threshold where the surface lies in the
+  /// slice planes, and everywhere with CreaseSampling::Isotropic. 0.25 is two planes 60 degrees apart
+  /// with the ball centred on their line.
+  double confirm_threshold = 0.25;
   /// l3 / trace of a corner over the ball, in (0, 1/3]: three planes meeting at right angles give
   /// 1/3 with the ball centred on the corner.
   double confirm_corner_threshold = 0.3;
+  CreaseSampling sampling = CreaseSampling::SliceAware;
+  /// l2 / trace of a crease over the ball where the surface crosses the slices at right angles, in
+  /// (0, confirm_threshold] (CreaseSampling::SliceAware): 0.1 is two planes about 37 degrees apart.
+  double steep_confirm_threshold = 0.1;
   double min_extent = 3.0;        ///< mm: groups of core vertices shorter than this are noise, >= 0
   double band = 1.5;              ///< mm: labels reach vertices this far from a core vertex, >= 0
 };
