@@ -37,6 +37,8 @@ void check(const Mesh& mesh, const MeshAdjacency& adjacency, const CreaseOptions
   if (!(o.confirm_corner_threshold > 0.0 && o.confirm_corner_threshold <= 1.0 / 3.0)) {
     fail("confirm corner threshold must be in (0, 1/3]");
   }
+  if (o.noise && !(*o.noise >= 0.0 && std::isfinite(*o.noise))) fail("noise must be a finite number >= 0");
+  if (!(o.noise_factor >= 0.0 && std::isfinite(o.noise_factor))) fail("noise factor must be a finite number >= 0");
   if (!(o.steep_confirm_threshold > 0.0 && o.steep_confirm_threshold <= o.confirm_threshold)) {
     fail("steep confirm threshold must be in (0, confirm threshold]");
   }
@@ -155,7 +157,9 @@ CreaseDetection detect_creases(const Mesh& mesh, const MeshAdjacency& adjacency,
       options.confirm == CreaseConfirmation::Ball && options.sampling == CreaseSampling::SliceAware
           ? axis_of_slices(mesh)
           : std::nullopt;
-  Eigen::VectorXd threshold = Eigen::VectorXd::Constant(n, options.confirm_threshold);
+  const double relative_noise = options.noise.value_or(0.0) / options.confirm_radius;
+  const double lift = options.noise_factor * relative_noise * relative_noise;
+  Eigen::VectorXd threshold = Eigen::VectorXd::Constant(n, options.confirm_threshold + lift);
   result.confirm_strength = Eigen::VectorXd::Zero(n);
   result.confirm_corner_strength = Eigen::VectorXd::Zero(n);
   detail::parallel_chunks(static_cast<std::size_t>(n), 4096, [&](std::size_t, std::size_t begin, std::size_t end) {
@@ -193,7 +197,7 @@ CreaseDetection detect_creases(const Mesh& mesh, const MeshAdjacency& adjacency,
         // slices, up to confirm_threshold.
         const double c = b.mean_normal.dot(*slice_axis);
         const double sine2 = std::max(1.0 - c * c, kMinSine2);
-        threshold[i] = std::min(options.confirm_threshold, options.steep_confirm_threshold / sine2);
+        threshold[i] = std::min(options.confirm_threshold, options.steep_confirm_threshold / sine2) + lift;
       }
     }
   });

@@ -151,6 +151,10 @@ const std::vector<Key>& keys() {
        }},
       {"steep-confirm-threshold", kCrossSlice,
        [](SmoothOptions& o, const Value& v) { o.cross_slice.features.steep_confirm_threshold = v.number(); }},
+      {"crease-noise", kCrossSlice,
+       [](SmoothOptions& o, const Value& v) { o.cross_slice.features.noise = v.number(); }},
+      {"crease-noise-factor", kCrossSlice,
+       [](SmoothOptions& o, const Value& v) { o.cross_slice.features.noise_factor = v.number(); }},
       {"confirm-corner-threshold", kCrossSlice,
        [](SmoothOptions& o, const Value& v) { o.cross_slice.features.confirm_corner_threshold = v.number(); }},
   };

@@ -1,7 +1,7 @@
 // SPDX-License-Identifier: BSD-3-Clause
 // Sharp features of a (smoothed) mesh: creases found from the spread of face normals around each vertex,
 // kept when they extend along a line, and widened to a band. The cross-slice smoother labels its
-// result with it (docs/results.md, "Feature labels of the paper's method").
+// result with it (docs/smoothing.md, "Feature labels (crease detection)").
 //
 // 1. Candidates: the normal tensor T = sum_f A_f n_f n_f^T / 3 over the faces of the vertex and of
 //    its ring neighbours within `radius` (faces counted once per such vertex they touch) has eigenvalues
@@ -15,7 +15,11 @@
 //    l2 / trace >= `confirm_threshold` there; a step or fold of a few tenths of a millimetre (a cap's
 //    rim on a contour stack, a jagged end face), whose faces fill little of the ball, does not. A
 //    corner keeps l3 / trace >= `confirm_corner_threshold` (three faces meeting: up to 1/3); otherwise
-//    it is examined as an edge. Candidates not confirmed are labelled noise.
+//    it is examined as an edge. With CreaseSampling::SliceAware the crease threshold is
+//    `steep_confirm_threshold` / sin^2(psi), at most `confirm_threshold`, psi the angle between the
+//    ball's mean normal and the slice planes: a contour stack samples a surface nearly parallel to its
+//    slices coarsely, and a smooth surface folds there between two contours. Candidates not confirmed
+//    are labelled noise. docs/smoothing.md, "Feature labels (crease detection)".
 // 3. Core vertices: confirmed candidates strongest across their crease (non-maximum suppression).
 //    Lines, not specks: connected groups of core vertices spanning less than `min_extent` are noise.
 // 4. Band: every vertex within `band` of a kept core vertex (along the mesh's edges) takes its label,
@@ -28,6 +32,7 @@
 
 #include <Eigen/Core>
 
+#include <optional>
 #include <vector>
 
 namespace contourmesh {
@@ -68,6 +73,12 @@ struct CreaseOptions {
   double steep_confirm_threshold = 0.1;
   double min_extent = 3.0;        ///< mm: groups of core vertices shorter than this are noise, >= 0
   double band = 1.5;              ///< mm: labels reach vertices this far from a core vertex, >= 0
+  /// Standard deviation of the noise of the positions, mm, >= 0; unset is 0 (cross_slice_smooth sets
+  /// its estimate across the slices). The confirming crease threshold rises by
+  /// noise_factor (noise / confirm_radius)^2, the spread of the normals over the ball that noise of
+  /// that size leaves.
+  std::optional<double> noise;
+  double noise_factor = 2.0;      ///< >= 0
 };
 
 struct CreaseDetection {
