@@ -182,6 +182,16 @@ TEST(CreaseDetection, GentleCreasesAcrossTheSlicesAreKeptWhereTheWallIsSteep) {
   EXPECT_LT(found_isotropic, near / 4);
 }
 
+TEST(CreaseDetection, NoiseRaisesTheConfirmingThreshold) {
+  // The nonagon's 40-degree creases (l2 / trace about 0.1 over the ball) against positions said to
+  // carry 1 mm of noise: the threshold rises by 2 (1 / 2.5)^2 = 0.32, above them.
+  const PolygonPrism prism(9);
+  CreaseOptions noisy;
+  noisy.noise = 1.0;
+  const CreaseDetection d = detect_creases(prism.mesh, build_adjacency(prism.mesh), noisy);
+  EXPECT_EQ(d.edges + d.corners, 0u);
+}
+
 TEST(CreaseDetection, BadOptionsAreRefused) {
   const Mesh cube = make_cube(2, 1.0);
   CreaseOptions o;
@@ -190,6 +200,9 @@ TEST(CreaseDetection, BadOptionsAreRefused) {
   CreaseOptions steep;
   steep.steep_confirm_threshold = steep.confirm_threshold + 0.01;
   EXPECT_THROW((void)detect_creases(cube, build_adjacency(cube), steep), InvalidInputError);
+  CreaseOptions noise;
+  noise.noise = -0.1;
+  EXPECT_THROW((void)detect_creases(cube, build_adjacency(cube), noise), InvalidInputError);
 }
 
 }  // namespace
