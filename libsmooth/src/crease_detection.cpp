@@ -2,6 +2,7 @@
 #include "contourmesh/smooth/crease_detection.h"
 
 #include "detail/parallel.h"
+#include "contourmesh/smooth/contour_structure.h"
 #include "contourmesh/smooth/errors.h"
 
 #include <Eigen/Eigenvalues>
@@ -9,12 +10,19 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <optional>
 #include <queue>
 #include <string>
 
 namespace contourmesh {
 
 namespace {
+
+// The most vertices a ball neighbourhood gathers (a safeguard against degenerate, very dense meshes).
+constexpr std::size_t kMaxBall = 512;
+// The smallest sin^2 of the angle between a surface and the slices that the slice-aware threshold
+// divides by.
+constexpr double kMinSine2 = 1e-3;
 
 void check(const Mesh& mesh, const MeshAdjacency& adjacency, const CreaseOptions& o) {
   const auto fail = [](const std::string& what) { throw InvalidInputError("crease detection: " + what); };
@@ -24,6 +32,27 @@ void check(const Mesh& mesh, const MeshAdjacency& adjacency, const CreaseOptions
   if (!(o.corner_threshold > 0.0 && o.corner_threshold <= 1.0 / 3.0)) fail("corner threshold must be in (0, 1/3]");
   if (!(o.min_extent >= 0.0 && std::isfinite(o.min_extent))) fail("min extent must be a finite number >= 0");
   if (!(o.band >= 0.0 && std::isfinite(o.band))) fail("band must be a finite number >= 0");
+  if (!(o.confirm_radius > 0.0 && std::isfinite(o.confirm_radius))) fail("confirm radius must be a finite number > 0");
+  if (!(o.confirm_threshold > 0.0 && o.confirm_threshold <= 0.5)) fail("confirm threshold must be in (0, 0.5]");
+  if (!(o.confirm_corner_threshold > 0.0 && o.confirm_corner_threshold <= 1.0 / 3.0)) {
+    fail("confirm corner threshold must be in (0, 1/3]");
+  }
+  if (o.noise && !(*o.noise >= 0.0 && std::isfinite(*o.noise))) fail("noise must be a finite number >= 0");
+  if (!(o.noise_factor >= 0.0 && std::isfinite(o.noise_factor))) fail("noise factor must be a finite number >= 0");
+  if (!(o.steep_confirm_threshold > 0.0 && o.steep_confirm_threshold <= o.confirm_threshold)) {
+    fail("steep confirm threshold must be in (0, confirm threshold]");
+  }
+}
+
+// The normal of the slice planes of a mesh with contour ids; nothing without ids or when its slices
+// do not span planes.
+std::optional<Eigen::Vector3d> axis_of_slices(const Mesh& mesh) {
+  if (!mesh.has_contour_ids()) return std::nullopt;
+  try {
+    return estimate_slice_axis(mesh);
+  } catch (const InvalidInputError&) {
+    return std::nullopt;
+  }
 }
 
 // Multi-source shortest paths along the edges, up to `limit`; sources at distance 0.
@@ -51,6 +80,46 @@ std::vector<double> distances_from(const Mesh& mesh, const MeshAdjacency& adjace
   return d;
 }
 
+using Tensor6 = Eigen::Matrix<double, 6, 1>;  // xx, yy, zz, xy, xz, yz of a symmetric 3 x 3 tensor
+
+struct BallTensor {
+  double edge = 0.0, corner = 0.0;                       // l2 / trace, l3 / trace
+  Eigen::Vector3d mean_normal = Eigen::Vector3d::Zero();  // unit, area-weighted (zero if undefined)
+};
+
+// The normal tensor of every vertex within `radius` of vertex i and connected to it through such
+// vertices (`ball` is scratch space).
+BallTensor ball_tensor(const Mesh& mesh, const MeshAdjacency& adjacency, const std::vector<Tensor6>& own,
+                       const Eigen::Matrix3Xd& area_normal, Index i, double radius, std::vector<Index>& ball) {
+  const Eigen::Vector3d centre = mesh.positions.col(i);
+  const double r2 = radius * radius;
+  ball.assign(1, i);
+  for (std::size_t b = 0; b < ball.size() && ball.size() < kMaxBall; ++b) {
+    for (Index j : adjacency.ring(ball[b])) {
+      if ((mesh.positions.col(j) - centre).squaredNorm() > r2) continue;
+      if (std::find(ball.begin(), ball.end(), j) != ball.end()) continue;
+      ball.push_back(j);
+    }
+  }
+  Tensor6 t = Tensor6::Zero();
+  BallTensor result;
+  for (Index j : ball) {
+    t += own[static_cast<std::size_t>(j)];
+    result.mean_normal += area_normal.col(j);
+  }
+  const double len = result.mean_normal.norm();
+  result.mean_normal = len > 0.0 ? Eigen::Vector3d(result.mean_normal / len) : Eigen::Vector3d::Zero();
+  Eigen::Matrix3d tensor;
+  tensor << t[0], t[3], t[4], t[3], t[1], t[5], t[4], t[5], t[2];
+  const double trace = tensor.trace();
+  if (!(trace > 0.0)) return result;
+  Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d> eigen;
+  eigen.computeDirect(tensor, Eigen::EigenvaluesOnly);
+  result.edge = std::max(0.0, eigen.eigenvalues()[1]) / trace;
+  result.corner = std::max(0.0, eigen.eigenvalues()[0]) / trace;
+  return result;
+}
+
 }  // namespace
 
 CreaseDetection detect_creases(const Mesh& mesh, const MeshAdjacency& adjacency, const CreaseOptions& options) {
@@ -67,24 +136,38 @@ CreaseDetection detect_creases(const Mesh& mesh, const MeshAdjacency& adjacency,
   //    the vertex and its ring neighbours within the radius (about one or two edge lengths).
   //    A face's unit normal and area come from one cross product, as face_normals and face_areas
   //    compute them (the same values, without the two per-face arrays).
-  std::vector<Eigen::Matrix<double, 6, 1>> own(static_cast<std::size_t>(n), Eigen::Matrix<double, 6, 1>::Zero());
+  Eigen::Matrix3Xd area_normal = Eigen::Matrix3Xd::Zero(3, n);  // sum of the faces' area vectors, x2
+  std::vector<Tensor6> own(static_cast<std::size_t>(n), Tensor6::Zero());
   for (const Triangle& tri : mesh.triangles) {
     const Eigen::Vector3d c = (mesh.positions.col(tri[1]) - mesh.positions.col(tri[0]))
                                   .cross(mesh.positions.col(tri[2]) - mesh.positions.col(tri[0]));
     const double len = c.norm();
     const Eigen::Vector3d nf = len > 0.0 ? Eigen::Vector3d(c / len) : Eigen::Vector3d::Zero();
     const double w = 0.5 * len / 3.0;
-    Eigen::Matrix<double, 6, 1> t;
+    Tensor6 t;
     t << nf.x() * nf.x(), nf.y() * nf.y(), nf.z() * nf.z(), nf.x() * nf.y(), nf.x() * nf.z(), nf.y() * nf.z();
-    const Eigen::Matrix<double, 6, 1> wt = w * t;
-    for (Index v : tri) own[static_cast<std::size_t>(v)] += wt;
+    const Tensor6 wt = w * t;
+    for (Index v : tri) {
+      own[static_cast<std::size_t>(v)] += wt;
+      area_normal.col(v) += c;
+    }
   }
   const double r2 = options.radius * options.radius;
+  const std::optional<Eigen::Vector3d> slice_axis =
+      options.confirm == CreaseConfirmation::Ball && options.sampling == CreaseSampling::SliceAware
+          ? axis_of_slices(mesh)
+          : std::nullopt;
+  const double relative_noise = options.noise.value_or(0.0) / options.confirm_radius;
+  const double lift = options.noise_factor * relative_noise * relative_noise;
+  Eigen::VectorXd threshold = Eigen::VectorXd::Constant(n, options.confirm_threshold + lift);
+  result.confirm_strength = Eigen::VectorXd::Zero(n);
+  result.confirm_corner_strength = Eigen::VectorXd::Zero(n);
   detail::parallel_chunks(static_cast<std::size_t>(n), 4096, [&](std::size_t, std::size_t begin, std::size_t end) {
+    std::vector<Index> ball;
     for (std::size_t k = begin; k < end; ++k) {
       const Index i = static_cast<Index>(k);
       const Eigen::Vector3d centre = mesh.positions.col(i);
-      Eigen::Matrix<double, 6, 1> t = own[k];
+      Tensor6 t = own[k];
       for (Index j : adjacency.ring(i)) {
         if ((mesh.positions.col(j) - centre).squaredNorm() <= r2) t += own[static_cast<std::size_t>(j)];
       }
@@ -97,9 +180,24 @@ CreaseDetection detect_creases(const Mesh& mesh, const MeshAdjacency& adjacency,
       const Eigen::Vector3d l = eigen.eigenvalues();  // increasing
       result.edge_strength[i] = std::max(0.0, l[1]) / trace;
       result.corner_strength[i] = std::max(0.0, l[0]) / trace;
-      if (result.edge_strength[i] >= options.edge_threshold) {
-        eigen.computeDirect(tensor);  // the crease direction, for the suppression below
-        along.col(i) = eigen.eigenvectors().col(0);
+      if (result.edge_strength[i] < options.edge_threshold && result.corner_strength[i] < options.corner_threshold) {
+        continue;
+      }
+      eigen.computeDirect(tensor);  // the crease direction, for the suppression below
+      along.col(i) = eigen.eigenvectors().col(0);
+      if (options.confirm == CreaseConfirmation::None) continue;
+      // The same tensor over the ball of confirm_radius: a crease is a change of the normal that
+      // persists at that scale, not a step or fold of a few tenths of a millimetre.
+      const BallTensor b = ball_tensor(mesh, adjacency, own, area_normal, i, options.confirm_radius, ball);
+      result.confirm_strength[i] = b.edge;
+      result.confirm_corner_strength[i] = b.corner;
+      if (slice_axis) {
+        // Where the surface turns parallel to the slices, the contours lie further apart along it and a
+        // smooth surface folds more between them: the threshold grows as 1 / sin^2 of its angle to the
+        // slices, up to confirm_threshold.
+        const double c = b.mean_normal.dot(*slice_axis);
+        const double sine2 = std::max(1.0 - c * c, kMinSine2);
+        threshold[i] = std::min(options.confirm_threshold, options.steep_confirm_threshold / sine2) + lift;
       }
     }
   });
@@ -109,8 +207,14 @@ CreaseDetection detect_creases(const Mesh& mesh, const MeshAdjacency& adjacency,
   //    Then grouped along the edges; groups shorter than min_extent are noise.
   std::vector<std::uint8_t> core(static_cast<std::size_t>(n), 0);
   for (Index i = 0; i < n; ++i) {
-    const bool corner = result.corner_strength[i] >= options.corner_threshold;
+    const bool confirm = options.confirm == CreaseConfirmation::Ball;
+    const bool corner = result.corner_strength[i] >= options.corner_threshold &&
+                        (!confirm || result.confirm_corner_strength[i] >= options.confirm_corner_threshold);
     if (!corner && result.edge_strength[i] < options.edge_threshold) continue;
+    if (confirm && result.confirm_strength[i] < threshold[i]) {
+      result.labels[static_cast<std::size_t>(i)] = VertexLabel::Noise;  // not a crease at the ball's scale
+      continue;
+    }
     bool maximum = true;
     if (!corner) {
       const Eigen::Vector3d t = along.col(i);
@@ -153,7 +257,11 @@ CreaseDetection detect_creases(const Mesh& mesh, const MeshAdjacency& adjacency,
         continue;
       }
       kept.push_back(v);
-      if (result.corner_strength[v] >= options.corner_threshold) kept_corners.push_back(v);
+      if (result.corner_strength[v] >= options.corner_threshold &&
+          (options.confirm == CreaseConfirmation::None ||
+           result.confirm_corner_strength[v] >= options.confirm_corner_threshold)) {
+        kept_corners.push_back(v);
+      }
     }
   }
   result.core_vertices = kept.size();

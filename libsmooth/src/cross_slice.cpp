@@ -203,7 +203,9 @@ CrossSliceResult cross_slice_smooth(const Mesh& mesh, const CrossSliceOptions& o
 
   // 4. Labels.
   t = std::chrono::steady_clock::now();
-  result.features = detect_creases(result.mesh, frame.adjacency, options.features);
+  CreaseOptions features = options.features;
+  if (!features.noise) features.noise = result.noise_across;  // the creases rise above the noise left
+  result.features = detect_creases(result.mesh, frame.adjacency, features);
   result.labels = result.features.labels;
   result.seconds_detect = seconds_since(t);
   result.seconds_total = seconds_since(start);

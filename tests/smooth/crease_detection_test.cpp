@@ -5,7 +5,11 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
+#include <array>
 #include <cmath>
+#include <limits>
+#include <vector>
 
 namespace contourmesh {
 namespace {
@@ -29,7 +33,9 @@ TEST(CreaseDetection, CubeEdgesAreFoundInABandAndFacesAreSmooth) {
     if (to_edge < 0.5) {
       EXPECT_TRUE(l == VertexLabel::Edge || l == VertexLabel::Corner) << "vertex " << i << " at " << to_edge;
     }
-    if (to_edge > 2.5) EXPECT_EQ(l, VertexLabel::Smooth) << "vertex " << i << " at " << to_edge;
+    if (to_edge > 2.5) {
+      EXPECT_EQ(l, VertexLabel::Smooth) << "vertex " << i << " at " << to_edge;
+    }
   }
 }
 
@@ -60,11 +66,143 @@ TEST(CreaseDetection, AShortDentIsNoiseNotAFeature) {
   EXPECT_GT(d.noise, 0u);
 }
 
+// A right prism over a regular polygon with `corners` corners (circumradius 15 mm), sampled like CT
+// contours: 2 mm slices, about 0.7 mm between contour points, a contour point on every corner.
+struct PolygonPrism {
+  Mesh mesh;
+  std::vector<Eigen::Vector2d> corners;
+  double z_low = 0.0, z_high = 0.0;  // the end slices
+
+  explicit PolygonPrism(int n, int slices = 16) {
+    for (int k = 0; k < n; ++k) {
+      const double a = 2.0 * M_PI * k / n;
+      corners.emplace_back(15.0 * std::cos(a), 15.0 * std::sin(a));
+    }
+    const std::vector<Eigen::Vector2d> c = corners;
+    ContourStackSpec spec;
+    spec.curve = [c](double t) {
+      const double u = t * static_cast<double>(c.size());
+      const auto k = static_cast<std::size_t>(std::floor(u)) % c.size();
+      const double f = u - std::floor(u);
+      return Eigen::Vector2d((1.0 - f) * c[k] + f * c[(k + 1) % c.size()]);
+    };
+    const double side = (corners[1] - corners[0]).norm();
+    spec.points_per_contour = n * static_cast<int>(std::round(side / 0.7));
+    spec.slices = slices;
+    mesh = make_contour_stack(spec);
+    z_high = 2.0 * (slices - 1);
+  }
+  // Distance from a vertex to the nearest edge line running across the slices.
+  [[nodiscard]] double to_edge(Index i) const {
+    double d = std::numeric_limits<double>::infinity();
+    for (const Eigen::Vector2d& c : corners) d = std::min(d, (mesh.positions.col(i).head<2>() - c).norm());
+    return d;
+  }
+  // On the prism's wall, at least `margin` from both end slices.
+  [[nodiscard]] bool on_wall(Index i, double margin) const {
+    const double z = mesh.positions(2, i);
+    return mesh.slice_ids[i] >= 0 && z >= z_low + margin && z <= z_high - margin;
+  }
+};
+
+bool labelled(const CreaseDetection& d, Index i) {
+  const VertexLabel l = d.labels[static_cast<std::size_t>(i)];
+  return l == VertexLabel::Edge || l == VertexLabel::Corner;
+}
+
+TEST(CreaseDetection, RightAngledPrismEdgesAreFound) {
+  const PolygonPrism prism(4);
+  const CreaseDetection d = detect_creases(prism.mesh, build_adjacency(prism.mesh));
+  int near = 0, found = 0;
+  for (Index i = 0; i < prism.mesh.num_vertices(); ++i) {
+    if (!prism.on_wall(i, 3.0) || prism.to_edge(i) > 1.0) continue;
+    ++near;
+    found += labelled(d, i);
+  }
+  ASSERT_GT(near, 50);
+  EXPECT_EQ(found, near);
+}
+
+TEST(CreaseDetection, NoisySmoothCylinderWallHasNoLabel) {
+  // A 64-gon is a circle to 0.005 mm; contour noise of 0.05 mm is what the phantoms' smoothed
+  // contours keep.
+  PolygonPrism prism(64);
+  add_noise(prism.mesh, {0.05, 7, NoiseDirection::InPlane});
+  const CreaseDetection d = detect_creases(prism.mesh, build_adjacency(prism.mesh));
+  int wall = 0, labels = 0;
+  for (Index i = 0; i < prism.mesh.num_vertices(); ++i) {
+    if (!prism.on_wall(i, 4.0)) continue;
+    ++wall;
+    labels += labelled(d, i);
+  }
+  ASSERT_GT(wall, 1000);
+  EXPECT_EQ(labels, 0);
+}
+
+TEST(CreaseDetection, NoisySphereHasNoLabel) {
+  Mesh sphere = make_icosphere(4, 10.0);  // edges about 0.7 mm
+  add_noise(sphere, {0.05, 3, NoiseDirection::Normal});
+  const CreaseDetection d = detect_creases(sphere, build_adjacency(sphere));
+  EXPECT_EQ(d.edges + d.corners, 0u);
+}
+
+TEST(CreaseDetection, AStepOfAFewTenthsOfAMillimetreIsNotACrease) {
+  // A fine sphere whose cap above z = 5 is lowered by 0.4 mm: a step all round, as the rim of an end
+  // cap on a contour stack has. The ring sees a crease; the ball of confirm_radius does not.
+  Mesh sphere = make_icosphere(5, 10.0);
+  for (Index i = 0; i < sphere.num_vertices(); ++i) {
+    if (sphere.positions(2, i) > 5.0) sphere.positions(2, i) -= 0.4;
+  }
+  const MeshAdjacency adjacency = build_adjacency(sphere);
+  CreaseOptions ring_only;
+  ring_only.confirm = CreaseConfirmation::None;
+  ASSERT_GT(detect_creases(sphere, adjacency, ring_only).edges, 0u);  // the ring alone labels the step
+  const CreaseDetection d = detect_creases(sphere, adjacency);
+  EXPECT_EQ(d.edges + d.corners, 0u);
+}
+
+TEST(CreaseDetection, GentleCreasesAcrossTheSlicesAreKeptWhereTheWallIsSteep) {
+  // A nonagon prism: nine creases of 40 degrees, running across the slices on vertical walls, where
+  // the contours sample the surface finely. Isotropically they are below confirm_threshold.
+  const PolygonPrism prism(9);
+  const MeshAdjacency adjacency = build_adjacency(prism.mesh);
+  CreaseOptions isotropic;
+  isotropic.sampling = CreaseSampling::Isotropic;
+  const CreaseDetection slice_aware = detect_creases(prism.mesh, adjacency);
+  const CreaseDetection iso = detect_creases(prism.mesh, adjacency, isotropic);
+  int near = 0, found = 0, found_isotropic = 0;
+  for (Index i = 0; i < prism.mesh.num_vertices(); ++i) {
+    if (!prism.on_wall(i, 3.0) || prism.to_edge(i) > 1.0) continue;
+    ++near;
+    found += labelled(slice_aware, i);
+    found_isotropic += labelled(iso, i);
+  }
+  ASSERT_GT(near, 100);
+  EXPECT_EQ(found, near);
+  EXPECT_LT(found_isotropic, near / 4);
+}
+
+TEST(CreaseDetection, NoiseRaisesTheConfirmingThreshold) {
+  // The nonagon's 40-degree creases (l2 / trace about 0.1 over the ball) against positions said to
+  // carry 1 mm of noise: the threshold rises by 2 (1 / 2.5)^2 = 0.32, above them.
+  const PolygonPrism prism(9);
+  CreaseOptions noisy;
+  noisy.noise = 1.0;
+  const CreaseDetection d = detect_creases(prism.mesh, build_adjacency(prism.mesh), noisy);
+  EXPECT_EQ(d.edges + d.corners, 0u);
+}
+
 TEST(CreaseDetection, BadOptionsAreRefused) {
   const Mesh cube = make_cube(2, 1.0);
   CreaseOptions o;
   o.radius = 0.0;
   EXPECT_THROW((void)detect_creases(cube, build_adjacency(cube), o), InvalidInputError);
+  CreaseOptions steep;
+  steep.steep_confirm_threshold = steep.confirm_threshold + 0.01;
+  EXPECT_THROW((void)detect_creases(cube, build_adjacency(cube), steep), InvalidInputError);
+  CreaseOptions noise;
+  noise.noise = -0.1;
+  EXPECT_THROW((void)detect_creases(cube, build_adjacency(cube), noise), InvalidInputError);
 }
 
 }  // namespace

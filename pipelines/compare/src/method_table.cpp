@@ -198,7 +198,11 @@ std::string cross_slice_settings(const SmoothOptions& o) {
                   std::to_string(c.off_slice.normal_iterations) + " iterations, " +
                   number(c.off_slice.sigma_angle_degrees) + " degrees)"
             : std::string())
-    << "; labels: creases of the result (radius " << c.features.radius << " mm, band " << c.features.band << " mm)";
+    << "; labels: creases of the result (radius " << c.features.radius << " mm"
+    << (c.features.confirm == CreaseConfirmation::Ball
+            ? ", confirmed over " + number(c.features.confirm_radius) + " mm"
+            : std::string())
+    << ", band " << c.features.band << " mm)";
   return s.str();
 }
 

@@ -140,6 +140,28 @@ const std::vector<Key>& keys() {
       {"min-extent", kCrossSlice,
        [](SmoothOptions& o, const Value& v) { o.cross_slice.features.min_extent = v.number(); }},
       {"band", kCrossSlice, [](SmoothOptions& o, const Value& v) { o.cross_slice.features.band = v.number(); }},
+      {"crease-confirm", kCrossSlice,
+       [](SmoothOptions& o, const Value& v) {
+         o.cross_slice.features.confirm =
+             v.choice<CreaseConfirmation>({{"ball", CreaseConfirmation::Ball}, {"none", CreaseConfirmation::None}});
+       }},
+      {"confirm-radius", kCrossSlice,
+       [](SmoothOptions& o, const Value& v) { o.cross_slice.features.confirm_radius = v.number(); }},
+      {"confirm-threshold", kCrossSlice,
+       [](SmoothOptions& o, const Value& v) { o.cross_slice.features.confirm_threshold = v.number(); }},
+      {"crease-sampling", kCrossSlice,
+       [](SmoothOptions& o, const Value& v) {
+         o.cross_slice.features.sampling = v.choice<CreaseSampling>(
+             {{"slice-aware", CreaseSampling::SliceAware}, {"isotropic", CreaseSampling::Isotropic}});
+       }},
+      {"steep-confirm-threshold", kCrossSlice,
+       [](SmoothOptions& o, const Value& v) { o.cross_slice.features.steep_confirm_threshold = v.number(); }},
+      {"crease-noise", kCrossSlice,
+       [](SmoothOptions& o, const Value& v) { o.cross_slice.features.noise = v.number(); }},
+      {"crease-noise-factor", kCrossSlice,
+       [](SmoothOptions& o, const Value& v) { o.cross_slice.features.noise_factor = v.number(); }},
+      {"confirm-corner-threshold", kCrossSlice,
+       [](SmoothOptions& o, const Value& v) { o.cross_slice.features.confirm_corner_threshold = v.number(); }},
   };
   return table;
 }

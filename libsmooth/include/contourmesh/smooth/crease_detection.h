@@ -1,17 +1,28 @@
 // SPDX-License-Identifier: BSD-3-Clause
 // Sharp features of a (smoothed) mesh: creases found from the spread of face normals around each vertex,
 // kept when they extend along a line, and widened to a band. The cross-slice smoother labels its
-// result with it (docs/results.md, "Feature labels of the paper's method").
+// result with it (docs/smoothing.md, "Feature labels (crease detection)").
 //
-// 1. Core vertices: the normal tensor T = sum_f A_f n_f n_f^T / 3 over the faces of the vertex and of
+// 1. Candidates: the normal tensor T = sum_f A_f n_f n_f^T / 3 over the faces of the vertex and of
 //    its ring neighbours within `radius` (faces counted once per such vertex they touch) has eigenvalues
 //    l1 >= l2 >= l3. Its normals spread in two directions
 //    (a crease) when l2 / trace >= `edge_threshold`: two planes meeting at a dihedral angle theta give
 //    l2 / trace = sin^2(theta / 2) / ... up to the split of areas, about 0.07 at 30 degrees and 0.25 at
 //    60; a smooth patch of curvature kappa gives about (radius kappa)^2 / 4. In three directions (a
 //    corner) when l3 / trace >= `corner_threshold`.
-// 2. Lines, not specks: connected groups of core vertices spanning less than `min_extent` are noise.
-// 3. Band: every vertex within `band` of a kept core vertex (along the mesh's edges) takes its label,
+// 2. Confirmation at the feature's scale (CreaseConfirmation::Ball): the same tensor over every vertex
+//    within `confirm_radius` connected to the candidate through such vertices. A crease keeps
+//    l2 / trace >= `confirm_threshold` there; a step or fold of a few tenths of a millimetre (a cap's
+//    rim on a contour stack, a jagged end face), whose faces fill little of the ball, does not. A
+//    corner keeps l3 / trace >= `confirm_corner_threshold` (three faces meeting: up to 1/3); otherwise
+//    it is examined as an edge. With CreaseSampling::SliceAware the crease threshold is
+//    `steep_confirm_threshold` / sin^2(psi), at most `confirm_threshold`, psi the angle between the
+//    ball's mean normal and the slice planes: a contour stack samples a surface nearly parallel to its
+//    slices coarsely, and a smooth surface folds there between two contours. Candidates not confirmed
+//    are labelled noise. docs/smoothing.md, "Feature labels (crease detection)".
+// 3. Core vertices: confirmed candidates strongest across their crease (non-maximum suppression).
+//    Lines, not specks: connected groups of core vertices spanning less than `min_extent` are noise.
+// 4. Band: every vertex within `band` of a kept core vertex (along the mesh's edges) takes its label,
 //    edge or corner (corner wins), as the evaluation's feature region counts vertices near a feature.
 #pragma once
 
@@ -21,22 +32,61 @@
 
 #include <Eigen/Core>
 
+#include <optional>
 #include <vector>
 
 namespace contourmesh {
+
+/// Whether a crease found on the ring must persist at a larger scale.
+enum class CreaseConfirmation {
+  None,  ///< the ring's tensor alone
+  Ball,  ///< also the tensor over every vertex within `confirm_radius` connected to it (default)
+};
+
+/// How the confirming threshold depends on the slices.
+enum class CreaseSampling {
+  Isotropic,   ///< `confirm_threshold` everywhere
+  /// `steep_confirm_threshold` / sin^2 of the angle between the ball's mean normal and the slice axis,
+  /// at most `confirm_threshold` (default); meshes without contour ids, or whose slices do not span
+  /// planes, are examined isotropically
+  SliceAware,
+};
 
 struct CreaseOptions {
   double radius = 1.0;            ///< mm (input units) around each vertex for its normal tensor, > 0
   double edge_threshold = 0.05;   ///< l2 / trace of a crease, in (0, 0.5]
   double corner_threshold = 0.08; ///< l3 / trace of a corner, in (0, 1/3]
+  CreaseConfirmation confirm = CreaseConfirmation::Ball;
+  /// mm: the ball of the confirming tensor, > 0; more than a slice spacing, so that it holds faces
+  /// on both sides of a crease that runs between two contours (2.5 suits 2 mm slices).
+  double confirm_radius = 2.5;
+  /// l2 / trace of a crease over the ball, in (0, 0.5]: the threshold where the surface lies in the
+  /// slice planes, and everywhere with CreaseSampling::Isotropic. 0.25 is two planes 60 degrees apart
+  /// with the ball centred on their line.
+  double confirm_threshold = 0.25;
+  /// l3 / trace of a corner over the ball, in (0, 1/3]: three planes meeting at right angles give
+  /// 1/3 with the ball centred on the corner.
+  double confirm_corner_threshold = 0.3;
+  CreaseSampling sampling = CreaseSampling::SliceAware;
+  /// l2 / trace of a crease over the ball where the surface crosses the slices at right angles, in
+  /// (0, confirm_threshold] (CreaseSampling::SliceAware): 0.1 is two planes about 37 degrees apart.
+  double steep_confirm_threshold = 0.1;
   double min_extent = 3.0;        ///< mm: groups of core vertices shorter than this are noise, >= 0
   double band = 1.5;              ///< mm: labels reach vertices this far from a core vertex, >= 0
+  /// Standard deviation of the noise of the positions, mm, >= 0; unset is 0 (cross_slice_smooth sets
+  /// its estimate across the slices). The confirming crease threshold rises by
+  /// noise_factor (noise / confirm_radius)^2, the spread of the normals over the ball that noise of
+  /// that size leaves.
+  std::optional<double> noise;
+  double noise_factor = 2.0;      ///< >= 0
 };
 
 struct CreaseDetection {
-  std::vector<VertexLabel> labels;  ///< Smooth, Edge, Corner, or Noise (a rejected core vertex)
+  std::vector<VertexLabel> labels;  ///< Smooth, Edge, Corner, or Noise (a rejected candidate or core vertex)
   Eigen::VectorXd edge_strength;    ///< l2 / trace per vertex
   Eigen::VectorXd corner_strength;  ///< l3 / trace per vertex
+  /// l2 / trace and l3 / trace over the ball, per candidate vertex (0 elsewhere and without confirmation)
+  Eigen::VectorXd confirm_strength, confirm_corner_strength;
   std::size_t core_vertices = 0;    ///< core vertices kept
   std::size_t edges = 0, corners = 0, noise = 0;
 };

@@ -99,7 +99,8 @@ struct CrossSliceOptions {
   int extension_iterations = 30;
   /// The vertices between the slices, after the extension.
   OffSliceFilterOptions off_slice;
-  /// The feature labels of the result: creases of the smoothed mesh (crease_detection.h).
+  /// The feature labels of the result: creases of the smoothed mesh (crease_detection.h); its noise
+  /// unset: the estimated noise across the slices.
   CreaseOptions features;
   /// Stages "smooth" and "detect"; return false to cancel (CancelledError).
   ProgressCallback progress;
