@@ -15,7 +15,9 @@
 #include <filesystem>
 #include <limits>
 #include <new>
+#include <iomanip>
 #include <iostream>
+#include <sstream>
 #include <string>
 #include <vector>
 
@@ -113,6 +115,13 @@ int run_guarded_body(const std::string& command, const std::function<int()>& bod
 namespace {
 int g_exit_code = kOk;
 }  // namespace
+
+std::string fixed(double v, int digits) {
+  if (!std::isfinite(v)) return "-";
+  std::ostringstream s;
+  s << std::fixed << std::setprecision(digits) << v;
+  return s.str();
+}
 
 std::string cli_wording(std::string text) {
   static const std::pair<const char*, const char*> kPhrases[] = {

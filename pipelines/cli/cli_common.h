@@ -67,6 +67,9 @@ int last_exit_code();
 /// --non-finite-as-air". Applied to every error and warning the commands print.
 [[nodiscard]] std::string cli_wording(std::string text);
 
+/// `v` with `digits` digits after the point, or "-" when it is not finite (a region without samples).
+[[nodiscard]] std::string fixed(double v, int digits);
+
 /// Prints `json` as one line on stdout.
 void print_json(const nlohmann::json& json);
 

@@ -149,13 +149,6 @@ void prepare_directory(const fs::path& dir) {
   check_output_path(dir / "report.html");
 }
 
-std::string fixed(double v, int digits) {
-  if (!std::isfinite(v)) return "-";
-  std::ostringstream s;
-  s << std::fixed << std::setprecision(digits) << v;
-  return s.str();
-}
-
 void print_summary(const Series& s, const ComparisonFiles& files, const fs::path& dir) {
   const Comparison& c = s.first();
   std::cout << s.name << " (" << s.regime.name << "): " << c.source;

@@ -389,17 +389,10 @@ int run_run(const RunArgs& a, const std::string& output, const std::string& labe
             << std::setprecision(1) << v0 << " -> " << v1 << " mm^3 (" << std::setprecision(2) << 100.0 * (v1 - v0) / v0
             << " %)\n";
   if (phantom) {
-    const auto finite_or_dash = [](double v) {
-      std::ostringstream o;
-      o << std::fixed << std::setprecision(3);
-      if (std::isfinite(v)) o << v;
-      else o << "-";
-      return o.str();
-    };
     std::cout << std::setprecision(3) << "  accuracy    over the surface, unsmoothed -> smoothed: two-sided RMS "
               << surface_before.all.rms << " -> " << surface_after.all.rms << " mm; within " << std::setprecision(1)
               << a.feature_radius << std::setprecision(3) << " mm of sharp features "
-              << finite_or_dash(surface_before.feature.rms) << " -> " << finite_or_dash(surface_after.feature.rms)
+              << fixed(surface_before.feature.rms, 3) << " -> " << fixed(surface_after.feature.rms, 3)
               << " mm; normal error " << std::setprecision(2) << surface_before.all.normal_error_degrees << " -> "
               << surface_after.all.normal_error_degrees << " deg\n";
   }
