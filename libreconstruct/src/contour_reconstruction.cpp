@@ -183,13 +183,10 @@ Mesh cavity(const ContourStack& stack, std::size_t s, std::size_t c, double belo
   return m;
 }
 
-double cross2(const Eigen::Vector2d& o, const Eigen::Vector2d& a, const Eigen::Vector2d& b) {
-  return (a.x() - o.x()) * (b.y() - o.y()) - (a.y() - o.y()) * (b.x() - o.x());
-}
-
 bool segments_touch(const Eigen::Vector2d& a, const Eigen::Vector2d& b, const Eigen::Vector2d& c,
                     const Eigen::Vector2d& d) {
-  const double o1 = cross2(a, b, c), o2 = cross2(a, b, d), o3 = cross2(c, d, a), o4 = cross2(c, d, b);
+  const double o1 = detail::orient2d(a, b, c), o2 = detail::orient2d(a, b, d), o3 = detail::orient2d(c, d, a),
+               o4 = detail::orient2d(c, d, b);
   return ((o1 >= 0.0) != (o2 >= 0.0) || o1 == 0.0 || o2 == 0.0) &&
          ((o3 >= 0.0) != (o4 >= 0.0) || o3 == 0.0 || o4 == 0.0);
 }

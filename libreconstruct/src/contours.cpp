@@ -29,10 +29,6 @@ bool point_in_polygon(const std::vector<Eigen::Vector2d>& poly, const Eigen::Vec
 
 namespace {
 
-double orient(const Eigen::Vector2d& a, const Eigen::Vector2d& b, const Eigen::Vector2d& c) {
-  return (b.x() - a.x()) * (c.y() - a.y()) - (b.y() - a.y()) * (c.x() - a.x());
-}
-
 // p lies in the bounding box of segment ab (used once p is known to be collinear with it).
 bool within(const Eigen::Vector2d& a, const Eigen::Vector2d& b, const Eigen::Vector2d& p) {
   return p.x() >= std::min(a.x(), b.x()) && p.x() <= std::max(a.x(), b.x()) && p.y() >= std::min(a.y(), b.y()) &&
@@ -42,7 +38,8 @@ bool within(const Eigen::Vector2d& a, const Eigen::Vector2d& b, const Eigen::Vec
 // Segments ab and cd share a point; returns it.
 std::optional<Eigen::Vector2d> segments_meet(const Eigen::Vector2d& a, const Eigen::Vector2d& b,
                                              const Eigen::Vector2d& c, const Eigen::Vector2d& d) {
-  const double o1 = orient(a, b, c), o2 = orient(a, b, d), o3 = orient(c, d, a), o4 = orient(c, d, b);
+  const double o1 = detail::orient2d(a, b, c), o2 = detail::orient2d(a, b, d), o3 = detail::orient2d(c, d, a),
+               o4 = detail::orient2d(c, d, b);
   if (((o1 > 0 && o2 < 0) || (o1 < 0 && o2 > 0)) && ((o3 > 0 && o4 < 0) || (o3 < 0 && o4 > 0))) {
     const double t = o3 / (o3 - o4);
     return a + t * (b - a);

@@ -1,6 +1,8 @@
 // SPDX-License-Identifier: BSD-3-Clause
 #include "detail/slab_remeshing.h"
 
+#include "contourmesh/internal/polygon2d.h"
+
 #include <algorithm>
 #include <array>
 #include <cmath>
@@ -36,11 +38,6 @@ const double kShelfCosine = std::cos(10.0 * std::numbers::pi / 180.0);
 double shelf_area(const Eigen::Vector3d& n) {
   const double length = n.norm();
   return std::abs(n.z()) >= kShelfCosine * length ? length : 0.0;
-}
-
-// Twice the signed area of the triangle (a, b, c) in the (u, v) plane: > 0 when counter-clockwise.
-double orient(const Eigen::Vector2d& a, const Eigen::Vector2d& b, const Eigen::Vector2d& c) {
-  return (b.x() - a.x()) * (c.y() - a.y()) - (b.y() - a.y()) * (c.x() - a.x());
 }
 
 // Cosine of the smallest angle of a triangle (the angle opposite its shortest edge), in [0.5, 1]: a
@@ -216,7 +213,7 @@ class SurfacePatch {
       const auto& t = faces_[static_cast<std::size_t>(f)];
       int next = -1;
       for (int k = 0; k < 3 && next < 0; ++k) {
-        if (side * orient(points_[t[k]].head<2>(), points_[t[(k + 1) % 3]].head<2>(), p) >= 0.0) continue;
+        if (side * orient2d(points_[t[k]].head<2>(), points_[t[(k + 1) % 3]].head<2>(), p) >= 0.0) continue;
         const int g = across(f, k);
         if (g < 0 || level_side(g) != side) {
           blocked = {f, k};
@@ -235,9 +232,9 @@ class SurfacePatch {
   std::vector<int> insert(int f, const Eigen::Vector2d& p) {
     const auto t = faces_[static_cast<std::size_t>(f)];
     const Eigen::Vector3d &A = points_[t[0]], &B = points_[t[1]], &C = points_[t[2]];
-    const double whole = orient(A.head<2>(), B.head<2>(), C.head<2>());
+    const double whole = orient2d(A.head<2>(), B.head<2>(), C.head<2>());
     if (whole == 0.0) return {};
-    const double la = orient(p, B.head<2>(), C.head<2>()) / whole, lb = orient(A.head<2>(), p, C.head<2>()) / whole;
+    const double la = orient2d(p, B.head<2>(), C.head<2>()) / whole, lb = orient2d(A.head<2>(), p, C.head<2>()) / whole;
     const double lc = 1.0 - la - lb;
     if (std::min({la, lb, lc}) < kMinBarycentric) return {};
     const Eigen::Vector3d point = la * A + lb * B + lc * C;
@@ -369,7 +366,7 @@ int insert_into(SurfacePatch& patch, int f, double max_deviation, double min_spl
   normal /= normal.norm();
   if (normal.dot(r - middle) < 0.0) normal = -normal;
   // The circumcentre lies on the bisector, at this signed distance from the middle.
-  const double d_pr = orient(p, q, r);
+  const double d_pr = orient2d(p, q, r);
   if (d_pr == 0.0) return 0;
   const double bc = (r - p).squaredNorm(), ab = (q - p).squaredNorm();
   const Eigen::Vector2d u = q - p, v = r - p;

@@ -14,6 +14,12 @@ namespace contourmesh::detail {
 
 using Polygon = std::vector<Eigen::Vector2d>;
 
+/// Twice the signed area of the triangle (a, b, c): > 0 when it turns counter-clockwise, 0 when the
+/// points are collinear. The orientation predicate of segment crossings and point location.
+[[nodiscard]] inline double orient2d(const Eigen::Vector2d& a, const Eigen::Vector2d& b, const Eigen::Vector2d& c) {
+  return (b.x() - a.x()) * (c.y() - a.y()) - (b.y() - a.y()) * (c.x() - a.x());
+}
+
 /// Signed area (shoelace formula): positive when the polygon runs counter-clockwise. 0 for fewer than
 /// three vertices' worth of area; an empty polygon is not allowed.
 [[nodiscard]] double polygon_signed_area(const Polygon& polygon);
