@@ -82,6 +82,12 @@ std::vector<double> distances_from(const Mesh& mesh, const MeshAdjacency& adjace
 
 using Tensor6 = Eigen::Matrix<double, 6, 1>;  // xx, yy, zz, xy, xz, yz of a symmetric 3 x 3 tensor
 
+Eigen::Matrix3d as_matrix(const Tensor6& t) {
+  Eigen::Matrix3d m;
+  m << t[0], t[3], t[4], t[3], t[1], t[5], t[4], t[5], t[2];
+  return m;
+}
+
 struct BallTensor {
   double edge = 0.0, corner = 0.0;                       // l2 / trace, l3 / trace
   Eigen::Vector3d mean_normal = Eigen::Vector3d::Zero();  // unit, area-weighted (zero if undefined)
@@ -109,8 +115,7 @@ BallTensor ball_tensor(const Mesh& mesh, const MeshAdjacency& adjacency, const s
   }
   const double len = result.mean_normal.norm();
   result.mean_normal = len > 0.0 ? Eigen::Vector3d(result.mean_normal / len) : Eigen::Vector3d::Zero();
-  Eigen::Matrix3d tensor;
-  tensor << t[0], t[3], t[4], t[3], t[1], t[5], t[4], t[5], t[2];
+  const Eigen::Matrix3d tensor = as_matrix(t);
   const double trace = tensor.trace();
   if (!(trace > 0.0)) return result;
   Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d> eigen;
@@ -171,8 +176,7 @@ CreaseDetection detect_creases(const Mesh& mesh, const MeshAdjacency& adjacency,
       for (Index j : adjacency.ring(i)) {
         if ((mesh.positions.col(j) - centre).squaredNorm() <= r2) t += own[static_cast<std::size_t>(j)];
       }
-      Eigen::Matrix3d tensor;
-      tensor << t[0], t[3], t[4], t[3], t[1], t[5], t[4], t[5], t[2];
+      const Eigen::Matrix3d tensor = as_matrix(t);
       const double trace = tensor.trace();
       if (!(trace > 0.0)) continue;
       Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d> eigen;
@@ -206,10 +210,14 @@ CreaseDetection detect_creases(const Mesh& mesh, const MeshAdjacency& adjacency,
   //    neighbour lying across the crease, rather than along it, is stronger). Corners are kept whole.
   //    Then grouped along the edges; groups shorter than min_extent are noise.
   std::vector<std::uint8_t> core(static_cast<std::size_t>(n), 0);
+  const bool confirm = options.confirm == CreaseConfirmation::Ball;
+  // A corner on the ring, and over the ball too when confirming.
+  const auto is_corner = [&](Index i) {
+    return result.corner_strength[i] >= options.corner_threshold &&
+           (!confirm || result.confirm_corner_strength[i] >= options.confirm_corner_threshold);
+  };
   for (Index i = 0; i < n; ++i) {
-    const bool confirm = options.confirm == CreaseConfirmation::Ball;
-    const bool corner = result.corner_strength[i] >= options.corner_threshold &&
-                        (!confirm || result.confirm_corner_strength[i] >= options.confirm_corner_threshold);
+    const bool corner = is_corner(i);
     if (!corner && result.edge_strength[i] < options.edge_threshold) continue;
     if (confirm && result.confirm_strength[i] < threshold[i]) {
       result.labels[static_cast<std::size_t>(i)] = VertexLabel::Noise;  // not a crease at the ball's scale
@@ -257,11 +265,7 @@ CreaseDetection detect_creases(const Mesh& mesh, const MeshAdjacency& adjacency,
         continue;
       }
       kept.push_back(v);
-      if (result.corner_strength[v] >= options.corner_threshold &&
-          (options.confirm == CreaseConfirmation::None ||
-           result.confirm_corner_strength[v] >= options.confirm_corner_threshold)) {
-        kept_corners.push_back(v);
-      }
+      if (is_corner(v)) kept_corners.push_back(v);
     }
   }
   result.core_vertices = kept.size();
