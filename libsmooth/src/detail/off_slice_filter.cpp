@@ -85,6 +85,13 @@ struct Workspace {
   std::vector<double> low, high;
 };
 
+// Two 3-vectors equal bit for bit (-0 and 0 differ): what the filter's iterations test to skip the work
+// whose inputs did not change.
+template <typename A, typename B>
+bool same_bits(const A& a, const B& b) {
+  return std::memcmp(a.data(), b.data(), 3 * sizeof(double)) == 0;
+}
+
 // The moving vertices (mesh ids, ascending) and the filtered faces (mesh ids, ascending).
 void select_region(const ContourFrame& frame, std::size_t num_faces, const OffSliceFilterOptions& options,
                    std::vector<Index>& moving, std::vector<Index>& filtered) {
@@ -250,9 +257,6 @@ void filter_normals(const Workspace& w, const OffSliceFilterOptions& options, Ei
   // iteration computes everything.
   std::vector<std::uint8_t> changed(nl, 0), changes(nl, 0);
   std::vector<std::uint8_t> summed(nk, 0);  // per filtered face: its last sum was not zero (its normal set)
-  const auto same = [](const auto& a, const auto& b) {  // bit for bit (-0 against 0 too)
-    return std::memcmp(a.data(), b.data(), 3 * sizeof(double)) == 0;
-  };
   for (int it = 0; it < options.normal_iterations; ++it) {
     // The range kernel of every pair, from |n_b - n_a|^2 of unit normals, in single precision (the hot
     // spot). The dot product is symmetric, bit for bit.
@@ -285,7 +289,7 @@ void filter_normals(const Workspace& w, const OffSliceFilterOptions& options, Ei
         const double len = acc.norm();
         summed[k] = len > 0.0 ? 1 : 0;
         if (len > 0.0) next.col(f) = acc / len;
-        changes[static_cast<std::size_t>(f)] = same(next.col(f), normals.col(f)) ? 0 : 1;
+        changes[static_cast<std::size_t>(f)] = same_bits(next.col(f), normals.col(f)) ? 0 : 1;
       }
     });
     normals.swap(next);
@@ -358,7 +362,7 @@ void update_vertices(const ContourFrame& frame, const Workspace& w, const Eigen:
     for (std::size_t m = 0; m < nm; ++m) {
       const Index i = w.moving[m];
       const auto u = updated.col(static_cast<Index>(m));
-      moved[static_cast<std::size_t>(i)] = std::memcmp(u.data(), x.col(i).data(), 3 * sizeof(double)) != 0 ? 1 : 0;
+      moved[static_cast<std::size_t>(i)] = same_bits(u, x.col(i)) ? 0 : 1;
       x.col(i) = u;
     }
   }
