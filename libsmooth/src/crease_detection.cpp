@@ -9,7 +9,10 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdint>
 #include <limits>
+#include <memory>
+#include <mutex>
 #include <optional>
 #include <queue>
 #include <string>
@@ -93,18 +96,73 @@ struct BallTensor {
   Eigen::Vector3d mean_normal = Eigen::Vector3d::Zero();  // unit, area-weighted (zero if undefined)
 };
 
+// Scratch space of ball_tensor, one per worker: the gathered vertices, and a stamp per mesh vertex
+// (the ball's number when it was gathered), so that membership is one look-up instead of a search.
+struct BallScratch {
+  std::vector<Index> ball;
+  std::vector<std::uint32_t> stamp;
+  std::uint32_t current = 0;
+
+  explicit BallScratch(Index vertices) : stamp(static_cast<std::size_t>(vertices), 0) {}
+
+  // Starts a new ball: no vertex is a member.
+  void clear() {
+    ball.clear();
+    if (++current == 0) {  // after 2^32 balls: forget every stamp
+      std::fill(stamp.begin(), stamp.end(), 0u);
+      current = 1;
+    }
+  }
+  // Adds j unless it is a member; whether it was added.
+  bool add(Index j) {
+    std::uint32_t& s = stamp[static_cast<std::size_t>(j)];
+    if (s == current) return false;
+    s = current;
+    ball.push_back(j);
+    return true;
+  }
+};
+
+// Hands each chunk of a parallel loop a BallScratch no other chunk is using; builds one only when all
+// are taken (so as many as run at once, each of the mesh's size).
+class ScratchPool {
+ public:
+  explicit ScratchPool(Index vertices) : vertices_(vertices) {}
+  std::unique_ptr<BallScratch> take() {
+    {
+      const std::lock_guard<std::mutex> lock(mutex_);
+      if (!free_.empty()) {
+        std::unique_ptr<BallScratch> s = std::move(free_.back());
+        free_.pop_back();
+        return s;
+      }
+    }
+    return std::make_unique<BallScratch>(vertices_);
+  }
+  void give_back(std::unique_ptr<BallScratch> s) {
+    const std::lock_guard<std::mutex> lock(mutex_);
+    free_.push_back(std::move(s));
+  }
+
+ private:
+  Index vertices_;
+  std::mutex mutex_;
+  std::vector<std::unique_ptr<BallScratch>> free_;
+};
+
 // The normal tensor of every vertex within `radius` of vertex i and connected to it through such
-// vertices (`ball` is scratch space).
+// vertices, gathered breadth-first (at most about kMaxBall of them).
 BallTensor ball_tensor(const Mesh& mesh, const MeshAdjacency& adjacency, const std::vector<Tensor6>& own,
-                       const Eigen::Matrix3Xd& area_normal, Index i, double radius, std::vector<Index>& ball) {
+                       const Eigen::Matrix3Xd& area_normal, Index i, double radius, BallScratch& scratch) {
   const Eigen::Vector3d centre = mesh.positions.col(i);
   const double r2 = radius * radius;
-  ball.assign(1, i);
+  scratch.clear();
+  scratch.add(i);
+  std::vector<Index>& ball = scratch.ball;
   for (std::size_t b = 0; b < ball.size() && ball.size() < kMaxBall; ++b) {
     for (Index j : adjacency.ring(ball[b])) {
       if ((mesh.positions.col(j) - centre).squaredNorm() > r2) continue;
-      if (std::find(ball.begin(), ball.end(), j) != ball.end()) continue;
-      ball.push_back(j);
+      scratch.add(j);
     }
   }
   Tensor6 t = Tensor6::Zero();
@@ -167,8 +225,9 @@ CreaseDetection detect_creases(const Mesh& mesh, const MeshAdjacency& adjacency,
   Eigen::VectorXd threshold = Eigen::VectorXd::Constant(n, options.confirm_threshold + lift);
   result.confirm_strength = Eigen::VectorXd::Zero(n);
   result.confirm_corner_strength = Eigen::VectorXd::Zero(n);
+  ScratchPool scratch_pool(n);
   detail::parallel_chunks(static_cast<std::size_t>(n), 4096, [&](std::size_t, std::size_t begin, std::size_t end) {
-    std::vector<Index> ball;
+    std::unique_ptr<BallScratch> scratch;  // taken at the chunk's first candidate
     for (std::size_t k = begin; k < end; ++k) {
       const Index i = static_cast<Index>(k);
       const Eigen::Vector3d centre = mesh.positions.col(i);
@@ -192,7 +251,8 @@ CreaseDetection detect_creases(const Mesh& mesh, const MeshAdjacency& adjacency,
       if (options.confirm == CreaseConfirmation::None) continue;
       // The same tensor over the ball of confirm_radius: a crease is a change of the normal that
       // persists at that scale, not a step or fold of a few tenths of a millimetre.
-      const BallTensor b = ball_tensor(mesh, adjacency, own, area_normal, i, options.confirm_radius, ball);
+      if (!scratch) scratch = scratch_pool.take();
+      const BallTensor b = ball_tensor(mesh, adjacency, own, area_normal, i, options.confirm_radius, *scratch);
       result.confirm_strength[i] = b.edge;
       result.confirm_corner_strength[i] = b.corner;
       if (slice_axis) {
@@ -204,6 +264,7 @@ CreaseDetection detect_creases(const Mesh& mesh, const MeshAdjacency& adjacency,
         threshold[i] = std::min(options.confirm_threshold, options.steep_confirm_threshold / sine2) + lift;
       }
     }
+    if (scratch) scratch_pool.give_back(std::move(scratch));
   });
 
   // 2. Core vertices: strong enough, and the strongest across the crease (non-maximum suppression: no
