@@ -13,6 +13,7 @@
 #include <limits>
 #include <memory>
 #include <mutex>
+#include <numbers>
 #include <optional>
 #include <queue>
 #include <string>
@@ -35,6 +36,8 @@ void check(const Mesh& mesh, const MeshAdjacency& adjacency, const CreaseOptions
   if (!(o.corner_threshold > 0.0 && o.corner_threshold <= 1.0 / 3.0)) fail("corner threshold must be in (0, 1/3]");
   if (!(o.min_extent >= 0.0 && std::isfinite(o.min_extent))) fail("min extent must be a finite number >= 0");
   if (!(o.band >= 0.0 && std::isfinite(o.band))) fail("band must be a finite number >= 0");
+  if (!(o.link_radius >= 0.0 && std::isfinite(o.link_radius))) fail("link radius must be a finite number >= 0");
+  if (!(o.link_angle_degrees >= 0.0 && o.link_angle_degrees <= 90.0)) fail("link angle must be in [0, 90] degrees");
   if (!(o.confirm_radius > 0.0 && std::isfinite(o.confirm_radius))) fail("confirm radius must be a finite number > 0");
   if (!(o.confirm_threshold > 0.0 && o.confirm_threshold <= 0.5)) fail("confirm threshold must be in (0, 0.5]");
   if (!(o.confirm_corner_threshold > 0.0 && o.confirm_corner_threshold <= 1.0 / 3.0)) {
@@ -150,21 +153,27 @@ class ScratchPool {
   std::vector<std::unique_ptr<BallScratch>> free_;
 };
 
-// The normal tensor of every vertex within `radius` of vertex i and connected to it through such
-// vertices, gathered breadth-first (at most about kMaxBall of them).
-BallTensor ball_tensor(const Mesh& mesh, const MeshAdjacency& adjacency, const std::vector<Tensor6>& own,
-                       const Eigen::Matrix3Xd& area_normal, Index i, double radius, BallScratch& scratch) {
+// Every vertex within `radius` of vertex i and connected to it through such vertices, gathered
+// breadth-first from i (at most about kMaxBall of them) into scratch.ball.
+void gather_ball(const Mesh& mesh, const MeshAdjacency& adjacency, Index i, double radius, BallScratch& scratch) {
   const Eigen::Vector3d centre = mesh.positions.col(i);
   const double r2 = radius * radius;
   scratch.clear();
   scratch.add(i);
-  std::vector<Index>& ball = scratch.ball;
+  const std::vector<Index>& ball = scratch.ball;
   for (std::size_t b = 0; b < ball.size() && ball.size() < kMaxBall; ++b) {
     for (Index j : adjacency.ring(ball[b])) {
       if ((mesh.positions.col(j) - centre).squaredNorm() > r2) continue;
       scratch.add(j);
     }
   }
+}
+
+// The normal tensor of the ball of `radius` around vertex i (gather_ball).
+BallTensor ball_tensor(const Mesh& mesh, const MeshAdjacency& adjacency, const std::vector<Tensor6>& own,
+                       const Eigen::Matrix3Xd& area_normal, Index i, double radius, BallScratch& scratch) {
+  gather_ball(mesh, adjacency, i, radius, scratch);
+  const std::vector<Index>& ball = scratch.ball;
   Tensor6 t = Tensor6::Zero();
   BallTensor result;
   for (Index j : ball) {
@@ -269,7 +278,7 @@ CreaseDetection detect_creases(const Mesh& mesh, const MeshAdjacency& adjacency,
 
   // 2. Core vertices: strong enough, and the strongest across the crease (non-maximum suppression: no
   //    neighbour lying across the crease, rather than along it, is stronger). Corners are kept whole.
-  //    Then grouped along the edges; groups shorter than min_extent are noise.
+  //    Then grouped along the edges and the links between slices; groups shorter than min_extent are noise.
   std::vector<std::uint8_t> core(static_cast<std::size_t>(n), 0);
   const bool confirm = options.confirm == CreaseConfirmation::Ball;
   // A corner on the ring, and over the ball too when confirming.
@@ -299,8 +308,30 @@ CreaseDetection detect_creases(const Mesh& mesh, const MeshAdjacency& adjacency,
     }
     core[static_cast<std::size_t>(i)] = maximum;
   }
+  // Two core vertices on adjacent contours' slices within link_radius of each other (through vertices
+  // within it) belong to one line when the segment between them runs along the crease at both ends (a
+  // corner has no crease direction): a crease oblique to the slices meets adjacent contours at vertices
+  // that share no edge. Only across one slice, so that folds and noise within a slice or on a cap,
+  // whose directions are random, are not strung together.
+  const bool linking = options.link_radius > 0.0 && mesh.has_contour_ids();
+  const auto adjacent_slices = [&](Index a, Index b) {
+    const std::int32_t sa = mesh.slice_ids[static_cast<std::size_t>(a)];
+    const std::int32_t sb = mesh.slice_ids[static_cast<std::size_t>(b)];
+    return sa >= 0 && sb >= 0 && (sa - sb == 1 || sb - sa == 1);
+  };
+  const double link_cos = std::cos(options.link_angle_degrees * std::numbers::pi / 180.0);
+  const auto along_crease = [&](Index v, const Eigen::Vector3d& unit) {
+    return is_corner(v) || std::abs(unit.dot(along.col(v))) >= link_cos;
+  };
+  BallScratch link_scratch(linking ? n : 0);
   std::vector<Index> group(static_cast<std::size_t>(n), -1);
   std::vector<Index> kept, kept_corners, members, stack;
+  const auto join = [&](Index j, Index seed) {
+    if (core[static_cast<std::size_t>(j)] && group[static_cast<std::size_t>(j)] < 0) {
+      group[static_cast<std::size_t>(j)] = seed;
+      stack.push_back(j);
+    }
+  };
   for (Index seed = 0; seed < n; ++seed) {
     if (!core[static_cast<std::size_t>(seed)] || group[static_cast<std::size_t>(seed)] >= 0) continue;
     members.clear();
@@ -312,11 +343,15 @@ CreaseDetection detect_creases(const Mesh& mesh, const MeshAdjacency& adjacency,
       stack.pop_back();
       members.push_back(v);
       box.extend(mesh.positions.col(v));
-      for (Index j : adjacency.ring(v)) {
-        if (core[static_cast<std::size_t>(j)] && group[static_cast<std::size_t>(j)] < 0) {
-          group[static_cast<std::size_t>(j)] = seed;
-          stack.push_back(j);
-        }
+      for (Index j : adjacency.ring(v)) join(j, seed);
+      if (!linking || mesh.slice_ids[static_cast<std::size_t>(v)] < 0) continue;
+      gather_ball(mesh, adjacency, v, options.link_radius, link_scratch);
+      for (Index j : link_scratch.ball) {
+        if (!core[static_cast<std::size_t>(j)] || group[static_cast<std::size_t>(j)] >= 0) continue;
+        if (!adjacent_slices(v, j)) continue;
+        const Eigen::Vector3d d = mesh.positions.col(j) - mesh.positions.col(v);
+        const double len = d.norm();
+        if (len > 0.0 && along_crease(v, d / len) && along_crease(j, d / len)) join(j, seed);
       }
     }
     const bool line = box.diagonal().norm() >= options.min_extent;
