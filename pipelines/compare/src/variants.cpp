@@ -140,6 +140,10 @@ const std::vector<Key>& keys() {
       {"min-extent", kCrossSlice,
        [](SmoothOptions& o, const Value& v) { o.cross_slice.features.min_extent = v.number(); }},
       {"band", kCrossSlice, [](SmoothOptions& o, const Value& v) { o.cross_slice.features.band = v.number(); }},
+      {"link-radius", kCrossSlice,
+       [](SmoothOptions& o, const Value& v) { o.cross_slice.features.link_radius = v.number(); }},
+      {"link-angle", kCrossSlice,
+       [](SmoothOptions& o, const Value& v) { o.cross_slice.features.link_angle_degrees = v.number(); }},
       {"crease-confirm", kCrossSlice,
        [](SmoothOptions& o, const Value& v) {
          o.cross_slice.features.confirm =
