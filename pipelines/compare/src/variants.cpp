@@ -121,6 +121,11 @@ const std::vector<Key>& keys() {
          o.cross_slice.off_slice.motion =
              v.choice<OffSliceMotion>({{"axis", OffSliceMotion::AlongAxis}, {"free", OffSliceMotion::Free}});
        }},
+      {"off-slice-range", kCrossSlice,
+       [](SmoothOptions& o, const Value& v) {
+         o.cross_slice.off_slice.range = v.choice<OffSliceRange>(
+             {{"faces", OffSliceRange::FaceNormals}, {"patches", OffSliceRange::PatchGuidance}});
+       }},
       {"normal-iterations", kCrossSlice,
        [](SmoothOptions& o, const Value& v) { o.cross_slice.off_slice.normal_iterations = v.integer(); }},
       {"normal-sigma", kCrossSlice,

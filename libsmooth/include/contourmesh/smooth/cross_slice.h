@@ -59,14 +59,31 @@ enum class OffSliceMotion {
   AlongAxis,  ///< along the slice axis only, as off-slice heights placed it
 };
 
+/// What the range kernel of the normal filter compares.
+enum class OffSliceRange {
+  /// The faces' own normals (Zheng et al. 2011; default). Terraces between the slices (heights of the
+  /// vertices between the slices pulled towards the middle of their slab, as reading them from an image
+  /// does) read as creases and are kept.
+  FaceNormals,
+  /// Guidance normals (experimental): per face, the mean normal of the most consistent patch (a face's
+  /// neighbourhood) among its own and those of the faces around it whose mean normal is within the
+  /// kernel's angle of its own (after Zhang et al., "Guided mesh normal filtering", Pacific Graphics
+  /// 2015). Terraces within a patch average out. Known defect: at a cap's rim a face whose patches all
+  /// straddle the rim takes their tilted mean, and the rim of an exact polygonal cylinder moves by up to
+  /// `max_move`.
+  PatchGuidance,
+};
+
 /// The normal-filtering stage for the vertices between the slices (docs/smoothing.md, "Vertices between
 /// the slices"): bilateral filtering of the normals of the faces that touch them (Zheng, Fu, Au, Tai,
 /// IEEE TVCG 2011, eq. 4: a Gaussian of the distance between face centroids, of the mean such distance,
-/// times a Gaussian of the difference of the normals), then their positions fitted to those normals
-/// (eq. 6). Contour vertices never move here; a vertex between the slices stays in its slab.
+/// times a Gaussian of the difference of the normals, or of guidance normals: OffSliceRange), then
+/// their positions fitted to those normals (eq. 6). Contour vertices never move here; a vertex between
+/// the slices stays in its slab.
 struct OffSliceFilterOptions {
   OffSliceFilter filter = OffSliceFilter::BilateralNormals;
   OffSliceMotion motion = OffSliceMotion::Free;
+  OffSliceRange range = OffSliceRange::FaceNormals;
   /// Iterations of the normal filter, >= 0.
   int normal_iterations = 20;
   /// Width of the range kernel as an angle between two normals, degrees, in (0, 90]: normals further

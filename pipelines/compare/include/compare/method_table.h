@@ -97,7 +97,8 @@ struct MethodVariant {
 /// Keys, by method:
 /// - cross-slice: reach, along-reach, gamma, noise-across, noise-along (mm), profile-model (parabola |
 ///   circle), stages (across-then-along | across-only), extension-iterations, off-slice-filter (bilateral |
-///   none), off-slice-motion (free | axis), normal-iterations, normal-sigma (degrees), vertex-iterations,
+///   none), off-slice-motion (free | axis), off-slice-range (faces | patches), normal-iterations,
+///   normal-sigma (degrees), vertex-iterations,
 ///   max-move (slice spacings), contour-max-move (mm), crease-radius, edge-threshold, corner-threshold,
 ///   min-extent, band;
 /// - paper: iterations, lambda, mu, max-levels, diffusion (taubin | laplacian), measure (length | normal),
