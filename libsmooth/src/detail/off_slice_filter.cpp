@@ -313,7 +313,8 @@ GuidancePatches make_patches(const ContourFrame& frame, const std::vector<Triang
   }
   p.outer_normals.resize(3, static_cast<Index>(outer_faces.size()));
   for (std::size_t o = 0; o < outer_faces.size(); ++o) {
-    p.outer_normals.col(static_cast<Index>(o)) = face_normal(positions, triangles[static_cast<std::size_t>(outer_faces[o])]);
+    const Triangle& t = triangles[static_cast<std::size_t>(outer_faces[o])];
+    p.outer_normals.col(static_cast<Index>(o)) = face_normal(positions, t);
   }
   return p;
 }
@@ -335,7 +336,8 @@ void guidance_normals(const Workspace& w, const GuidancePatches& p, const Eigen:
       for (Index e = p.offsets[l]; e < p.offsets[l + 1]; ++e) {
         const auto eu = static_cast<std::size_t>(e);
         const Index g = p.entries[eu];
-        acc += p.weights[eu] * (g < static_cast<Index>(nl) ? normals.col(g) : p.outer_normals.col(g - static_cast<Index>(nl)));
+        const auto local = static_cast<Index>(nl);
+        acc += p.weights[eu] * (g < local ? normals.col(g) : p.outer_normals.col(g - local));
         weight += p.weights[eu];
       }
       const double len = acc.norm();
@@ -400,7 +402,8 @@ void filter_normals(const Workspace& w, const OffSliceFilterOptions& options, co
       guidance = normals;
       guidance_normals(w, *patches, normals, min_cos, mean, consistency, guidance);
       for (std::size_t l = 0; l < nl; ++l) {
-        guided_changed[l] = all || !same_bits(guidance.col(static_cast<Index>(l)), last_guidance.col(static_cast<Index>(l)));
+        const auto ll = static_cast<Index>(l);
+        guided_changed[l] = all || !same_bits(guidance.col(ll), last_guidance.col(ll));
       }
     }
     const Eigen::Matrix3Xd& compared = patches ? guidance : normals;

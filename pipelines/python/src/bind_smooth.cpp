@@ -181,6 +181,7 @@ MethodConfig method_config(const py::object& method_arg, Options& o, Mesh& mesh)
     o.take_int("reach", co.reach);
     o.take_int("along_reach", co.along_reach);
     o.take_double("gamma", co.gamma);
+    o.take_double("precise_noise", co.precise_noise);
     o.take_double("noise_across", co.noise_across);
     o.take_double("noise_along", co.noise_along);
     o.take_int("extension_iterations", co.extension_iterations);
