@@ -324,13 +324,20 @@ GuidancePatches make_patches(const ContourFrame& frame, const std::vector<Triang
 // its normals agree). Each filtered face takes the mean normal of the most consistent patch that holds it,
 // among its own and the patches of the faces sharing a vertex with it whose mean normal lies within
 // `min_cos` of its own normal (next to a crease, not a patch of the other side); the other local faces keep
-// their own normals. `normals` holds the local faces' normals.
+// their own normals. `normals` holds the local faces' normals. A patch none of whose normals changed in the
+// last iteration (`changed`; `all`: recompute every patch) keeps its mean and consistency.
 void guidance_normals(const Workspace& w, const GuidancePatches& p, const Eigen::Matrix3Xd& normals,
-                      double min_cos, Eigen::Matrix3Xd& mean, std::vector<double>& consistency,
-                      Eigen::Matrix3Xd& guidance) {
+                      const std::vector<std::uint8_t>& changed, bool all, double min_cos, Eigen::Matrix3Xd& mean,
+                      std::vector<double>& consistency, Eigen::Matrix3Xd& guidance) {
   const std::size_t nl = w.faces.size(), nk = w.filtered.size();
   parallel_chunks(nl, 1024, [&](std::size_t, std::size_t begin, std::size_t end) {
     for (std::size_t l = begin; l < end; ++l) {
+      bool stale = all;
+      for (Index e = p.offsets[l]; e < p.offsets[l + 1] && !stale; ++e) {
+        const Index g = p.entries[static_cast<std::size_t>(e)];
+        stale = g < static_cast<Index>(nl) && changed[static_cast<std::size_t>(g)] != 0;
+      }
+      if (!stale) continue;
       Eigen::Vector3d acc = Eigen::Vector3d::Zero();
       double weight = 0.0;
       for (Index e = p.offsets[l]; e < p.offsets[l + 1]; ++e) {
@@ -400,7 +407,7 @@ void filter_normals(const Workspace& w, const OffSliceFilterOptions& options, co
     if (patches) {
       last_guidance.swap(guidance);
       guidance = normals;
-      guidance_normals(w, *patches, normals, min_cos, mean, consistency, guidance);
+      guidance_normals(w, *patches, normals, changed, all, min_cos, mean, consistency, guidance);
       for (std::size_t l = 0; l < nl; ++l) {
         const auto ll = static_cast<Index>(l);
         guided_changed[l] = all || !same_bits(guidance.col(ll), last_guidance.col(ll));
