@@ -97,6 +97,8 @@ const std::vector<Key>& keys() {
       {"reach", kCrossSlice, [](SmoothOptions& o, const Value& v) { o.cross_slice.reach = v.integer(); }},
       {"along-reach", kCrossSlice, [](SmoothOptions& o, const Value& v) { o.cross_slice.along_reach = v.integer(); }},
       {"gamma", kCrossSlice, [](SmoothOptions& o, const Value& v) { o.cross_slice.gamma = v.number(); }},
+      {"precise-noise", kCrossSlice,
+       [](SmoothOptions& o, const Value& v) { o.cross_slice.precise_noise = v.number(); }},
       {"noise-across", kCrossSlice, [](SmoothOptions& o, const Value& v) { o.cross_slice.noise_across = v.number(); }},
       {"noise-along", kCrossSlice, [](SmoothOptions& o, const Value& v) { o.cross_slice.noise_along = v.number(); }},
       {"profile-model", kCrossSlice,
@@ -120,6 +122,11 @@ const std::vector<Key>& keys() {
        [](SmoothOptions& o, const Value& v) {
          o.cross_slice.off_slice.motion =
              v.choice<OffSliceMotion>({{"axis", OffSliceMotion::AlongAxis}, {"free", OffSliceMotion::Free}});
+       }},
+      {"off-slice-range", kCrossSlice,
+       [](SmoothOptions& o, const Value& v) {
+         o.cross_slice.off_slice.range = v.choice<OffSliceRange>(
+             {{"faces", OffSliceRange::FaceNormals}, {"patches", OffSliceRange::PatchGuidance}});
        }},
       {"normal-iterations", kCrossSlice,
        [](SmoothOptions& o, const Value& v) { o.cross_slice.off_slice.normal_iterations = v.integer(); }},
