@@ -19,8 +19,9 @@ namespace contourmesh::detail {
 /// Bridge). With BandRefinement::Interpolated, the bridges of a many-to-many branching's composites
 /// cross no contour, and where the two composites' outlines cross, the band between them is the
 /// crossing band (crossing_band.h) when that leaves less flat and sliver area than the least-area band.
-/// A hole that opens to the outside joins its outer contour's composite; a hole that ends is capped facing into the cavity (half the slab beyond its plane with EndCaps::HalfSpacing); an outer
-/// contour with no partner is capped with its holes.
+/// A hole that opens to the outside joins its outer contour's composite; a hole that ends is capped
+/// facing into the cavity (half the slab beyond its plane with EndCaps::HalfSpacing); an outer contour
+/// with no partner is capped with its holes.
 ///
 /// With `deferred`, the bands that join a composite contour to the other side (the costly part: rings of
 /// all of a side's contours) are not solved but listed there; every other face is added. The faces
