@@ -193,7 +193,8 @@ std::optional<CrossingBand> crossing_band_ccw(const LevelContour& lower, double 
       if (m <= 0) return;
       // A crossing next to a ring vertex would make faces of no area there.
       const double near = 1e-6 * spacing;
-      if (std::min(x.ta, 1.0 - x.ta) * (p1 - p0).norm() < near || std::min(x.tb, 1.0 - x.tb) * (q1 - q0).norm() < near) {
+      if (std::min(x.ta, 1.0 - x.ta) * (p1 - p0).norm() < near ||
+          std::min(x.tb, 1.0 - x.tb) * (q1 - q0).norm() < near) {
         degenerate = true;
         return;
       }
