@@ -288,7 +288,7 @@ void composite_band(const DeferredBand& d, const TilingOptions& options, SlabMes
             untwisted_band(d.lower.points, d.wl, d.upper.points, d.wu, options,
                            0.5 * (d.lower.spacing() + d.upper.spacing())),
             least);
-  if (d.both && options.band_refinement == BandRefinement::Interpolated) {
+  if (d.lower_composite && d.upper_composite && options.band_refinement == BandRefinement::Interpolated) {
     std::optional<CrossingBand> crossing = crossing_band(d.lower, d.wl, d.upper, d.wu, out);
     if (crossing && crossing->defects.score() < measure_defects(least).score()) {
       absorb_crossing_band(std::move(*crossing), out);
@@ -339,7 +339,7 @@ void tile_composite(const Level& lower, const Level& upper, const TilingOptions&
     if (tile_nested(lower, upper, L, U, extension, options, out)) continue;
     const bool both = L.size() > 1 && U.size() > 1;
     // The crossing band needs simple composite rings: bridges that cross no contour.
-    const bool clear = both && options.band_refinement == BandRefinement::Interpolated;
+    const bool clear = options.band_refinement == BandRefinement::Interpolated;
     const double wl = L.size() > 1 ? (both ? w0 + (w1 - w0) / 3.0 : 0.5 * (w0 + w1)) : w0;
     const double wu = U.size() > 1 ? (both ? w0 + 2.0 * (w1 - w0) / 3.0 : 0.5 * (w0 + w1)) : w1;
     const LevelContour lower_ring = L.size() > 1 ? composite_of(lower, L, upper, wl, true, clear, out)
@@ -347,10 +347,11 @@ void tile_composite(const Level& lower, const Level& upper, const TilingOptions&
     const LevelContour upper_ring = U.size() > 1 ? composite_of(upper, U, lower, wu, false, clear, out)
                                                  : upper.contours[static_cast<std::size_t>(U[0])];
     if (deferred) {
-      deferred->push_back({lower_ring, upper_ring, wl, wu, out.triangles.size(), both});
+      deferred->push_back({lower_ring, upper_ring, wl, wu, out.triangles.size(), L.size() > 1, U.size() > 1});
       continue;
     }
-    composite_band({lower_ring, upper_ring, wl, wu, out.triangles.size(), both}, options, out, nullptr);
+    composite_band({lower_ring, upper_ring, wl, wu, out.triangles.size(), L.size() > 1, U.size() > 1}, options, out,
+                   nullptr);
   }
   // Ends: outer contours with no partner (with their holes), and holes that end inside a continuing
   // outer contour.

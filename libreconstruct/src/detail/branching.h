@@ -16,8 +16,8 @@ namespace contourmesh::detail {
 /// mid-plane; the thirds when both sides have several), each copy is joined to its contour by a
 /// straight band, the copies are bridged into one composite contour between their nearest points, the
 /// composite is tiled to the other side, and the gap under each bridge is closed by two faces (role
-/// Bridge). With BandRefinement::Interpolated, the bridges of a many-to-many branching's composites
-/// cross no contour, and where the two composites' outlines cross, the band between them is the
+/// Bridge). With BandRefinement::Interpolated, the composites' bridges cross no contour, and where the
+/// two composites of a many-to-many branching cross in the plane, the band between them is the
 /// crossing band (crossing_band.h) when that leaves less flat and sliver area than the least-area band.
 /// A hole that opens to the outside joins its outer contour's composite; a hole that ends is capped
 /// facing into the cavity (half the slab beyond its plane with EndCaps::HalfSpacing); an outer contour
@@ -31,7 +31,7 @@ struct DeferredBand {
   LevelContour lower, upper;
   double wl = 0.0, wu = 0.0;
   std::size_t position = 0;  ///< index among the mesh's faces where the band's faces belong
-  bool both = false;         ///< both rings are composites (a many-to-many branching)
+  bool lower_composite = false, upper_composite = false;  ///< which rings are composites
 };
 void tile_composite(const Level& lower, const Level& upper, const TilingOptions& options, SlabMesh& out,
                     std::vector<DeferredBand>* deferred = nullptr);
