@@ -76,15 +76,23 @@ std::pair<std::size_t, std::size_t> bridge_ends(const LevelContour& a, const Lev
   }
   std::sort(nearest.begin(), nearest.end());
   if (obstacles) {
-    // The first of the nearest pairs whose bridge (both sides of its quad) crosses no contour.
+    // The first of the nearest pairs whose bridge, both sides of its quad, crosses no contour; for a hole,
+    // one open on the other side if there is one not much farther than the nearest pair (a long bridge
+    // to a far opening folds the band above it into pleats).
     const std::size_t na = a.points.size(), nb = b.points.size();
-    const std::size_t tries = std::min<std::size_t>(nearest.size(), kBridgeTries);
-    for (std::size_t k = 0; k < tries; ++k) {
-      const auto [d, i, j] = nearest[k];
-      if (!crosses_any(a.points[i], b.points[j], *obstacles) &&
-          !crosses_any(b.points[(j + nb - 1) % nb], a.points[(i + 1) % na], *obstacles)) {
-        distance = d;
-        return {i, j};
+    const double reach = 2.0 * std::sqrt(std::get<0>(nearest.front())) + a.spacing() + b.spacing();
+    for (const bool open : {true, false}) {
+      if (open && !gap) continue;
+      std::size_t tried = 0;
+      for (const auto& [d, i, j] : nearest) {
+        if (open && std::sqrt(d) > reach) break;
+        if (open && gap->contains(0.5 * (a.points[i] + b.points[j]))) continue;
+        if (++tried > kBridgeTries) break;
+        if (!crosses_any(a.points[i], b.points[j], *obstacles) &&
+            !crosses_any(b.points[(j + nb - 1) % nb], a.points[(i + 1) % na], *obstacles)) {
+          distance = d;
+          return {i, j};
+        }
       }
     }
   }
