@@ -286,9 +286,8 @@ bool tile_nested(const Level& lower, const Level& upper, const std::vector<int>&
   return false;
 }
 
-// The band between two rings of a branching: the least-area band or, between the two composites of a
-// many-to-many branching whose outlines cross, the crossing band when it leaves less flat and sliver
-// area. The least-area band goes to `band` when given (to be inserted at d.position), else to `out`; a
+// The band between two rings of a branching (a composite, and a composite or a contour): the least-area
+// band or, where their outlines cross, the crossing band when it leaves less flat and sliver area. The least-area band goes to `band` when given (to be inserted at d.position), else to `out`; a
 // crossing band always goes to `out`.
 void composite_band(const DeferredBand& d, const TilingOptions& options, SlabMesh& out, SlabMesh* band) {
   SlabMesh least = out.scratch();
@@ -296,8 +295,9 @@ void composite_band(const DeferredBand& d, const TilingOptions& options, SlabMes
             untwisted_band(d.lower.points, d.wl, d.upper.points, d.wu, options,
                            0.5 * (d.lower.spacing() + d.upper.spacing())),
             least);
-  if (d.lower_composite && d.upper_composite && options.band_refinement == BandRefinement::Interpolated) {
-    std::optional<CrossingBand> crossing = crossing_band(d.lower, d.wl, d.upper, d.wu, out);
+  if (options.band_refinement == BandRefinement::Interpolated) {
+    std::optional<CrossingBand> crossing =
+        crossing_band(d.lower, d.wl, d.upper, d.wu, d.lower_composite, d.upper_composite, out);
     if (crossing && crossing->defects.score() < measure_defects(least).score()) {
       absorb_crossing_band(std::move(*crossing), out);
       return;

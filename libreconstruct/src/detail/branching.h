@@ -16,9 +16,10 @@ namespace contourmesh::detail {
 /// mid-plane; the thirds when both sides have several), each copy is joined to its contour by a
 /// straight band, the copies are bridged into one composite contour between their nearest points, the
 /// composite is tiled to the other side, and the gap under each bridge is closed by two faces (role
-/// Bridge). With BandRefinement::Interpolated, the composites' bridges cross no contour, and where the
-/// two composites of a many-to-many branching cross in the plane, the band between them is the
-/// crossing band (crossing_band.h) when that leaves less flat and sliver area than the least-area band.
+/// Bridge). With BandRefinement::Interpolated, the composites' bridges cross no contour, an opening hole
+/// is bridged where the wall is open on the other side only when that bridge is short, and where a
+/// composite crosses the ring on the other side in the plane, the band between them is the crossing band
+/// (crossing_band.h) when that leaves less flat and sliver area than the least-area band.
 /// A hole that opens to the outside joins its outer contour's composite; a hole that ends is capped
 /// facing into the cavity (half the slab beyond its plane with EndCaps::HalfSpacing); an outer contour
 /// with no partner is capped with its holes.

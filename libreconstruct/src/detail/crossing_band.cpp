@@ -165,7 +165,7 @@ namespace {
 
 // crossing_band for counter-clockwise rings.
 std::optional<CrossingBand> crossing_band_ccw(const LevelContour& lower, double wl, const LevelContour& upper,
-                                              double wu, const SlabMesh& parent) {
+                                              double wu, bool split_lower, bool split_upper, const SlabMesh& parent) {
   const Polygon& A = lower.points;
   const Polygon& B = upper.points;
   const std::size_t na = A.size(), nb = B.size();
@@ -353,10 +353,36 @@ std::optional<CrossingBand> crossing_band_ccw(const LevelContour& lower, double 
 
   // The parent's face on the other side of each ring edge that crossings split.
   std::map<std::pair<VertexRef, VertexRef>, std::vector<std::size_t>> split_edges;  // ring edge -> crossings
+  // A ring that may not be split (a slice's or an interpolated level's contour, whose edges the next
+  // slab shares) keeps its edge: the crossings on it are joined to the edge by a fan standing between
+  // the edge and the crossings half-way down (or up), which takes the place of the band's faces there.
+  std::map<std::size_t, std::vector<std::size_t>> fans_lower, fans_upper;  // unsplit edge -> crossings
   for (std::size_t k = 0; k < n; ++k) {
     const Crossing& x = xs[k];
-    split_edges[{lower.ids[x.ea], lower.ids[(x.ea + 1) % na]}].push_back(k);
-    split_edges[{upper.ids[x.eb], upper.ids[(x.eb + 1) % nb]}].push_back(k);
+    if (split_lower) split_edges[{lower.ids[x.ea], lower.ids[(x.ea + 1) % na]}].push_back(k);
+    else fans_lower[x.ea].push_back(k);
+    if (split_upper) split_edges[{upper.ids[x.eb], upper.ids[(x.eb + 1) % nb]}].push_back(k);
+    else fans_upper[x.eb].push_back(k);
+  }
+  for (const bool on_lower : {true, false}) {
+    for (const auto& [e, crossings] : on_lower ? fans_lower : fans_upper) {
+      const LevelContour& ring = on_lower ? lower : upper;
+      std::vector<std::pair<double, VertexRef>> along;
+      for (std::size_t k : crossings) along.emplace_back(on_lower ? xs[k].ta : xs[k].tb, crossing_ref[k]);
+      std::sort(along.begin(), along.end());
+      // Upper edge b -> b': fan from b over P1 ... Pk, b'; lower edge a -> a': fan from a' over Pk ... P1, a
+      // (the faces of the arrangement use the crossings' edges the other way round).
+      const VertexRef from = on_lower ? ring.ids[(e + 1) % ring.ids.size()] : ring.ids[e];
+      std::vector<VertexRef> seq;
+      if (on_lower) {
+        for (auto it = along.rbegin(); it != along.rend(); ++it) seq.push_back(it->second);
+        seq.push_back(ring.ids[e]);
+      } else {
+        for (const auto& entry : along) seq.push_back(entry.second);
+        seq.push_back(ring.ids[(e + 1) % ring.ids.size()]);
+      }
+      for (std::size_t i = 0; i + 1 < seq.size(); ++i) band.mesh.add_triangle(from, seq[i], seq[i + 1], FaceRole::Band);
+    }
   }
   std::map<std::pair<VertexRef, VertexRef>, std::pair<std::size_t, int>> holder;  // edge -> (face, count)
   for (const auto& entry : split_edges) holder[entry.first] = {0, 0};
@@ -406,9 +432,11 @@ std::optional<CrossingBand> crossing_band_ccw(const LevelContour& lower, double 
 }  // namespace
 
 std::optional<CrossingBand> crossing_band(const LevelContour& lower, double wl, const LevelContour& upper, double wu,
-                                          const SlabMesh& parent) {
+                                          bool split_lower, bool split_upper, const SlabMesh& parent) {
   const double area_lower = signed_area(lower.points), area_upper = signed_area(upper.points);
-  if (area_lower > 0.0 && area_upper > 0.0) return crossing_band_ccw(lower, wl, upper, wu, parent);
+  if (area_lower > 0.0 && area_upper > 0.0) {
+    return crossing_band_ccw(lower, wl, upper, wu, split_lower, split_upper, parent);
+  }
   if (!(area_lower < 0.0 && area_upper < 0.0)) return std::nullopt;
   // Two holes: reversed, the rings enclose the void, so every face turns over.
   auto reversed = [](LevelContour c) {
@@ -416,7 +444,8 @@ std::optional<CrossingBand> crossing_band(const LevelContour& lower, double wl, 
     std::reverse(c.ids.begin(), c.ids.end());
     return c;
   };
-  std::optional<CrossingBand> band = crossing_band_ccw(reversed(lower), wl, reversed(upper), wu, parent);
+  std::optional<CrossingBand> band =
+      crossing_band_ccw(reversed(lower), wl, reversed(upper), wu, split_lower, split_upper, parent);
   if (band) {
     for (Triangle& t : band->mesh.triangles) std::swap(t[1], t[2]);
   }

@@ -22,20 +22,24 @@ struct CrossingBand {
 };
 
 /// The surface between ring `lower` on plane wl and ring `upper` on plane wu > wl (both
-/// counter-clockwise, made of vertices the parent mesh owns; every ring edge already has exactly one
-/// face of `parent` on its other side, as a composite's copy band or bridge has) where their outlines
-/// cross. Each crossing of two edges becomes one vertex (no ids) at the crossing point, half-way between
-/// the planes, inserted into both rings. The rings' arcs between crossings then bound the faces of the
+/// counter-clockwise, or both clockwise: holes) where their outlines cross. Each crossing of two edges
+/// becomes one vertex (no ids) at the crossing point, half-way between the planes. It is inserted into
+/// the edges of a ring that may be split (`split_lower`, `split_upper`: a composite, whose every edge has
+/// exactly one face of `parent` on its other side, its copy band or a bridge; that face is split with
+/// it); a ring that may not be split keeps its edge, and a fan of faces stands between the edge and the
+/// crossings on it. The rings' arcs between crossings then bound the faces of the
 /// plane arrangement where exactly one ring encloses material; each face is triangulated as a refined
 /// cap would be, and its interior vertices are lifted between the planes by their relative distance to
 /// the face's lower and upper arcs. Faces look up where the lower ring alone has material, down where the
 /// upper one alone has. A least-area band between two such rings must cover the regions between their
 /// crossings by fans that fold over themselves (every other face facing down); this fill covers each
-/// once. Returns nothing when the rings do not cross, touch, cross themselves, or a face of the
-/// arrangement is not simple.
+/// once. Returns nothing when the rings do not cross, touch, cross themselves, when a face of the
+/// arrangement is not simple, or when the arrangement has fewer such faces than crossings (the region
+/// inside both rings in pieces, or a pocket inside neither that they enclose): that surface would have
+/// more handles than the annulus of a band.
 [[nodiscard]] std::optional<CrossingBand> crossing_band(const LevelContour& lower, double wl,
-                                                        const LevelContour& upper, double wu,
-                                                        const SlabMesh& parent);
+                                                        const LevelContour& upper, double wu, bool split_lower,
+                                                        bool split_upper, const SlabMesh& parent);
 
 /// Appends `band`'s vertices and faces to `parent` (nothing may have been added to it since
 /// crossing_band) and splits the parent's faces at the crossing vertices.

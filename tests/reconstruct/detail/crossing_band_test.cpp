@@ -10,6 +10,7 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <numbers>
 #include <optional>
@@ -87,7 +88,7 @@ TEST(CrossingBand, TwoOffsetDiscsMeetInTwoLunesEachCoveredOnce) {
   emit_copy_band(below.ids, a.ids, out);
   const LevelContour b = copy_contour(above, 0.8, out);
   emit_copy_band(b.ids, above.ids, out);
-  std::optional<CrossingBand> band = crossing_band(a, 0.4, b, 0.8, out);
+  std::optional<CrossingBand> band = crossing_band(a, 0.4, b, 0.8, true, true, out);
   ASSERT_TRUE(band.has_value());
   EXPECT_EQ(band->splits.size(), 4u) << "two crossings, each on an edge of both rings";
   // Every face looks up where only the lower disc has material, down where only the upper one has,
@@ -117,11 +118,42 @@ TEST(CrossingBand, TwoOffsetDiscsMeetInTwoLunesEachCoveredOnce) {
   EXPECT_EQ(t.euler, 2);
 }
 
+TEST(CrossingBand, ASliceContourKeepsItsEdgesAndGetsFansUnderThem) {
+  // The copy of a disc below (w 0.6, a composite's ring) and a slice contour 3 mm to its right (w 1.2)
+  // that may not be split: its edges stay, and fans join them to the crossings half-way down.
+  test::TestStack stack;
+  const LevelContour below = stack.contour(circle_points(0, 0, 5, 48), 0.0);
+  const LevelContour above = stack.contour(circle_points(3, 0, 5, 48), 1.2);
+  SlabMesh out = stack.slab();
+  const LevelContour a = copy_contour(below, 0.6, out);
+  emit_copy_band(below.ids, a.ids, out);
+  std::optional<CrossingBand> band = crossing_band(a, 0.6, above, 1.2, true, false, out);
+  ASSERT_TRUE(band.has_value());
+  EXPECT_EQ(band->splits.size(), 2u) << "the copy's two crossed edges";
+  absorb_crossing_band(std::move(*band), out);
+  for (const Triangle& t : out.triangles) {
+    for (std::size_t k = 0; k + 1 < above.ids.size(); ++k) {
+      // No face joins two contour points that are not neighbours: the contour's edges are as they were.
+      const bool has_k = std::find(t.begin(), t.end(), above.ids[k]) != t.end();
+      for (std::size_t j = k + 2; j < above.ids.size() && has_k; ++j) {
+        if (k == 0 && j + 1 == above.ids.size()) continue;
+        EXPECT_EQ(std::find(t.begin(), t.end(), above.ids[j]), t.end());
+      }
+    }
+  }
+  SlabMesh caps = stack.slab();
+  cap_end(below, {}, 0.0, 0.0, false, TilingOptions{}, caps);
+  cap_end(above, {}, 1.2, 0.0, true, TilingOptions{}, caps);
+  const test::Topology t = test::topology_of(stack.assemble({&out, &caps}));
+  EXPECT_TRUE(t.closed && t.manifold) << t.problems;
+  EXPECT_EQ(t.euler, 2);
+}
+
 TEST(CrossingBand, RingsThatDoNotCrossAreLeftToTheBand) {
   test::TestStack stack;
   const LevelContour lower = stack.contour(circle_points(0, 0, 10, 40), 0.4);
   const LevelContour upper = stack.contour(circle_points(0, 0, 4, 20), 0.8);
-  EXPECT_FALSE(crossing_band(lower, 0.4, upper, 0.8, stack.slab()).has_value());
+  EXPECT_FALSE(crossing_band(lower, 0.4, upper, 0.8, true, true, stack.slab()).has_value());
 }
 
 }  // namespace
