@@ -287,8 +287,9 @@ bool tile_nested(const Level& lower, const Level& upper, const std::vector<int>&
 }
 
 // The band between two rings of a branching (a composite, and a composite or a contour): the least-area
-// band or, where their outlines cross, the crossing band when it leaves less flat and sliver area. The least-area band goes to `band` when given (to be inserted at d.position), else to `out`; a
-// crossing band always goes to `out`.
+// band or, where their outlines cross, the crossing band when it leaves less flat and sliver area. The
+// least-area band goes to `band` when given (to be inserted at d.position), else to `out`; a crossing
+// band always goes to `out`.
 void composite_band(const DeferredBand& d, const TilingOptions& options, SlabMesh& out, SlabMesh* band) {
   SlabMesh least = out.scratch();
   emit_band(d.lower, d.upper,
