@@ -299,7 +299,7 @@ void composite_band(const DeferredBand& d, const TilingOptions& options, SlabMes
   if (options.band_refinement == BandRefinement::Interpolated) {
     std::optional<CrossingBand> crossing =
         crossing_band(d.lower, d.wl, d.upper, d.wu, d.lower_composite, d.upper_composite, out);
-    if (crossing && crossing->defects.score() < measure_defects(least).score()) {
+    if (crossing && crossing->defects.score() < measure_defects(least).score() && find_split_faces(*crossing, out)) {
       absorb_crossing_band(std::move(*crossing), out);
       return;
     }

@@ -384,46 +384,16 @@ std::optional<CrossingBand> crossing_band_ccw(const LevelContour& lower, double 
       for (std::size_t i = 0; i + 1 < seq.size(); ++i) band.mesh.add_triangle(from, seq[i], seq[i + 1], FaceRole::Band);
     }
   }
-  std::map<std::pair<VertexRef, VertexRef>, std::pair<std::size_t, int>> holder;  // edge -> (face, count)
-  for (const auto& entry : split_edges) holder[entry.first] = {0, 0};
-  for (std::size_t f = 0; f < parent.triangles.size(); ++f) {
-    const Triangle& t = parent.triangles[f];
-    for (int q = 0; q < 3; ++q) {
-      const VertexRef u = t[q], v = t[(q + 1) % 3];
-      for (const auto& key : {std::make_pair(u, v), std::make_pair(v, u)}) {
-        const auto it = holder.find(key);
-        if (it == holder.end()) continue;
-        it->second.first = f;
-        ++it->second.second;
-      }
-    }
-  }
-  std::map<std::size_t, int> faces_split;
   for (const auto& [edge, crossings] : split_edges) {
-    const auto [f, count] = holder[edge];
-    if (count != 1 || faces_split[f]++ > 0) return std::nullopt;  // one face, split on one edge only
-    const Triangle& t = parent.triangles[f];
-    int q = 0;
-    while (!((t[q] == edge.first && t[(q + 1) % 3] == edge.second) ||
-             (t[q] == edge.second && t[(q + 1) % 3] == edge.first))) {
-      ++q;
-    }
-    const VertexRef u = t[q], v = t[(q + 1) % 3], c = t[(q + 2) % 3];
-    // The crossings in order from u to v.
+    // The crossings in order from the edge's first end to its second.
     const bool lower_edge = lower.ids[xs[crossings[0]].ea] == edge.first &&
                             lower.ids[(xs[crossings[0]].ea + 1) % na] == edge.second;
     std::vector<std::pair<double, VertexRef>> along;
     for (std::size_t k : crossings) along.emplace_back(lower_edge ? xs[k].ta : xs[k].tb, crossing_ref[k]);
     std::sort(along.begin(), along.end());
-    if (u != edge.first) std::reverse(along.begin(), along.end());
-    std::vector<Triangle> pieces;
-    VertexRef from = u;
-    for (const auto& [t_along, r] : along) {
-      pieces.push_back({from, r, c});
-      from = r;
-    }
-    pieces.push_back({from, v, c});
-    band.splits.emplace_back(f, std::move(pieces));
+    std::vector<VertexRef> refs;
+    for (const auto& entry : along) refs.push_back(entry.second);
+    band.split_edges.emplace_back(edge, std::move(refs));
   }
   band.defects = measure_defects(band.mesh);
   return band;
@@ -450,6 +420,47 @@ std::optional<CrossingBand> crossing_band(const LevelContour& lower, double wl, 
     for (Triangle& t : band->mesh.triangles) std::swap(t[1], t[2]);
   }
   return band;
+}
+
+bool find_split_faces(CrossingBand& band, const SlabMesh& parent) {
+  std::map<std::pair<VertexRef, VertexRef>, std::pair<std::size_t, int>> holder;  // edge -> (face, count)
+  for (const auto& entry : band.split_edges) holder[entry.first] = {0, 0};
+  for (std::size_t f = 0; f < parent.triangles.size(); ++f) {
+    const Triangle& t = parent.triangles[f];
+    for (int q = 0; q < 3; ++q) {
+      const VertexRef u = t[q], v = t[(q + 1) % 3];
+      for (const auto& key : {std::make_pair(u, v), std::make_pair(v, u)}) {
+        const auto it = holder.find(key);
+        if (it == holder.end()) continue;
+        it->second.first = f;
+        ++it->second.second;
+      }
+    }
+  }
+  std::map<std::size_t, int> faces_split;
+  band.splits.clear();
+  for (const auto& [edge, refs] : band.split_edges) {
+    const auto [f, count] = holder[edge];
+    if (count != 1 || faces_split[f]++ > 0) return false;  // one face, split on one edge only
+    const Triangle& t = parent.triangles[f];
+    int q = 0;
+    while (!((t[q] == edge.first && t[(q + 1) % 3] == edge.second) ||
+             (t[q] == edge.second && t[(q + 1) % 3] == edge.first))) {
+      ++q;
+    }
+    const VertexRef u = t[q], v = t[(q + 1) % 3], c = t[(q + 2) % 3];
+    std::vector<VertexRef> along = refs;
+    if (u != edge.first) std::reverse(along.begin(), along.end());
+    std::vector<Triangle> pieces;
+    VertexRef from = u;
+    for (VertexRef r : along) {
+      pieces.push_back({from, r, c});
+      from = r;
+    }
+    pieces.push_back({from, v, c});
+    band.splits.emplace_back(f, std::move(pieces));
+  }
+  return true;
 }
 
 void absorb_crossing_band(CrossingBand&& band, SlabMesh& parent) {

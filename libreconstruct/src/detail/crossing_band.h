@@ -8,6 +8,7 @@
 
 #include <cstddef>
 #include <optional>
+#include <utility>
 #include <vector>
 
 namespace contourmesh::detail {
@@ -15,8 +16,11 @@ namespace contourmesh::detail {
 /// A band between two rings made by crossing_band, not yet part of its parent mesh.
 struct CrossingBand {
   SlabMesh mesh;  ///< scratch mesh of the parent: the crossing vertices, the lifted interior vertices, the faces
-  /// Faces of the parent that hold a ring edge split at crossing vertices: the face's index and the faces
-  /// that replace it (same role), in the face's orientation.
+  /// Ring edges split at crossing vertices (the edge as the ring runs, and the crossings from its first
+  /// end to its second).
+  std::vector<std::pair<std::pair<VertexRef, VertexRef>, std::vector<VertexRef>>> split_edges;
+  /// Found by find_split_faces: the faces of the parent that hold those edges, each with the faces that
+  /// replace it (same role), in the face's orientation.
   std::vector<std::pair<std::size_t, std::vector<Triangle>>> splits;
   TilingDefects defects;  ///< of `mesh`'s faces
 };
@@ -41,8 +45,12 @@ struct CrossingBand {
                                                         const LevelContour& upper, double wu, bool split_lower,
                                                         bool split_upper, const SlabMesh& parent);
 
-/// Appends `band`'s vertices and faces to `parent` (nothing may have been added to it since
-/// crossing_band) and splits the parent's faces at the crossing vertices.
+/// Finds the face of `parent` on the other side of each split ring edge (the costly part, left until the
+/// band is chosen); false when an edge has no such face, or several, or a face holds two split edges.
+[[nodiscard]] bool find_split_faces(CrossingBand& band, const SlabMesh& parent);
+
+/// Appends `band`'s vertices and faces to `parent` (after find_split_faces; nothing may have been added
+/// to it since crossing_band) and splits the parent's faces at the crossing vertices.
 void absorb_crossing_band(CrossingBand&& band, SlabMesh& parent);
 
 }  // namespace contourmesh::detail

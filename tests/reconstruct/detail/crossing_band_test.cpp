@@ -90,6 +90,7 @@ TEST(CrossingBand, TwoOffsetDiscsMeetInTwoLunesEachCoveredOnce) {
   emit_copy_band(b.ids, above.ids, out);
   std::optional<CrossingBand> band = crossing_band(a, 0.4, b, 0.8, true, true, out);
   ASSERT_TRUE(band.has_value());
+  ASSERT_TRUE(find_split_faces(*band, out));
   EXPECT_EQ(band->splits.size(), 4u) << "two crossings, each on an edge of both rings";
   // Every face looks up where only the lower disc has material, down where only the upper one has,
   // and their shadows cover the two lunes once: area 2 (r^2 acos(d / 2r) - d/4 sqrt(4r^2 - d^2)) short
@@ -129,6 +130,7 @@ TEST(CrossingBand, ASliceContourKeepsItsEdgesAndGetsFansUnderThem) {
   emit_copy_band(below.ids, a.ids, out);
   std::optional<CrossingBand> band = crossing_band(a, 0.6, above, 1.2, true, false, out);
   ASSERT_TRUE(band.has_value());
+  ASSERT_TRUE(find_split_faces(*band, out));
   EXPECT_EQ(band->splits.size(), 2u) << "the copy's two crossed edges";
   absorb_crossing_band(std::move(*band), out);
   for (const Triangle& t : out.triangles) {
