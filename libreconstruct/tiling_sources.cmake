@@ -10,6 +10,7 @@ set(CONTOURMESH_TILING_SOURCES
   src/detail/cap_refinement.cpp
   src/detail/caps.cpp
   src/detail/correspondence.cpp
+  src/detail/crossing_band.cpp
   src/detail/lifted_transition.cpp
   src/detail/shape_interpolation.cpp
   src/detail/slab_remeshing.cpp

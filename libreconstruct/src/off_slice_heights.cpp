@@ -10,6 +10,8 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <map>
+#include <utility>
 #include <string>
 #include <vector>
 
@@ -163,6 +165,32 @@ OffSliceResult fit_off_slice_heights(Mesh mesh, const CtImage& image, double thr
       next[v] = den > 0.0 ? std::clamp(sum / den, low[v], high[v]) : 0.0;
     }
     d.swap(next);
+  }
+
+  // Vertices on one column of the image between the same two slices (a composite's copy and a point
+  // the tiler put on a face below it, in a strip that stands straight between them) have the same data
+  // term: where the fit would make two of them meet or pass each other, the column keeps the tiler's
+  // heights.
+  std::map<std::array<long long, 3>, std::vector<std::pair<double, Index>>> columns;
+  for (Index v = 0; v < n; ++v) {
+    if (!free_vertex[v]) continue;
+    const Eigen::Vector3d index = sampler.index_of(mesh.positions.col(v));
+    columns[{std::llround(index.x() * 1e6), std::llround(index.y() * 1e6),
+             static_cast<long long>(std::floor(index.z()))}]
+        .emplace_back(index.z() * h, v);
+  }
+  for (auto& [key, column] : columns) {
+    if (column.size() < 2) continue;
+    std::sort(column.begin(), column.end());
+    bool apart = true;
+    for (std::size_t k = 0; k + 1 < column.size(); ++k) {
+      const auto& [z0, v0] = column[k];
+      const auto& [z1, v1] = column[k + 1];
+      apart = apart && (z1 + d[v1]) - (z0 + d[v0]) > 1e-3 * (z1 - z0);
+    }
+    if (!apart) {
+      for (const auto& entry : column) d[entry.second] = 0.0;
+    }
   }
 
   // Apply, then halve the moves around faces that would turn over (a steep face whose ends went

@@ -4,6 +4,7 @@
 #include "detail/band_tiling.h"
 #include "detail/caps.h"
 #include "detail/correspondence.h"
+#include "detail/crossing_band.h"
 #include "detail/outline.h"
 #include "contourmesh/reconstruct/contours.h"
 
@@ -29,11 +30,36 @@ struct Composite {
   std::vector<std::array<Eigen::Vector2d, 4>> quad_points;
 };
 
-// The pair (point of `a`, point of `b`) a bridge joins: the nearest pair; for a hole that opens (`gap`
-// given: the other level), the nearest pair whose midpoint lies outside the other level's outer contours, where the
-// wall between hole and outer contour is open on the other side (the nearest pair overall when there is none).
+// How many of the nearest pairs a bridge that must cross no contour is looked for among.
+constexpr std::size_t kBridgeTries = 48;
+
+// Whether segment p-q properly crosses an edge of one of `polygons` (touching does not count).
+bool crosses_any(const Eigen::Vector2d& p, const Eigen::Vector2d& q, const std::vector<const Polygon*>& polygons) {
+  const Eigen::Vector2d lo = p.cwiseMin(q), hi = p.cwiseMax(q);
+  for (const Polygon* polygon : polygons) {
+    const Polygon& r = *polygon;
+    for (std::size_t k = 0, prev = r.size() - 1; k < r.size(); prev = k++) {
+      const Eigen::Vector2d &u = r[prev], &v = r[k];
+      if (std::max(u.x(), v.x()) < lo.x() || std::min(u.x(), v.x()) > hi.x() || std::max(u.y(), v.y()) < lo.y() ||
+          std::min(u.y(), v.y()) > hi.y()) {
+        continue;
+      }
+      const double o1 = orient2d(p, q, u), o2 = orient2d(p, q, v);
+      if (!((o1 > 0.0 && o2 < 0.0) || (o1 < 0.0 && o2 > 0.0))) continue;
+      const double o3 = orient2d(u, v, p), o4 = orient2d(u, v, q);
+      if ((o3 > 0.0 && o4 < 0.0) || (o3 < 0.0 && o4 > 0.0)) return true;
+    }
+  }
+  return false;
+}
+
+// The pair (point of `a`, point of `b`) a bridge joins: the nearest pair; with `obstacles`, the nearest of the
+// kBridgeTries nearest pairs whose quad's sides cross none of those contours (a bridge across another
+// contour makes the composite cross itself); for a hole that opens (`gap` given: the other level), the nearest
+// pair whose midpoint lies outside the other level's outer contours, where the wall between hole and outer
+// contour is open on the other side (the nearest pair overall when there is none).
 std::pair<std::size_t, std::size_t> bridge_ends(const LevelContour& a, const LevelContour& b, const Outline* gap,
-                                                double& distance) {
+                                                double& distance, const std::vector<const Polygon*>* obstacles) {
   std::vector<std::tuple<double, std::size_t, std::size_t>> nearest;
   nearest.reserve(a.points.size());
   for (std::size_t i = 0; i < a.points.size(); ++i) {
@@ -49,6 +75,27 @@ std::pair<std::size_t, std::size_t> bridge_ends(const LevelContour& a, const Lev
     nearest.emplace_back(best, i, bj);
   }
   std::sort(nearest.begin(), nearest.end());
+  if (obstacles) {
+    // The first of the nearest pairs whose bridge, both sides of its quad, crosses no contour; for a hole,
+    // one open on the other side if there is one not much farther than the nearest pair (a long bridge
+    // to a far opening folds the band above it into pleats).
+    const std::size_t na = a.points.size(), nb = b.points.size();
+    const double reach = 2.0 * std::sqrt(std::get<0>(nearest.front())) + a.spacing() + b.spacing();
+    for (const bool open : {true, false}) {
+      if (open && !gap) continue;
+      std::size_t tried = 0;
+      for (const auto& [d, i, j] : nearest) {
+        if (open && std::sqrt(d) > reach) break;
+        if (open && gap->contains(0.5 * (a.points[i] + b.points[j]))) continue;
+        if (++tried > kBridgeTries) break;
+        if (!crosses_any(a.points[i], b.points[j], *obstacles) &&
+            !crosses_any(b.points[(j + nb - 1) % nb], a.points[(i + 1) % na], *obstacles)) {
+          distance = d;
+          return {i, j};
+        }
+      }
+    }
+  }
   if (gap) {
     for (const auto& [d, i, j] : nearest) {
       if (!gap->contains(0.5 * (a.points[i] + b.points[j]))) {
@@ -61,7 +108,7 @@ std::pair<std::size_t, std::size_t> bridge_ends(const LevelContour& a, const Lev
   return {std::get<1>(nearest.front()), std::get<2>(nearest.front())};
 }
 
-Composite make_composite(const std::vector<LevelContour>& copies, const Level& other) {
+Composite make_composite(const std::vector<LevelContour>& copies, const Level& other, bool clear_bridges) {
   Composite comp;
   comp.ring = copies[0];
   std::vector<bool> used(copies.size(), false);
@@ -76,7 +123,15 @@ Composite make_composite(const std::vector<LevelContour>& copies, const Level& o
     for (std::size_t r = 0; r < copies.size(); ++r) {
       if (used[r]) continue;
       double d = 0.0;
-      const auto [a, b] = bridge_ends(comp.ring, copies[r], outline ? &*outline : nullptr, d);
+      std::vector<const Polygon*> obstacles;
+      if (clear_bridges) {
+        obstacles.push_back(&comp.ring.points);
+        for (std::size_t o = 0; o < copies.size(); ++o) {
+          if (!used[o]) obstacles.push_back(&copies[o].points);
+        }
+      }
+      const auto [a, b] =
+          bridge_ends(comp.ring, copies[r], outline ? &*outline : nullptr, d, clear_bridges ? &obstacles : nullptr);
       if (d < best) {
         best = d;
         which = r;
@@ -124,7 +179,7 @@ void close_quad(std::array<VertexRef, 4> c, std::array<Eigen::Vector2d, 4> p, bo
 // The contours `members` of `level` copied onto plane w and joined into one composite contour; `below`
 // says whether the originals lie below the plane.
 LevelContour composite_of(const Level& level, const std::vector<int>& members, const Level& other, double w, bool below,
-                          SlabMesh& out) {
+                          bool clear_bridges, SlabMesh& out) {
   std::vector<LevelContour> copies;
   for (int i : members) {
     const LevelContour& c = level.contours[static_cast<std::size_t>(i)];
@@ -132,7 +187,7 @@ LevelContour composite_of(const Level& level, const std::vector<int>& members, c
     if (below) emit_copy_band(c.ids, copies.back().ids, out);
     else emit_copy_band(copies.back().ids, c.ids, out);
   }
-  const Composite comp = make_composite(copies, other);
+  const Composite comp = make_composite(copies, other, clear_bridges);
   for (std::size_t q = 0; q < comp.quads.size(); ++q) close_quad(comp.quads[q], comp.quad_points[q], !below, out);
   ++out.stats.composites;
   return comp.ring;
@@ -231,6 +286,28 @@ bool tile_nested(const Level& lower, const Level& upper, const std::vector<int>&
   return false;
 }
 
+// The band between two rings of a branching (a composite, and a composite or a contour): the least-area
+// band or, where their outlines cross, the crossing band when it leaves less flat and sliver area. The
+// least-area band goes to `band` when given (to be inserted at d.position), else to `out`; a crossing
+// band always goes to `out`.
+void composite_band(const DeferredBand& d, const TilingOptions& options, SlabMesh& out, SlabMesh* band) {
+  SlabMesh least = out.scratch();
+  emit_band(d.lower, d.upper,
+            untwisted_band(d.lower.points, d.wl, d.upper.points, d.wu, options,
+                           0.5 * (d.lower.spacing() + d.upper.spacing())),
+            least);
+  if (options.band_refinement == BandRefinement::Interpolated) {
+    std::optional<CrossingBand> crossing =
+        crossing_band(d.lower, d.wl, d.upper, d.wu, d.lower_composite, d.upper_composite, out);
+    if (crossing && crossing->defects.score() < measure_defects(least).score() && find_split_faces(*crossing, out)) {
+      absorb_crossing_band(std::move(*crossing), out);
+      return;
+    }
+  }
+  if (band) *band = std::move(least);
+  else out.absorb(std::move(least));
+}
+
 }  // namespace
 
 void tile_composite(const Level& lower, const Level& upper, const TilingOptions& options, SlabMesh& out,
@@ -270,22 +347,20 @@ void tile_composite(const Level& lower, const Level& upper, const TilingOptions&
     }
     if (tile_nested(lower, upper, L, U, extension, options, out)) continue;
     const bool both = L.size() > 1 && U.size() > 1;
-    const LevelContour lower_ring =
-        L.size() > 1 ? composite_of(lower, L, upper, both ? w0 + (w1 - w0) / 3.0 : 0.5 * (w0 + w1), true, out)
-                     : lower.contours[static_cast<std::size_t>(L[0])];
+    // The crossing band needs simple composite rings: bridges that cross no contour.
+    const bool clear = options.band_refinement == BandRefinement::Interpolated;
     const double wl = L.size() > 1 ? (both ? w0 + (w1 - w0) / 3.0 : 0.5 * (w0 + w1)) : w0;
-    const LevelContour upper_ring =
-        U.size() > 1 ? composite_of(upper, U, lower, both ? w0 + 2.0 * (w1 - w0) / 3.0 : 0.5 * (w0 + w1), false, out)
-                     : upper.contours[static_cast<std::size_t>(U[0])];
     const double wu = U.size() > 1 ? (both ? w0 + 2.0 * (w1 - w0) / 3.0 : 0.5 * (w0 + w1)) : w1;
+    const LevelContour lower_ring = L.size() > 1 ? composite_of(lower, L, upper, wl, true, clear, out)
+                                                 : lower.contours[static_cast<std::size_t>(L[0])];
+    const LevelContour upper_ring = U.size() > 1 ? composite_of(upper, U, lower, wu, false, clear, out)
+                                                 : upper.contours[static_cast<std::size_t>(U[0])];
     if (deferred) {
-      deferred->push_back({lower_ring, upper_ring, wl, wu, out.triangles.size()});
+      deferred->push_back({lower_ring, upper_ring, wl, wu, out.triangles.size(), L.size() > 1, U.size() > 1});
       continue;
     }
-    emit_band(lower_ring, upper_ring,
-              untwisted_band(lower_ring.points, wl, upper_ring.points, wu, options,
-                             0.5 * (lower_ring.spacing() + upper_ring.spacing())),
-              out);
+    composite_band({lower_ring, upper_ring, wl, wu, out.triangles.size(), L.size() > 1, U.size() > 1}, options, out,
+                   nullptr);
   }
   // Ends: outer contours with no partner (with their holes), and holes that end inside a continuing
   // outer contour.
@@ -311,13 +386,7 @@ void tile_composite(const Level& lower, const Level& upper, const TilingOptions&
 
 void finish_composite(const std::vector<DeferredBand>& deferred, const TilingOptions& options, SlabMesh& out) {
   std::vector<SlabMesh> bands(deferred.size());
-  for (std::size_t k = 0; k < deferred.size(); ++k) {
-    const DeferredBand& d = deferred[k];
-    emit_band(d.lower, d.upper,
-              untwisted_band(d.lower.points, d.wl, d.upper.points, d.wu, options,
-                             0.5 * (d.lower.spacing() + d.upper.spacing())),
-              bands[k]);
-  }
+  for (std::size_t k = 0; k < deferred.size(); ++k) composite_band(deferred[k], options, out, &bands[k]);
   // From the last, so that the earlier positions still hold.
   for (std::size_t k = deferred.size(); k-- > 0;) {
     const auto at = static_cast<std::ptrdiff_t>(deferred[k].position);
