@@ -1,6 +1,8 @@
 // SPDX-License-Identifier: BSD-3-Clause
 #include "detail/lpa_ici.h"
 
+#include "detail/profile_kinks.h"
+
 #include <algorithm>
 #include <cmath>
 #include <limits>
@@ -208,6 +210,7 @@ LpaIciResult lpa_ici_impl(const Profile& p, const LpaIciOptions& o) {
   CircleSums circle_down, circle_up, circle_centre;  // the same for the circle model (kCircle only)
   if constexpr (kCircle) circle_centre.add(0.0, r.value, o.x_unit);
   std::array<Grown, kKinds> g;
+  if (!o.two_sided) g[kSymmetric].stopped = g[kLine].stopped = g[kMean].stopped = true;
   int lo = centre - 1, hi = centre + 1;
   for (int h = 1; h <= o.max_half_width; ++h) {
     const double reach = static_cast<double>(h) + 0.5;
@@ -303,7 +306,36 @@ LpaIciResult lpa_ici_impl(const Profile& p, const LpaIciOptions& o) {
 }  // namespace
 
 LpaIciResult lpa_ici(const Profile& p, const LpaIciOptions& o) {
-  return o.circle ? lpa_ici_impl<true>(p, o) : lpa_ici_impl<false>(p, o);
+  const auto fit = [&](const Profile& q, const LpaIciOptions& oq) {
+    return oq.circle ? lpa_ici_impl<true>(q, oq) : lpa_ici_impl<false>(q, oq);
+  };
+  if (!o.kinks || !(o.sigma > 0.0)) return fit(p, o);
+  KinkTestOptions test;
+  test.sigma = o.sigma;
+  test.false_rate = o.kink_false_rate;
+  test.max_abs_x = static_cast<double>(o.max_half_width) + 0.5;
+  Profile bounded = p;
+  LpaIciOptions local = o;
+  int found = 0;
+  for (; found < 3; ++found) {
+    const Kink kink = find_kink(bounded, test);
+    if (!kink.found) break;
+    if (std::abs(kink.x) < 1e-9) {  // the vertex is the kink: each side extrapolates to it
+      local.two_sided = false;
+      ++found;
+      break;
+    }
+    // Keep the side holding x = 0, up to and with the hinge's sample.
+    Profile side;
+    for (int k = 0; k < bounded.size; ++k) {
+      const double x = bounded.x[static_cast<std::size_t>(k)];
+      if (kink.x > 0.0 ? x <= kink.x : x >= kink.x) (void)side.push(x, bounded.y[static_cast<std::size_t>(k)]);
+    }
+    bounded = side;
+  }
+  LpaIciResult r = fit(bounded, local);
+  r.kinks = found;
+  return r;
 }
 
 }  // namespace contourmesh::detail

@@ -47,6 +47,16 @@ enum class ProfileModel {
              ///< samples, a circle smaller than the window) falls back to the parabola
 };
 
+/// Whether the profiles across the slices are first cut at their slope breaks (docs/smoothing.md, "Kinks
+/// in the profiles"): where two parts of a surface meet (a shaft and a condyle), a profile has a kink that
+/// no smooth model fits, and every two-sided window reaching across it is biased.
+enum class ProfileKinks {
+  Ignore,  ///< the windows are chosen by LPA-ICI alone (default)
+  Bound,   ///< a hinge test over the whole profile (a parabola with a slope break at one sample, against
+           ///< one parabola, at the measured noise) finds the most significant break; where it passes,
+           ///< only the side holding the vertex is fitted
+};
+
 /// What happens to the vertices between the slices after the contour vertices have moved.
 enum class OffSliceFilter {
   None,              ///< they follow the harmonic extension of the contour vertices' moves only
@@ -94,6 +104,11 @@ struct CrossSliceOptions {
   /// The curve fitted to the profiles across the slices (the along-contour profiles always use
   /// parabolas: their abscissa is arc length, not a rigid frame).
   ProfileModel across_model = ProfileModel::Parabola;
+  /// Slope breaks in the profiles across the slices.
+  ProfileKinks across_kinks = ProfileKinks::Ignore;
+  /// With ProfileKinks::Bound: the probability, in (0, 1), that a kink-free profile with Gaussian noise of
+  /// the measured level is cut (a Bonferroni bound over the hinges scanned).
+  double kink_false_rate = 0.01;
   CrossSliceStages stages = CrossSliceStages::AcrossThenAlong;
   /// Jacobi iterations of the harmonic extension to vertices off the slices, >= 0.
   int extension_iterations = 30;
