@@ -6,6 +6,7 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <optional>
 
 namespace contourmesh::detail {
 
@@ -314,26 +315,30 @@ LpaIciResult lpa_ici(const Profile& p, const LpaIciOptions& o) {
   test.sigma = o.sigma;
   test.false_rate = o.kink_false_rate;
   test.max_abs_x = static_cast<double>(o.max_half_width) + 0.5;
-  Profile bounded = p;
+  // The profile is copied only where a kink bounds it (most profiles have none).
+  std::optional<Profile> bounded;
+  const Profile* current = &p;
   LpaIciOptions local = o;
   int found = 0;
   for (; found < 3; ++found) {
-    const Kink kink = find_kink(bounded, test);
+    const Kink kink = find_kink(*current, test);
     if (!kink.found) break;
     if (std::abs(kink.x) < 1e-9) {  // the vertex is the kink: each side extrapolates to it
       local.two_sided = false;
       ++found;
       break;
     }
-    // Keep the side holding x = 0, up to and with the hinge's sample.
+    // Keep the side holding x = 0, up to and with the hinge's sample: a contiguous run of the sorted
+    // profile.
+    const int begin = kink.x > 0.0 ? 0 : kink.index, end = kink.x > 0.0 ? kink.index + 1 : current->size;
     Profile side;
-    for (int k = 0; k < bounded.size; ++k) {
-      const double x = bounded.x[static_cast<std::size_t>(k)];
-      if (kink.x > 0.0 ? x <= kink.x : x >= kink.x) (void)side.push(x, bounded.y[static_cast<std::size_t>(k)]);
+    for (int k = begin; k < end; ++k) {
+      (void)side.push(current->x[static_cast<std::size_t>(k)], current->y[static_cast<std::size_t>(k)]);
     }
     bounded = side;
+    current = &*bounded;
   }
-  LpaIciResult r = fit(bounded, local);
+  LpaIciResult r = fit(*current, local);
   r.kinks = found;
   return r;
 }

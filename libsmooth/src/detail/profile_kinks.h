@@ -28,11 +28,12 @@ struct Kink {
   int index = -1;          ///< the hinge's sample index in the profile
   double x = 0.0;          ///< its abscissa
   double statistic = 0.0;  ///< the largest drop of the residual sum of squares over sigma^2
-  double threshold = 0.0;  ///< what it was compared with
+  double p_value = 1.0;    ///< its probability on a kink-free profile, times the candidates (Bonferroni)
   int candidates = 0;      ///< hinges scanned
 };
 
-/// The (1 - p) quantile of chi-square with one degree of freedom, p in (0, 1).
+/// The (1 - p) quantile of chi-square with one degree of freedom, p in (0, 1): the statistic a kink
+/// needs among m candidates at false rate alpha is chi2_1_upper_quantile(alpha / m).
 [[nodiscard]] double chi2_1_upper_quantile(double p);
 
 /// The most significant slope break of `profile` (sorted by x), or found = false.

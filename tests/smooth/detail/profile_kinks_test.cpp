@@ -16,7 +16,9 @@ namespace {
 // A hinge: slope `left` up to x = `at`, slope `right` beyond it, continuous; sampled at integers
 // -8..8 shifted so that the vertex (x = 0) sits at `vertex` on the hinge's own axis. The truth at
 // x = 0 is hinge(vertex).
-double hinge(double u, double at, double left, double right) { return u <= at ? left * u : left * at + right * (u - at); }
+double hinge(double u, double at, double left, double right) {
+  return u <= at ? left * u : left * at + right * (u - at);
+}
 
 Profile hinge_profile(double vertex, double at, double left, double right) {
   Profile p;
@@ -48,7 +50,8 @@ TEST(FindKink, LocatesTheHingeOfANoiseFreeProfile) {
   const Kink kink = find_kink(p, o);
   ASSERT_TRUE(kink.found);
   EXPECT_DOUBLE_EQ(kink.x, 3.0);
-  EXPECT_GT(kink.statistic, kink.threshold);
+  EXPECT_GT(kink.statistic, chi2_1_upper_quantile(o.false_rate / kink.candidates));
+  EXPECT_LT(kink.p_value, o.false_rate);
   EXPECT_EQ(kink.candidates, 13);  // -6..6: two samples beyond each
 }
 
