@@ -9,7 +9,11 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdint>
 #include <limits>
+#include <memory>
+#include <mutex>
+#include <numbers>
 #include <optional>
 #include <queue>
 #include <string>
@@ -32,6 +36,8 @@ void check(const Mesh& mesh, const MeshAdjacency& adjacency, const CreaseOptions
   if (!(o.corner_threshold > 0.0 && o.corner_threshold <= 1.0 / 3.0)) fail("corner threshold must be in (0, 1/3]");
   if (!(o.min_extent >= 0.0 && std::isfinite(o.min_extent))) fail("min extent must be a finite number >= 0");
   if (!(o.band >= 0.0 && std::isfinite(o.band))) fail("band must be a finite number >= 0");
+  if (!(o.link_radius >= 0.0 && std::isfinite(o.link_radius))) fail("link radius must be a finite number >= 0");
+  if (!(o.link_angle_degrees >= 0.0 && o.link_angle_degrees <= 90.0)) fail("link angle must be in [0, 90] degrees");
   if (!(o.confirm_radius > 0.0 && std::isfinite(o.confirm_radius))) fail("confirm radius must be a finite number > 0");
   if (!(o.confirm_threshold > 0.0 && o.confirm_threshold <= 0.5)) fail("confirm threshold must be in (0, 0.5]");
   if (!(o.confirm_corner_threshold > 0.0 && o.confirm_corner_threshold <= 1.0 / 3.0)) {
@@ -93,20 +99,81 @@ struct BallTensor {
   Eigen::Vector3d mean_normal = Eigen::Vector3d::Zero();  // unit, area-weighted (zero if undefined)
 };
 
-// The normal tensor of every vertex within `radius` of vertex i and connected to it through such
-// vertices (`ball` is scratch space).
-BallTensor ball_tensor(const Mesh& mesh, const MeshAdjacency& adjacency, const std::vector<Tensor6>& own,
-                       const Eigen::Matrix3Xd& area_normal, Index i, double radius, std::vector<Index>& ball) {
+// Scratch space of ball_tensor, one per worker: the gathered vertices, and a stamp per mesh vertex
+// (the ball's number when it was gathered), so that membership is one look-up instead of a search.
+struct BallScratch {
+  std::vector<Index> ball;
+  std::vector<std::uint32_t> stamp;
+  std::uint32_t current = 0;
+
+  explicit BallScratch(Index vertices) : stamp(static_cast<std::size_t>(vertices), 0) {}
+
+  // Starts a new ball: no vertex is a member.
+  void clear() {
+    ball.clear();
+    if (++current == 0) {  // after 2^32 balls: forget every stamp
+      std::fill(stamp.begin(), stamp.end(), 0u);
+      current = 1;
+    }
+  }
+  // Adds j unless it is a member; whether it was added.
+  bool add(Index j) {
+    std::uint32_t& s = stamp[static_cast<std::size_t>(j)];
+    if (s == current) return false;
+    s = current;
+    ball.push_back(j);
+    return true;
+  }
+};
+
+// Hands each chunk of a parallel loop a BallScratch no other chunk is using; builds one only when all
+// are taken (so as many as run at once, each of the mesh's size).
+class ScratchPool {
+ public:
+  explicit ScratchPool(Index vertices) : vertices_(vertices) {}
+  std::unique_ptr<BallScratch> take() {
+    {
+      const std::lock_guard<std::mutex> lock(mutex_);
+      if (!free_.empty()) {
+        std::unique_ptr<BallScratch> s = std::move(free_.back());
+        free_.pop_back();
+        return s;
+      }
+    }
+    return std::make_unique<BallScratch>(vertices_);
+  }
+  void give_back(std::unique_ptr<BallScratch> s) {
+    const std::lock_guard<std::mutex> lock(mutex_);
+    free_.push_back(std::move(s));
+  }
+
+ private:
+  Index vertices_;
+  std::mutex mutex_;
+  std::vector<std::unique_ptr<BallScratch>> free_;
+};
+
+// Every vertex within `radius` of vertex i and connected to it through such vertices, gathered
+// breadth-first from i (at most about kMaxBall of them) into scratch.ball.
+void gather_ball(const Mesh& mesh, const MeshAdjacency& adjacency, Index i, double radius, BallScratch& scratch) {
   const Eigen::Vector3d centre = mesh.positions.col(i);
   const double r2 = radius * radius;
-  ball.assign(1, i);
+  scratch.clear();
+  scratch.add(i);
+  const std::vector<Index>& ball = scratch.ball;
   for (std::size_t b = 0; b < ball.size() && ball.size() < kMaxBall; ++b) {
     for (Index j : adjacency.ring(ball[b])) {
       if ((mesh.positions.col(j) - centre).squaredNorm() > r2) continue;
-      if (std::find(ball.begin(), ball.end(), j) != ball.end()) continue;
-      ball.push_back(j);
+      scratch.add(j);
     }
   }
+}
+
+// The normal tensor of the ball of `radius` around vertex i (gather_ball).
+BallTensor ball_tensor(const Mesh& mesh, const MeshAdjacency& adjacency, const std::vector<Tensor6>& own,
+                       const Eigen::Matrix3Xd& area_normal, Index i, double radius, BallScratch& scratch) {
+  gather_ball(mesh, adjacency, i, radius, scratch);
+  const std::vector<Index>& ball = scratch.ball;
   Tensor6 t = Tensor6::Zero();
   BallTensor result;
   for (Index j : ball) {
@@ -167,8 +234,9 @@ CreaseDetection detect_creases(const Mesh& mesh, const MeshAdjacency& adjacency,
   Eigen::VectorXd threshold = Eigen::VectorXd::Constant(n, options.confirm_threshold + lift);
   result.confirm_strength = Eigen::VectorXd::Zero(n);
   result.confirm_corner_strength = Eigen::VectorXd::Zero(n);
+  ScratchPool scratch_pool(n);
   detail::parallel_chunks(static_cast<std::size_t>(n), 4096, [&](std::size_t, std::size_t begin, std::size_t end) {
-    std::vector<Index> ball;
+    std::unique_ptr<BallScratch> scratch;  // taken at the chunk's first candidate
     for (std::size_t k = begin; k < end; ++k) {
       const Index i = static_cast<Index>(k);
       const Eigen::Vector3d centre = mesh.positions.col(i);
@@ -192,7 +260,8 @@ CreaseDetection detect_creases(const Mesh& mesh, const MeshAdjacency& adjacency,
       if (options.confirm == CreaseConfirmation::None) continue;
       // The same tensor over the ball of confirm_radius: a crease is a change of the normal that
       // persists at that scale, not a step or fold of a few tenths of a millimetre.
-      const BallTensor b = ball_tensor(mesh, adjacency, own, area_normal, i, options.confirm_radius, ball);
+      if (!scratch) scratch = scratch_pool.take();
+      const BallTensor b = ball_tensor(mesh, adjacency, own, area_normal, i, options.confirm_radius, *scratch);
       result.confirm_strength[i] = b.edge;
       result.confirm_corner_strength[i] = b.corner;
       if (slice_axis) {
@@ -204,11 +273,12 @@ CreaseDetection detect_creases(const Mesh& mesh, const MeshAdjacency& adjacency,
         threshold[i] = std::min(options.confirm_threshold, options.steep_confirm_threshold / sine2) + lift;
       }
     }
+    if (scratch) scratch_pool.give_back(std::move(scratch));
   });
 
   // 2. Core vertices: strong enough, and the strongest across the crease (non-maximum suppression: no
   //    neighbour lying across the crease, rather than along it, is stronger). Corners are kept whole.
-  //    Then grouped along the edges; groups shorter than min_extent are noise.
+  //    Then grouped along the edges and the links between slices; groups shorter than min_extent are noise.
   std::vector<std::uint8_t> core(static_cast<std::size_t>(n), 0);
   const bool confirm = options.confirm == CreaseConfirmation::Ball;
   // A corner on the ring, and over the ball too when confirming.
@@ -238,8 +308,30 @@ CreaseDetection detect_creases(const Mesh& mesh, const MeshAdjacency& adjacency,
     }
     core[static_cast<std::size_t>(i)] = maximum;
   }
+  // Two core vertices on adjacent contours' slices within link_radius of each other (through vertices
+  // within it) belong to one line when the segment between them runs along the crease at both ends (a
+  // corner has no crease direction): a crease oblique to the slices meets adjacent contours at vertices
+  // that share no edge. Only across one slice, so that folds and noise within a slice or on a cap,
+  // whose directions are random, are not strung together.
+  const bool linking = options.link_radius > 0.0 && mesh.has_contour_ids();
+  const auto adjacent_slices = [&](Index a, Index b) {
+    const std::int32_t sa = mesh.slice_ids[static_cast<std::size_t>(a)];
+    const std::int32_t sb = mesh.slice_ids[static_cast<std::size_t>(b)];
+    return sa >= 0 && sb >= 0 && (sa - sb == 1 || sb - sa == 1);
+  };
+  const double link_cos = std::cos(options.link_angle_degrees * std::numbers::pi / 180.0);
+  const auto along_crease = [&](Index v, const Eigen::Vector3d& unit) {
+    return is_corner(v) || std::abs(unit.dot(along.col(v))) >= link_cos;
+  };
+  BallScratch link_scratch(linking ? n : 0);
   std::vector<Index> group(static_cast<std::size_t>(n), -1);
   std::vector<Index> kept, kept_corners, members, stack;
+  const auto join = [&](Index j, Index seed) {
+    if (core[static_cast<std::size_t>(j)] && group[static_cast<std::size_t>(j)] < 0) {
+      group[static_cast<std::size_t>(j)] = seed;
+      stack.push_back(j);
+    }
+  };
   for (Index seed = 0; seed < n; ++seed) {
     if (!core[static_cast<std::size_t>(seed)] || group[static_cast<std::size_t>(seed)] >= 0) continue;
     members.clear();
@@ -251,11 +343,15 @@ CreaseDetection detect_creases(const Mesh& mesh, const MeshAdjacency& adjacency,
       stack.pop_back();
       members.push_back(v);
       box.extend(mesh.positions.col(v));
-      for (Index j : adjacency.ring(v)) {
-        if (core[static_cast<std::size_t>(j)] && group[static_cast<std::size_t>(j)] < 0) {
-          group[static_cast<std::size_t>(j)] = seed;
-          stack.push_back(j);
-        }
+      for (Index j : adjacency.ring(v)) join(j, seed);
+      if (!linking || mesh.slice_ids[static_cast<std::size_t>(v)] < 0) continue;
+      gather_ball(mesh, adjacency, v, options.link_radius, link_scratch);
+      for (Index j : link_scratch.ball) {
+        if (!core[static_cast<std::size_t>(j)] || group[static_cast<std::size_t>(j)] >= 0) continue;
+        if (!adjacent_slices(v, j)) continue;
+        const Eigen::Vector3d d = mesh.positions.col(j) - mesh.positions.col(v);
+        const double len = d.norm();
+        if (len > 0.0 && along_crease(v, d / len) && along_crease(j, d / len)) join(j, seed);
       }
     }
     const bool line = box.diagonal().norm() >= options.min_extent;

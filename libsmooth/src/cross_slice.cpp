@@ -22,11 +22,12 @@ double seconds_since(std::chrono::steady_clock::time_point t) {
 
 void check_options(const CrossSliceOptions& o) {
   const auto fail = [](const std::string& what) { throw InvalidInputError("cross-slice smoothing: " + what); };
-  if (o.reach < 1 || o.reach > 30) fail("reach must be in [1, 30], got " + std::to_string(o.reach));
+  if (o.reach && (*o.reach < 1 || *o.reach > 30)) fail("reach must be in [1, 30], got " + std::to_string(*o.reach));
   if (o.along_reach < 1 || o.along_reach > 30) {
     fail("along reach must be in [1, 30], got " + std::to_string(o.along_reach));
   }
   if (!(o.gamma > 0.0 && std::isfinite(o.gamma))) fail("gamma must be a finite number > 0");
+  if (!(o.precise_noise >= 0.0 && std::isfinite(o.precise_noise))) fail("precise noise must be a finite number >= 0");
   for (const auto& noise : {o.noise_across, o.noise_along}) {
     if (noise && !(*noise >= 0.0 && std::isfinite(*noise))) fail("a noise level must be a finite number >= 0 mm");
   }
@@ -162,13 +163,15 @@ CrossSliceResult cross_slice_smooth(const Mesh& mesh, const CrossSliceOptions& o
   const Index n = mesh.num_vertices();
   Eigen::Matrix3Xd displacement = Eigen::Matrix3Xd::Zero(3, n);
   detail::LpaIciOptions lpa;
-  lpa.gamma = options.gamma;
 
   // 1. Across the slices.
   const Eigen::Matrix3Xd normals = vertex_normals(mesh.positions, mesh.triangles);
   result.noise_across = options.noise_across.value_or(detail::profile_noise(frame, mesh.positions, normals, true));
+  // The reach: short where the contours are precise, long where they are noisy (precise_noise).
+  result.reach = options.reach.value_or(result.noise_across < options.precise_noise ? 4 : 8);
+  lpa.gamma = options.gamma;
   lpa.sigma = result.noise_across;
-  lpa.max_half_width = options.reach;
+  lpa.max_half_width = result.reach;
   lpa.circle = options.across_model == ProfileModel::Circle;
   lpa.x_unit = frame.slice_spacing;  // the tangent frame's abscissa is in slice spacings, its ordinate in mm
   lpa.kinks = options.across_kinks == ProfileKinks::Bound;
@@ -177,7 +180,7 @@ CrossSliceResult cross_slice_smooth(const Mesh& mesh, const CrossSliceOptions& o
   result.profiles = smooth_profiles(frame, mesh.positions, normals, lpa, ProfileFrame::Tangent, displacement,
                                     [&](const Eigen::Matrix3Xd& x, const Eigen::Matrix3Xd&, Index i,
                                         const Eigen::Vector3d& m, detail::Profile& p) {
-                                      detail::chained_profile(frame, x, cuts, i, m, options.reach, p);
+                                      detail::chained_profile(frame, x, cuts, i, m, result.reach, p);
                                     });
   if (options.progress && !options.progress("smooth", 0.5)) throw CancelledError("smoothing");
 

@@ -9,9 +9,9 @@
 //
 // With repetitions, the ratios and targets use each stage's median.
 //
-// Benchmarks are named stage/size/process_time[/manual_time]. Everything but default_method runs on one
-// thread (VTK's SMP tools run on their sequential backend); default_method counts the CPU time of all its
-// threads, so the ratios compare total work. See docs/benchmarks.md.
+// Benchmarks are named stage/size/process_time[/manual_time]. Everything but default_method and
+// crease_detection runs on one thread (VTK's SMP tools run on their sequential backend); those two count
+// the CPU time of all their threads, so the ratios compare total work. See docs/benchmarks.md.
 #include "bench_inputs.h"
 #include "bench_stages.h"
 
@@ -45,6 +45,7 @@ const Stage kStages[] = {
     {"taubin_iteration", bm_taubin_iteration, false, true},
     {"curvature", bm_curvature, true, false},
     {"feature_detection", bm_feature_detection, true, false},
+    {"crease_detection", bm_crease_detection, true, false},
     {"adaptive_subdivision", bm_adaptive_subdivision, true, false},
     {"full_method", bm_full_method, true, false},
     {"default_method", bm_default_method, true, false},

@@ -19,6 +19,7 @@ void bm_curvature(benchmark::State& state);
 
 // detection_bench.cpp
 void bm_feature_detection(benchmark::State& state);
+void bm_crease_detection(benchmark::State& state);
 
 // subdivision_bench.cpp
 void bm_adaptive_subdivision(benchmark::State& state);

@@ -48,17 +48,23 @@ namespace contourmesh::bench {
 // core; the benchmark reports the process CPU time of all its threads (and the wall time).
 void bm_default_method(benchmark::State& state) {
   const Mesh& mesh = bench_input(state.range(0)).mesh;
-  double detect = 0.0, smooth = 0.0;
+  double detect = 0.0, smooth = 0.0, noise = 0.0;
+  int reach = 0;
   for (auto _ : state) {
     const CrossSliceResult result = cross_slice_smooth(mesh);
     benchmark::DoNotOptimize(result.mesh.positions.data());
     detect += result.seconds_detect;
     smooth += result.seconds_smooth;
+    noise = result.noise_across;
+    reach = result.reach;
   }
   set_vertex_rate(state, mesh.num_vertices());
   const auto runs = static_cast<double>(state.iterations());
   state.counters["detect_ms"] = 1e3 * detect / runs;
   state.counters["smooth_ms"] = 1e3 * smooth / runs;
+  // The windows the noise level chose (the reach across the slices follows it).
+  state.counters["noise_across_um"] = 1e3 * noise;
+  state.counters["reach"] = reach;
 }
 
 }  // namespace contourmesh::bench

@@ -119,6 +119,10 @@ def test_cross_slice_off_slice_filter_options(box_mesh):
     assert axis.points.shape == default.points.shape
     with pytest.raises(cm.InvalidInputError, match="off_slice_filter must be"):
         cm.smooth(*box_mesh[:4], method="cross-slice", off_slice_filter="guided")
+    faces = cm.smooth(*box_mesh[:4], method="cross-slice", off_slice_range="faces")
+    assert faces.points.shape == default.points.shape
+    with pytest.raises(cm.InvalidInputError, match="off_slice_range must be"):
+        cm.smooth(*box_mesh[:4], method="cross-slice", off_slice_range="guided")
     with pytest.raises(cm.InvalidInputError, match="angle"):
         cm.smooth(*box_mesh[:4], method="cross-slice", normal_sigma=0.0)
 

@@ -123,6 +123,75 @@ TEST(CreaseDetection, RightAngledPrismEdgesAreFound) {
   EXPECT_EQ(found, near);
 }
 
+// A square prism (circumradius 15 mm) turning by `turn` radians per 2 mm slice about its axis, sampled as
+// a contour stack whose 120 points per contour (about 0.7 mm apart) keep their angles from slice to
+// slice, so that the stack is tiled point to point: each edge crosses adjacent contours at points
+// 15 x turn mm apart along them, which share no mesh edge when that is two point spacings or more.
+struct TwistedSquare {
+  Mesh mesh;
+  double turn = 0.0;
+  double top = 0.0;  // z of the last slice
+  static constexpr double kCircumradius = 15.0;
+
+  explicit TwistedSquare(double turn_per_slice, int slices = 24) : turn(turn_per_slice), top(2.0 * (slices - 1)) {
+    ContourStackSpec spec;
+    spec.curve = [](double t) { return Eigen::Vector2d(std::cos(2.0 * M_PI * t), std::sin(2.0 * M_PI * t)); };
+    spec.points_per_contour = 120;
+    spec.slices = slices;
+    mesh = make_contour_stack(spec);
+    const double apothem = kCircumradius / std::sqrt(2.0);
+    for (Index i = 0; i < mesh.num_vertices(); ++i) {
+      const double k = std::clamp(std::round(mesh.positions(2, i) / 2.0), 0.0, slices - 1.0);  // caps: end slices
+      const double theta = std::atan2(mesh.positions(1, i), mesh.positions(0, i));
+      double c = 0.0;  // cosine to the nearest face normal, at angles k turn + m pi / 2
+      for (int m = 0; m < 4; ++m) c = std::max(c, std::cos(theta - k * turn - m * M_PI / 2.0));
+      mesh.positions.col(i).head<2>() = apothem / c * Eigen::Vector2d(std::cos(theta), std::sin(theta));
+    }
+  }
+  // Distance from a wall vertex to the nearest edge, in its slice plane.
+  [[nodiscard]] double to_edge(Index i) const {
+    const double phi = mesh.positions(2, i) / 2.0 * turn + M_PI / 4.0;
+    double d = std::numeric_limits<double>::infinity();
+    for (int m = 0; m < 4; ++m) {
+      const double a = phi + m * M_PI / 2.0;
+      const Eigen::Vector2d corner = kCircumradius * Eigen::Vector2d(std::cos(a), std::sin(a));
+      d = std::min(d, (mesh.positions.col(i).head<2>() - corner).norm());
+    }
+    return d;
+  }
+};
+
+TEST(CreaseDetection, EdgesObliqueToTheSlicesAreLinkedAcrossContours) {
+  // 0.12 rad per slice: the edges cross adjacent contours 1.8 mm (2.6 point spacings) apart, about 48
+  // degrees to the slice planes. Their core vertices share no edge from contour to contour, so each
+  // contour's is a group of its own, shorter than min_extent, unless linked along the crease.
+  const TwistedSquare twisted(0.12);
+  const MeshAdjacency adjacency = build_adjacency(twisted.mesh);
+  CreaseOptions edges_only;
+  edges_only.link_radius = 0.0;
+  const CreaseDetection unlinked = detect_creases(twisted.mesh, adjacency, edges_only);
+  const CreaseDetection linked = detect_creases(twisted.mesh, adjacency);
+  int near = 0, found_unlinked = 0, found = 0, far = 0, false_labels = 0;
+  for (Index i = 0; i < twisted.mesh.num_vertices(); ++i) {
+    const double z = twisted.mesh.positions(2, i);
+    if (twisted.mesh.slice_ids[i] < 0 || z < 4.0 || z > twisted.top - 4.0) continue;  // the wall, away from the ends
+    const double d = twisted.to_edge(i);
+    if (d <= 1.0) {
+      ++near;
+      found_unlinked += labelled(unlinked, i);
+      found += labelled(linked, i);
+    } else if (d > 3.0) {
+      ++far;
+      false_labels += labelled(linked, i);
+    }
+  }
+  ASSERT_GT(near, 100);
+  ASSERT_GT(far, 1000);
+  EXPECT_LT(found_unlinked, near / 2);
+  EXPECT_GE(found, near * 9 / 10);
+  EXPECT_EQ(false_labels, 0);
+}
+
 TEST(CreaseDetection, NoisySmoothCylinderWallHasNoLabel) {
   // A 64-gon is a circle to 0.005 mm; contour noise of 0.05 mm is what the phantoms' smoothed
   // contours keep.
@@ -203,6 +272,12 @@ TEST(CreaseDetection, BadOptionsAreRefused) {
   CreaseOptions noise;
   noise.noise = -0.1;
   EXPECT_THROW((void)detect_creases(cube, build_adjacency(cube), noise), InvalidInputError);
+  CreaseOptions link;
+  link.link_radius = -1.0;
+  EXPECT_THROW((void)detect_creases(cube, build_adjacency(cube), link), InvalidInputError);
+  CreaseOptions angle;
+  angle.link_angle_degrees = 91.0;
+  EXPECT_THROW((void)detect_creases(cube, build_adjacency(cube), angle), InvalidInputError);
 }
 
 }  // namespace

@@ -6,6 +6,7 @@
 #include "contourmesh/smooth/shapes.h"
 #include "smooth/test_meshes.h"
 #include "contourmesh/smooth/surface_metrics.h"
+#include "detail/off_slice_filter.h"
 #include "detail/parallel.h"
 
 #include <gtest/gtest.h>
@@ -129,6 +130,157 @@ TEST(CrossSliceOffSlice, SameResultOnOneThreadAndOnSeveral) {
   EXPECT_EQ(one.off_slice_moved, several.off_slice_moved);
   EXPECT_TRUE(one.mesh.positions == several.mesh.positions);
   EXPECT_EQ(one.labels, several.labels);
+}
+
+// A cone (radius 10 + 1.5 z: walls 34 degrees off the slice planes) sampled every half millimetre, whose
+// slices at multiples of 2 mm are contours and the three between each pair are rows of vertices without
+// ids, with their heights pulled towards the middle of their slab by `compression` (0: exact, 1: all at
+// the middle), as off-slice heights read from an image by linear interpolation between two slices are:
+// the faces between the slices form terraces. Plus isotropic noise of `noise_mm` on those vertices. The
+// cone's true normal is known in closed form.
+Mesh terraced_cone(double compression, double noise_mm) {
+  ContourStackSpec spec = test::cylinder_spec(10.0, 41);
+  spec.slice_spacing = 0.5;
+  Mesh mesh = make_contour_stack(spec);
+  std::mt19937_64 rng(5);
+  std::normal_distribution<double> noise(0.0, noise_mm);
+  for (Index i = 0; i < mesh.num_vertices(); ++i) {
+    const double z = mesh.positions(2, i);
+    const double scale = (10.0 + 1.5 * z) / 10.0;
+    mesh.positions(0, i) *= scale;
+    mesh.positions(1, i) *= scale;
+    if (mesh.slice_ids[i] < 0) continue;
+    if (mesh.slice_ids[i] % 4 == 0) {
+      mesh.slice_ids[i] /= 4;
+      continue;
+    }
+    mesh.slice_ids[i] = mesh.contour_ids[i] = kNoId;
+    const double bottom = 2.0 * std::floor(z / 2.0);
+    mesh.positions(2, i) = bottom + 1.0 + (1.0 - compression) * (z - bottom - 1.0);
+    for (int a = 0; a < 3; ++a) mesh.positions(a, i) += noise(rng);
+  }
+  return mesh;
+}
+
+// Area-weighted mean angle between the face normals of the cone's wall (faces off the caps) and the
+// cone's normal, degrees.
+double cone_wall_normal_error(const Mesh& mesh) {
+  double w = 0.0, angle = 0.0;
+  for (const Triangle& t : mesh.triangles) {
+    const Eigen::Vector3d a = mesh.positions.col(t[0]), b = mesh.positions.col(t[1]), c = mesh.positions.col(t[2]);
+    const Eigen::Vector3d cross = (b - a).cross(c - a);
+    const Eigen::Vector3d centre = (a + b + c) / 3.0;
+    if (std::abs(cross.normalized().z()) > 0.9) continue;  // a cap
+    const Eigen::Vector3d radial = Eigen::Vector3d(centre.x(), centre.y(), 0.0).normalized();
+    const Eigen::Vector3d truth = (radial - 1.5 * Eigen::Vector3d::UnitZ()).normalized();
+    const double area = 0.5 * cross.norm();
+    w += area;
+    angle += area * std::acos(std::clamp(cross.normalized().dot(truth), -1.0, 1.0)) * 180.0 / kPi;
+  }
+  return angle / w;
+}
+
+TEST(CrossSliceOffSlice, PatchGuidanceFlattensTerracesBetweenTheSlices) {
+  const Mesh mesh = terraced_cone(0.7, 0.1);
+  CrossSliceOptions faces, patches, none;
+  faces.off_slice.range = OffSliceRange::FaceNormals;
+  patches.off_slice.range = OffSliceRange::PatchGuidance;
+  none.off_slice.filter = OffSliceFilter::None;
+  const double before = cone_wall_normal_error(cross_slice_smooth(mesh, none).mesh);
+  const double by_faces = cone_wall_normal_error(cross_slice_smooth(mesh, faces).mesh);
+  const double by_patches = cone_wall_normal_error(cross_slice_smooth(mesh, patches).mesh);
+  EXPECT_GT(before, 10.0);
+  // The faces' own normals read the terraces' steps as creases and keep some of them; guidance does not.
+  EXPECT_LT(by_patches, 0.1 * before) << before << " -> " << by_patches;
+  EXPECT_LT(by_patches, 0.7 * by_faces) << by_faces << " against " << by_patches;
+}
+
+TEST(CrossSliceOffSlice, PatchGuidanceLeavesContourVertices) {
+  const Mesh mesh = terraced_cone(0.7, 0.1);
+  CrossSliceOptions patches, none;
+  patches.off_slice.range = OffSliceRange::PatchGuidance;
+  none.off_slice.filter = OffSliceFilter::None;
+  const CrossSliceResult r = cross_slice_smooth(mesh, patches), unfiltered = cross_slice_smooth(mesh, none);
+  EXPECT_GT(r.off_slice_moved, 0u);
+  for (Index i = 0; i < mesh.num_vertices(); ++i) {
+    if (mesh.slice_ids[i] < 0) continue;
+    EXPECT_EQ((r.mesh.positions.col(i) - unfiltered.mesh.positions.col(i)).norm(), 0.0) << "contour vertex " << i;
+  }
+}
+
+TEST(CrossSliceOffSlice, PatchGuidanceSameResultOnOneThreadAndOnSeveral) {
+  const Mesh mesh = noisy_off_slice_cylinder(test::cylinder_spec(10.0, 51));
+  CrossSliceOptions o;
+  o.off_slice.range = OffSliceRange::PatchGuidance;
+  CrossSliceResult one, several;
+  {
+    const detail::ScopedWorkerCount threads(1);
+    one = cross_slice_smooth(mesh, o);
+  }
+  {
+    const detail::ScopedWorkerCount threads(5);
+    several = cross_slice_smooth(mesh, o);
+  }
+  EXPECT_GT(one.off_slice_moved, 2048u);
+  EXPECT_TRUE(one.mesh.positions == several.mesh.positions);
+}
+
+// Guidance keeps an exact polygonal cylinder's cap rims where they are, as the faces' own normals do: the
+// wall faces along a rim take the patch of the band below (all wall), not one straddling the rim.
+TEST(CrossSliceOffSlice, PatchGuidanceLeavesAnExactCylinderInPlace) {
+  const Mesh mesh = make_contour_stack(test::cylinder_spec(10.0, 20));
+  CrossSliceOptions o;
+  o.off_slice.range = OffSliceRange::PatchGuidance;
+  const CrossSliceResult r = cross_slice_smooth(mesh, o);
+  EXPECT_LT((r.mesh.positions - mesh.positions).cwiseAbs().maxCoeff(), 0.02);
+}
+
+// The normal filter and the vertex update recompute only what changed in the last iteration (guidance
+// normals read two rings, so more is recomputed with them): the same output, bit for bit, as recomputing
+// everything.
+// Two meshes: noise everywhere (everything changes at once), and one vertex pushed off a square prism
+// whose flat walls are a fixed point of the filter, bit for bit (the changes spread from the bump and the
+// corners a ring per iteration, and guidance changes a ring ahead of the normals).
+TEST(CrossSliceOffSlice, SkippingUnchangedWorkGivesTheFullRecomputation) {
+  ContourStackSpec spec;
+  spec.curve = [](double t) {  // a square of side 20 mm, 16 samples a side, corners included
+    const double u = 4.0 * t - std::floor(4.0 * t), s = -10.0 + 20.0 * u;
+    switch (static_cast<int>(std::floor(4.0 * t)) % 4) {
+      case 0: return Eigen::Vector2d(10.0, s);
+      case 1: return Eigen::Vector2d(-s, 10.0);
+      case 2: return Eigen::Vector2d(-10.0, -s);
+      default: return Eigen::Vector2d(s, -10.0);
+    }
+  };
+  spec.slices = 21;
+  spec.points_per_contour = 64;
+  Mesh bump = make_contour_stack(spec);
+  Index pushed = -1;
+  for (Index i = 0; i < bump.num_vertices(); ++i) {
+    if (bump.slice_ids[i] < 0) continue;
+    if (bump.slice_ids[i] % 2 == 1) {
+      if (pushed < 0 && bump.slice_ids[i] == 9 && std::abs(bump.positions(1, i)) < 3.0) pushed = i;
+      bump.slice_ids[i] = bump.contour_ids[i] = kNoId;
+    } else {
+      bump.slice_ids[i] /= 2;
+    }
+  }
+  ASSERT_GE(pushed, 0);
+  bump.positions.col(pushed).head<2>() *= 10.4 / 10.0;
+  for (const Mesh& mesh : {terraced_cone(0.7, 0.1), bump}) {
+    for (const OffSliceRange range : {OffSliceRange::FaceNormals, OffSliceRange::PatchGuidance}) {
+      CrossSliceOptions o;
+      o.off_slice.range = range;
+      const CrossSliceResult skipping = cross_slice_smooth(mesh, o);
+      CrossSliceResult full;
+      {
+        const detail::ScopedFullRecompute everything;
+        full = cross_slice_smooth(mesh, o);
+      }
+      EXPECT_GT(skipping.off_slice_moved, 10u);
+      EXPECT_TRUE(skipping.mesh.positions == full.mesh.positions) << static_cast<int>(range);
+    }
+  }
 }
 
 TEST(CrossSliceOffSlice, RejectsOptionsOutOfRange) {

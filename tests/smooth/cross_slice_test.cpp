@@ -154,6 +154,27 @@ TEST(CrossSlice, ContoursJoinedOnlyThroughIntermediateContoursAreSmoothed) {
   EXPECT_LT(radial_error(r.mesh, 5, 10.0), radial_error(noisy, 5, 10.0));
 }
 
+// An unset reach follows the noise level across the slices: 4 slices for precise contours, 8 for noisy
+// ones; a reach given is kept.
+TEST(CrossSlice, ReachFromTheNoiseLevelUnlessGiven) {
+  const Mesh precise = make_contour_stack(test::cylinder_spec(10.0, 20));
+  Mesh noisy = precise;
+  add_noise(noisy, {.sigma = 0.4, .seed = 2, .direction = NoiseDirection::InPlane});
+  const CrossSliceResult a = cross_slice_smooth(precise), b = cross_slice_smooth(noisy);
+  EXPECT_LT(a.noise_across, 0.2);
+  EXPECT_EQ(a.reach, 4);
+  EXPECT_GT(b.noise_across, 0.2);
+  EXPECT_EQ(b.reach, 8);
+  CrossSliceOptions o;
+  o.reach = 6;
+  EXPECT_EQ(cross_slice_smooth(noisy, o).reach, 6);
+  o.reach.reset();
+  o.precise_noise = 1.0;  // a threshold above the noisy mesh's level
+  EXPECT_EQ(cross_slice_smooth(noisy, o).reach, 4);
+  o.precise_noise = -1.0;
+  EXPECT_THROW((void)cross_slice_smooth(noisy, o), InvalidInputError);
+}
+
 TEST(CrossSlice, NeedsContourIds) {
   EXPECT_THROW((void)cross_slice_smooth(make_icosphere(2)), InvalidInputError);
 }

@@ -74,6 +74,9 @@ struct Workspace {
   // computed once per iteration however many of the two neighbourhoods it is in.
   std::vector<Index> ring_slot;      ///< per neighbourhood entry
   std::vector<Index> slot_a, slot_b;  ///< per slot: the faces (local), as first met: face a, entry b
+  std::vector<Index> filtered_of;     ///< local face -> filtered face, or -1
+  std::vector<Index> face_map;        ///< mesh face -> local face, or -1
+  double sigma_s = 1.0;               ///< width of the spatial kernel, mm
   // Vertices.
   std::vector<Index> vertices;  ///< local vertex -> mesh vertex
   std::vector<std::uint8_t> moves;  ///< per local vertex
@@ -191,6 +194,8 @@ Workspace make_workspace(const ContourFrame& frame, const std::vector<Triangle>&
     filtered_of[static_cast<std::size_t>(w.filtered[k])] = static_cast<Index>(k);
   }
   assign_pair_slots(filtered_of, w);
+  w.filtered_of = std::move(filtered_of);
+  w.face_map = std::move(face_map);
   w.moves.assign(w.vertices.size(), 0);
   w.incident_offsets.assign(moving.size() + 1, 0);
   w.on_contour.resize(moving.size());
@@ -201,8 +206,8 @@ Workspace make_workspace(const ContourFrame& frame, const std::vector<Triangle>&
     w.moves[static_cast<std::size_t>(li)] = 1;
     w.on_contour[m] = frame.is_contour_vertex(i) ? 1 : 0;
     for (Index f : adj.incident_faces(i)) {
-      const Index local_f = face_map[static_cast<std::size_t>(f)];
-      w.incident.push_back(filtered_of[static_cast<std::size_t>(local_f)]);
+      const Index local_f = w.face_map[static_cast<std::size_t>(f)];
+      w.incident.push_back(w.filtered_of[static_cast<std::size_t>(local_f)]);
     }
     w.incident_offsets[m + 1] = static_cast<Index>(w.incident.size());
   }
@@ -225,8 +230,8 @@ void spatial_weights(const Eigen::Matrix3Xd& centroids, const Eigen::VectorXd& a
   });
   double sum = 0.0;  // in ring order, as one serial sum
   for (Index slot : w.ring_slot) sum += distance[static_cast<std::size_t>(slot)];
-  const double sigma_s = sum > 0.0 ? sum / static_cast<double>(w.ring.size()) : 1.0;
-  const double inv_s = 1.0 / (2.0 * sigma_s * sigma_s);
+  w.sigma_s = sum > 0.0 ? sum / static_cast<double>(w.ring.size()) : 1.0;
+  const double inv_s = 1.0 / (2.0 * w.sigma_s * w.sigma_s);
   std::vector<double>& kernel = distance;  // reused
   parallel_chunks(ns, 4096, [&](std::size_t, std::size_t begin, std::size_t end) {
     for (std::size_t s = begin; s < end; ++s) kernel[s] = std::exp(-squared[s] * inv_s);
@@ -239,41 +244,194 @@ void spatial_weights(const Eigen::Matrix3Xd& centroids, const Eigen::VectorXd& a
   });
 }
 
+// Patches for guidance normals (OffSliceRange::PatchGuidance), per local face: the faces sharing a vertex
+// with it, weighted as the filter weighs a neighbourhood (area x spatial kernel). A filtered face's patch
+// is its neighbourhood; the other local faces' patches reach one ring further, to faces outside the
+// workspace ("outer" faces: no moving corner, so their normals are fixed, as the other local faces' are).
+struct GuidancePatches {
+  std::vector<Index> offsets, entries;  ///< per local face, CSR; an entry >= the local faces' count is outer
+  std::vector<double> weights;          ///< per entry
+  Eigen::Matrix3Xd outer_normals;       ///< per outer face
+};
+
+GuidancePatches make_patches(const ContourFrame& frame, const std::vector<Triangle>& triangles,
+                             const Eigen::Matrix3Xd& positions, const Workspace& w, const Eigen::Matrix3Xd& centroids,
+                             const Eigen::VectorXd& areas) {
+  const MeshAdjacency& adj = frame.adjacency;
+  const std::size_t nl = w.faces.size();
+  const double inv_s = 1.0 / (2.0 * w.sigma_s * w.sigma_s);
+  GuidancePatches p;
+  p.offsets.assign(nl + 1, 0);
+  std::vector<Index> outer_of(triangles.size(), -1), outer_faces;  // mesh face -> outer face; outer -> mesh
+  std::vector<Eigen::Vector3d> outer_centroids;
+  std::vector<double> outer_areas;
+  std::vector<Index> around;
+  for (std::size_t l = 0; l < nl; ++l) {
+    const Index k = w.filtered_of[l];
+    if (k >= 0) {
+      for (Index r = w.ring_offsets[static_cast<std::size_t>(k)]; r < w.ring_offsets[static_cast<std::size_t>(k) + 1];
+           ++r) {
+        p.entries.push_back(w.ring[static_cast<std::size_t>(r)]);
+        p.weights.push_back(w.ring_weights[static_cast<std::size_t>(r)]);
+      }
+    } else {
+      around.clear();
+      for (Index v : triangles[static_cast<std::size_t>(w.faces[l])]) {
+        for (Index g : adj.incident_faces(v)) around.push_back(g);
+      }
+      std::sort(around.begin(), around.end());
+      around.erase(std::unique(around.begin(), around.end()), around.end());
+      const Eigen::Vector3d c = centroids.col(static_cast<Index>(l));
+      for (Index g : around) {
+        const Index local = w.face_map[static_cast<std::size_t>(g)];
+        Eigen::Vector3d cg;
+        double area = 0.0;
+        Index entry = local;
+        if (local >= 0) {
+          cg = centroids.col(local);
+          area = areas[local];
+        } else {
+          Index& o = outer_of[static_cast<std::size_t>(g)];
+          if (o < 0) {
+            const Triangle& t = triangles[static_cast<std::size_t>(g)];
+            o = static_cast<Index>(outer_faces.size());
+            outer_faces.push_back(g);
+            double a = 0.0;
+            (void)face_normal(positions, t, &a);
+            outer_areas.push_back(a);
+            outer_centroids.emplace_back((positions.col(t[0]) + positions.col(t[1]) + positions.col(t[2])) / 3.0);
+          }
+          cg = outer_centroids[static_cast<std::size_t>(o)];
+          area = outer_areas[static_cast<std::size_t>(o)];
+          entry = static_cast<Index>(nl) + o;
+        }
+        p.entries.push_back(entry);
+        p.weights.push_back(area * std::exp(-(cg - c).squaredNorm() * inv_s));
+      }
+    }
+    p.offsets[l + 1] = static_cast<Index>(p.entries.size());
+  }
+  p.outer_normals.resize(3, static_cast<Index>(outer_faces.size()));
+  for (std::size_t o = 0; o < outer_faces.size(); ++o) {
+    const Triangle& t = triangles[static_cast<std::size_t>(outer_faces[o])];
+    p.outer_normals.col(static_cast<Index>(o)) = face_normal(positions, t);
+  }
+  return p;
+}
+
+// Guidance normals (after Zhang, Deng, Zhang, Bouaziz, Liu, "Guided mesh normal filtering", Pacific
+// Graphics 2015): a patch's consistency is the length of its weighted mean normal over its weights (1 when
+// its normals agree). Each filtered face takes the mean normal of the most consistent patch that holds it,
+// among its own and the patches of the faces sharing a vertex with it whose mean normal lies within
+// `min_cos` of its own normal (next to a crease, not a patch of the other side); the other local faces keep
+// their own normals. `normals` holds the local faces' normals. A patch none of whose normals changed in the
+// last iteration (`changed`; `all`: recompute every patch) keeps its mean and consistency.
+void guidance_normals(const Workspace& w, const GuidancePatches& p, const Eigen::Matrix3Xd& normals,
+                      const std::vector<std::uint8_t>& changed, bool all, double min_cos, Eigen::Matrix3Xd& mean,
+                      std::vector<double>& consistency, Eigen::Matrix3Xd& guidance) {
+  const std::size_t nl = w.faces.size(), nk = w.filtered.size();
+  parallel_chunks(nl, 1024, [&](std::size_t, std::size_t begin, std::size_t end) {
+    for (std::size_t l = begin; l < end; ++l) {
+      bool stale = all;
+      for (Index e = p.offsets[l]; e < p.offsets[l + 1] && !stale; ++e) {
+        const Index g = p.entries[static_cast<std::size_t>(e)];
+        stale = g < static_cast<Index>(nl) && changed[static_cast<std::size_t>(g)] != 0;
+      }
+      if (!stale) continue;
+      Eigen::Vector3d acc = Eigen::Vector3d::Zero();
+      double weight = 0.0;
+      for (Index e = p.offsets[l]; e < p.offsets[l + 1]; ++e) {
+        const auto eu = static_cast<std::size_t>(e);
+        const Index g = p.entries[eu];
+        const auto local = static_cast<Index>(nl);
+        acc += p.weights[eu] * (g < local ? normals.col(g) : p.outer_normals.col(g - local));
+        weight += p.weights[eu];
+      }
+      const double len = acc.norm();
+      mean.col(static_cast<Index>(l)) = len > 0.0 ? Eigen::Vector3d(acc / len) : Eigen::Vector3d::Zero();
+      consistency[l] = weight > 0.0 ? len / weight : 0.0;
+    }
+  });
+  parallel_chunks(nk, 1024, [&](std::size_t, std::size_t begin, std::size_t end) {
+    for (std::size_t k = begin; k < end; ++k) {
+      const Index f = w.filtered[k];
+      const Eigen::Vector3d own = normals.col(f);
+      Index best = f;
+      for (Index r = w.ring_offsets[k]; r < w.ring_offsets[k + 1]; ++r) {
+        const Index g = w.ring[static_cast<std::size_t>(r)];
+        if (consistency[static_cast<std::size_t>(g)] > consistency[static_cast<std::size_t>(best)] &&
+            mean.col(g).dot(own) >= min_cos) {
+          best = g;
+        }
+      }
+      guidance.col(f) = consistency[static_cast<std::size_t>(best)] > 0.0 ? Eigen::Vector3d(mean.col(best)) : own;
+    }
+  });
+}
+
 // Bilateral filtering of the normals of the filtered faces (Zheng et al. 2011, eq. 4), Jacobi style; the
-// other local faces' normals are read as they are. `normals` holds every local face's normal.
-void filter_normals(const Workspace& w, const OffSliceFilterOptions& options, Eigen::Matrix3Xd& normals) {
+// other local faces' normals are read as they are. `normals` holds every local face's normal. The range
+// kernel compares the normals themselves or, with `patches`, guidance normals.
+void filter_normals(const Workspace& w, const OffSliceFilterOptions& options, const GuidancePatches* patches,
+                    Eigen::Matrix3Xd& normals) {
   const double sigma_r = 2.0 * std::sin(0.5 * options.sigma_angle_degrees * M_PI / 180.0);  // as |n_i - n_j|
   const double inv_r = 1.0 / (2.0 * sigma_r * sigma_r);
   // Where a sum vanishes, a face keeps the normal of two iterations before (that of `next`).
   Eigen::Matrix3Xd next = normals;
   std::vector<float> range(w.slot_a.size());
   // Only what changed is recomputed. A face's sum reads the normals of its neighbourhood only (the face's
-  // own included, and each pair's range kernel reads the pair's two normals): where none of them changed
-  // bit for bit in the last iteration, the sum and its normal are those of the last iteration, and so is
-  // a kernel whose two faces kept their normals. The filtered normals start moving near the region's
-  // features and spread a ring per iteration; flat caps keep theirs.
+  // own included) and each pair's range kernel, which reads the pair's two compared normals: where none of
+  // them changed bit for bit in the last iteration, the sum and its normal are those of the last iteration,
+  // and so is a kernel whose two faces kept their compared normals. The filtered normals start moving near
+  // the region's features and spread a ring per iteration; flat caps keep theirs. Guidance normals read
+  // two rings of normals: they are computed for every face each iteration and compared bit for bit with
+  // the last ones, which widens the set of faces recomputed to what they reach.
   const std::size_t nl = w.faces.size(), nk = w.filtered.size();
+  const bool full = full_recompute();
   // Per local face: its normal changed in the last iteration (never, for the faces not filtered); the first
   // iteration computes everything.
   std::vector<std::uint8_t> changed(nl, 0), changes(nl, 0);
   std::vector<std::uint8_t> summed(nk, 0);  // per filtered face: its last sum was not zero (its normal set)
+  // Guidance: per local face, the compared normal and whether it changed in this iteration.
+  const double min_cos = std::cos(options.sigma_angle_degrees * M_PI / 180.0);
+  Eigen::Matrix3Xd guidance, last_guidance, mean;
+  std::vector<double> consistency;
+  std::vector<std::uint8_t> guided_changed(nl, 0);
+  if (patches) {
+    guidance = normals;
+    mean.resize(3, static_cast<Index>(nl));
+    consistency.assign(nl, 0.0);
+  }
   for (int it = 0; it < options.normal_iterations; ++it) {
+    const bool all = it == 0 || full;
+    if (patches) {
+      last_guidance.swap(guidance);
+      guidance = normals;
+      guidance_normals(w, *patches, normals, changed, all, min_cos, mean, consistency, guidance);
+      for (std::size_t l = 0; l < nl; ++l) {
+        const auto ll = static_cast<Index>(l);
+        guided_changed[l] = all || !same_bits(guidance.col(ll), last_guidance.col(ll));
+      }
+    }
+    const Eigen::Matrix3Xd& compared = patches ? guidance : normals;
+    const std::vector<std::uint8_t>& compared_changed = patches ? guided_changed : changed;
     // The range kernel of every pair, from |n_b - n_a|^2 of unit normals, in single precision (the hot
     // spot). The dot product is symmetric, bit for bit.
     parallel_chunks(range.size(), 4096, [&](std::size_t, std::size_t begin, std::size_t end) {
       for (std::size_t s = begin; s < end; ++s) {
         const auto a = static_cast<std::size_t>(w.slot_a[s]), b = static_cast<std::size_t>(w.slot_b[s]);
-        if (it > 0 && !changed[a] && !changed[b]) continue;
-        const double dr = 2.0 - 2.0 * normals.col(w.slot_b[s]).dot(normals.col(w.slot_a[s]));
+        if (!all && !compared_changed[a] && !compared_changed[b]) continue;
+        const double dr = 2.0 - 2.0 * compared.col(w.slot_b[s]).dot(compared.col(w.slot_a[s]));
         range[s] = std::exp(static_cast<float>(-dr * inv_r));
       }
     });
     parallel_chunks(nk, 1024, [&](std::size_t, std::size_t begin, std::size_t end) {
       for (std::size_t k = begin; k < end; ++k) {
         const Index f = w.filtered[k];
-        bool stale = it == 0 || summed[k] == 0;  // a face whose last sum vanished is summed again
+        bool stale = all || summed[k] == 0;  // a face whose last sum vanished is summed again
         for (Index r = w.ring_offsets[k]; r < w.ring_offsets[k + 1] && !stale; ++r) {
-          stale = changed[static_cast<std::size_t>(w.ring[static_cast<std::size_t>(r)])] != 0;
+          const auto g = static_cast<std::size_t>(w.ring[static_cast<std::size_t>(r)]);
+          stale = changed[g] != 0 || (patches && guided_changed[g] != 0);
         }
         if (!stale) {  // the last sum again: the normal stays
           next.col(f) = normals.col(f);
@@ -312,13 +470,14 @@ void update_vertices(const ContourFrame& frame, const Workspace& w, const Eigen:
   // the last one again, which is where the vertex is; a centroid whose corners stayed is the same too.
   std::vector<std::uint8_t> moved(static_cast<std::size_t>(x.cols()), 0);  // per local vertex, last iteration
   std::vector<std::uint8_t> face_moved(nk, 0);  // per filtered face: a corner moved (its centroid is new)
+  const bool full = full_recompute();
   for (int it = 0; it < options.vertex_iterations; ++it) {
     parallel_chunks(nk, 4096, [&](std::size_t, std::size_t begin, std::size_t end) {
       for (std::size_t k = begin; k < end; ++k) {
         const Triangle& t = w.corners[k];
         const auto c0 = static_cast<std::size_t>(t[0]), c1 = static_cast<std::size_t>(t[1]),
                    c2 = static_cast<std::size_t>(t[2]);
-        face_moved[k] = it == 0 || moved[c0] || moved[c1] || moved[c2] ? 1 : 0;
+        face_moved[k] = it == 0 || full || moved[c0] || moved[c1] || moved[c2] ? 1 : 0;
         if (face_moved[k]) centroids.col(static_cast<Index>(k)) = (x.col(t[0]) + x.col(t[1]) + x.col(t[2])) / 3.0;
       }
     });
@@ -433,7 +592,10 @@ std::size_t filter_off_slice_normals(const ContourFrame& frame, const std::vecto
   }
 
   spatial_weights(centroids, areas, w);
-  filter_normals(w, options, normals);
+  GuidancePatches patches;
+  const bool guided = options.range == OffSliceRange::PatchGuidance;
+  if (guided) patches = make_patches(frame, triangles, positions, w, centroids, areas);
+  filter_normals(w, options, guided ? &patches : nullptr, normals);
   Eigen::Matrix3Xd filtered_normals(3, nk);
   for (Index k = 0; k < nk; ++k) filtered_normals.col(k) = normals.col(w.filtered[static_cast<std::size_t>(k)]);
 

@@ -10,7 +10,29 @@
 
 #include <Eigen/Core>
 
+#include <atomic>
+
 namespace contourmesh::detail {
+
+/// When true, the normal filter recomputes every face in every iteration instead of only those whose
+/// inputs changed; the output must not change, bit for bit (tests). Set it through ScopedFullRecompute.
+inline std::atomic<bool>& full_recompute_override() {
+  static std::atomic<bool> full{false};
+  return full;
+}
+inline bool full_recompute() { return full_recompute_override(); }
+
+/// Makes the normal filter recompute everything while it lives (tests of the change-skipping).
+class ScopedFullRecompute {
+ public:
+  ScopedFullRecompute() : previous_(full_recompute_override().exchange(true)) {}
+  ~ScopedFullRecompute() { full_recompute_override() = previous_; }
+  ScopedFullRecompute(const ScopedFullRecompute&) = delete;
+  ScopedFullRecompute& operator=(const ScopedFullRecompute&) = delete;
+
+ private:
+  bool previous_;
+};
 
 /// Moves the vertices of `positions` that are not contour vertices of `frame` (caps, intermediate
 /// contours) so that the faces around them follow their bilaterally filtered normals; each stays in its

@@ -186,7 +186,8 @@ std::string paper_settings(const SmoothOptions& o) {
 std::string cross_slice_settings(const SmoothOptions& o) {
   const CrossSliceOptions& c = o.cross_slice;
   std::ostringstream s;
-  s << "profiles across " << c.reach << " slices each way"
+  s << "profiles across " << (c.reach ? std::to_string(*c.reach)
+                               : "4 (noise below " + number(c.precise_noise) + " mm) or 8") << " slices each way"
     << (c.stages == CrossSliceStages::AcrossThenAlong ? ", then along " + std::to_string(c.along_reach) +
                                                             " contour vertices each way"
                                                       : " only")

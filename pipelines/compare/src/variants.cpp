@@ -97,6 +97,8 @@ const std::vector<Key>& keys() {
       {"reach", kCrossSlice, [](SmoothOptions& o, const Value& v) { o.cross_slice.reach = v.integer(); }},
       {"along-reach", kCrossSlice, [](SmoothOptions& o, const Value& v) { o.cross_slice.along_reach = v.integer(); }},
       {"gamma", kCrossSlice, [](SmoothOptions& o, const Value& v) { o.cross_slice.gamma = v.number(); }},
+      {"precise-noise", kCrossSlice,
+       [](SmoothOptions& o, const Value& v) { o.cross_slice.precise_noise = v.number(); }},
       {"noise-across", kCrossSlice, [](SmoothOptions& o, const Value& v) { o.cross_slice.noise_across = v.number(); }},
       {"noise-along", kCrossSlice, [](SmoothOptions& o, const Value& v) { o.cross_slice.noise_along = v.number(); }},
       {"profile-model", kCrossSlice,
@@ -127,6 +129,11 @@ const std::vector<Key>& keys() {
          o.cross_slice.off_slice.motion =
              v.choice<OffSliceMotion>({{"axis", OffSliceMotion::AlongAxis}, {"free", OffSliceMotion::Free}});
        }},
+      {"off-slice-range", kCrossSlice,
+       [](SmoothOptions& o, const Value& v) {
+         o.cross_slice.off_slice.range = v.choice<OffSliceRange>(
+             {{"faces", OffSliceRange::FaceNormals}, {"patches", OffSliceRange::PatchGuidance}});
+       }},
       {"normal-iterations", kCrossSlice,
        [](SmoothOptions& o, const Value& v) { o.cross_slice.off_slice.normal_iterations = v.integer(); }},
       {"normal-sigma", kCrossSlice,
@@ -146,6 +153,10 @@ const std::vector<Key>& keys() {
       {"min-extent", kCrossSlice,
        [](SmoothOptions& o, const Value& v) { o.cross_slice.features.min_extent = v.number(); }},
       {"band", kCrossSlice, [](SmoothOptions& o, const Value& v) { o.cross_slice.features.band = v.number(); }},
+      {"link-radius", kCrossSlice,
+       [](SmoothOptions& o, const Value& v) { o.cross_slice.features.link_radius = v.number(); }},
+      {"link-angle", kCrossSlice,
+       [](SmoothOptions& o, const Value& v) { o.cross_slice.features.link_angle_degrees = v.number(); }},
       {"crease-confirm", kCrossSlice,
        [](SmoothOptions& o, const Value& v) {
          o.cross_slice.features.confirm =

@@ -181,6 +181,7 @@ MethodConfig method_config(const py::object& method_arg, Options& o, Mesh& mesh)
     o.take_int("reach", co.reach);
     o.take_int("along_reach", co.along_reach);
     o.take_double("gamma", co.gamma);
+    o.take_double("precise_noise", co.precise_noise);
     o.take_double("noise_across", co.noise_across);
     o.take_double("noise_along", co.noise_along);
     o.take_int("extension_iterations", co.extension_iterations);
@@ -215,6 +216,12 @@ MethodConfig method_config(const py::object& method_arg, Options& o, Mesh& mesh)
       if (s == "free") fo.motion = OffSliceMotion::Free;
       else if (s == "axis") fo.motion = OffSliceMotion::AlongAxis;
       else throw InvalidInputError("off_slice_motion must be 'free' or 'axis', got '" + s + "'");
+    });
+    o.take("off_slice_range", [&](const py::object& v) {
+      const std::string s = as_string(v, "off_slice_range");
+      if (s == "faces") fo.range = OffSliceRange::FaceNormals;
+      else if (s == "patches") fo.range = OffSliceRange::PatchGuidance;
+      else throw InvalidInputError("off_slice_range must be 'faces' or 'patches', got '" + s + "'");
     });
     o.take_int("normal_iterations", fo.normal_iterations);
     o.take_double("normal_sigma", fo.sigma_angle_degrees);

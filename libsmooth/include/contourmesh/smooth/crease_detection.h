@@ -21,7 +21,10 @@
 //    slices coarsely, and a smooth surface folds there between two contours. Candidates not confirmed
 //    are labelled noise. docs/smoothing.md, "Feature labels (crease detection)".
 // 3. Core vertices: confirmed candidates strongest across their crease (non-maximum suppression).
-//    Lines, not specks: connected groups of core vertices spanning less than `min_extent` are noise.
+//    Lines, not specks: groups of core vertices spanning less than `min_extent` are noise. A group is
+//    connected through shared edges and, between adjacent slices, through links of up to
+//    `link_radius` along the crease direction of both ends (a crease oblique to the slices meets
+//    adjacent contours at vertices that share no edge).
 // 4. Band: every vertex within `band` of a kept core vertex (along the mesh's edges) takes its label,
 //    edge or corner (corner wins), as the evaluation's feature region counts vertices near a feature.
 #pragma once
@@ -72,6 +75,13 @@ struct CreaseOptions {
   /// (0, confirm_threshold] (CreaseSampling::SliceAware): 0.1 is two planes about 37 degrees apart.
   double steep_confirm_threshold = 0.1;
   double min_extent = 3.0;        ///< mm: groups of core vertices shorter than this are noise, >= 0
+  /// mm, >= 0: core vertices on adjacent slices this close (through vertices as close) are one group
+  /// when the segment joining them runs along the crease at both ends, within `link_angle_degrees`;
+  /// 0, or a mesh without contour ids, groups core vertices that share an edge only. A crease oblique
+  /// to the slices meets adjacent contours at vertices a slice spacing / sin(angle to the slices) apart,
+  /// which share no edge: 4 (two 2 mm slice spacings) links creases down to 30 degrees to such slices.
+  double link_radius = 4.0;
+  double link_angle_degrees = 30.0;  ///< in [0, 90]
   double band = 1.5;              ///< mm: labels reach vertices this far from a core vertex, >= 0
   /// Standard deviation of the noise of the positions, mm, >= 0; unset is 0 (cross_slice_smooth sets
   /// its estimate across the slices). The confirming crease threshold rises by
