@@ -65,6 +65,11 @@ TEST(MethodTable, VariantsParseIntoRowsOfTheirOwn) {
   EXPECT_EQ(v.options.cross_slice.reach, 4);
   EXPECT_EQ(v.options.cross_slice.across_model, ProfileModel::Parabola);
   EXPECT_EQ(parse_variant("circle:profile-model=circle").options.cross_slice.across_model, ProfileModel::Circle);
+  EXPECT_EQ(v.options.cross_slice.across_kinks, ProfileKinks::Bound);
+  v = parse_variant("plain-windows:kinks=ignore,kink-rate=0.05");
+  EXPECT_EQ(v.options.cross_slice.across_kinks, ProfileKinks::Ignore);
+  EXPECT_DOUBLE_EQ(v.options.cross_slice.kink_false_rate, 0.05);
+  EXPECT_THROW((void)parse_variant("cut:kinks=cut"), InvalidInputError);
   v = parse_variant("paper-normal:preset=xu2006,measure=normal,in-slice=along-line");
   EXPECT_EQ(v.method, SmoothingMethod::FeaturePreserving);
   EXPECT_EQ(v.options.paper.detection.measure, UmbrellaMeasure::NormalComponent);

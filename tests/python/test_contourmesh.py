@@ -138,6 +138,19 @@ def test_cross_slice_profile_model(box_mesh):
         cm.smooth(*box_mesh[:4], method="cross-slice", profile_model="ellipse")
 
 
+def test_cross_slice_kinks(box_mesh):
+    """Bounding the profiles at their slope breaks is an option of cross-slice smoothing (on by default)."""
+    default = cm.smooth(*box_mesh[:4])
+    bound = cm.smooth(*box_mesh[:4], method="cross-slice", kinks="bound", kink_rate=0.01)
+    assert np.array_equal(default.points, bound.points)
+    ignore = cm.smooth(*box_mesh[:4], method="cross-slice", kinks="ignore")
+    assert ignore.points.shape == default.points.shape and np.isfinite(ignore.points).all()
+    with pytest.raises(cm.InvalidInputError, match="kinks must be"):
+        cm.smooth(*box_mesh[:4], method="cross-slice", kinks="cut")
+    with pytest.raises(cm.InvalidInputError, match="kink false rate"):
+        cm.smooth(*box_mesh[:4], method="cross-slice", kinks="bound", kink_rate=1.5)
+
+
 def test_errors_are_typed():
     with pytest.raises(cm.InvalidInputError) as e:
         cm.smooth(np.zeros((3, 3)), [[0, 1, 5]])

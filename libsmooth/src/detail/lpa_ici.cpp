@@ -1,9 +1,12 @@
 // SPDX-License-Identifier: BSD-3-Clause
 #include "detail/lpa_ici.h"
 
+#include "detail/profile_kinks.h"
+
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <optional>
 
 namespace contourmesh::detail {
 
@@ -208,6 +211,7 @@ LpaIciResult lpa_ici_impl(const Profile& p, const LpaIciOptions& o) {
   CircleSums circle_down, circle_up, circle_centre;  // the same for the circle model (kCircle only)
   if constexpr (kCircle) circle_centre.add(0.0, r.value, o.x_unit);
   std::array<Grown, kKinds> g;
+  if (!o.two_sided) g[kSymmetric].stopped = g[kLine].stopped = g[kMean].stopped = true;
   int lo = centre - 1, hi = centre + 1;
   for (int h = 1; h <= o.max_half_width; ++h) {
     const double reach = static_cast<double>(h) + 0.5;
@@ -303,7 +307,40 @@ LpaIciResult lpa_ici_impl(const Profile& p, const LpaIciOptions& o) {
 }  // namespace
 
 LpaIciResult lpa_ici(const Profile& p, const LpaIciOptions& o) {
-  return o.circle ? lpa_ici_impl<true>(p, o) : lpa_ici_impl<false>(p, o);
+  const auto fit = [&](const Profile& q, const LpaIciOptions& oq) {
+    return oq.circle ? lpa_ici_impl<true>(q, oq) : lpa_ici_impl<false>(q, oq);
+  };
+  if (!o.kinks || !(o.sigma > 0.0)) return fit(p, o);
+  KinkTestOptions test;
+  test.sigma = o.sigma;
+  test.false_rate = o.kink_false_rate;
+  test.max_abs_x = static_cast<double>(o.max_half_width) + 0.5;
+  // The profile is copied only where a kink bounds it (most profiles have none).
+  std::optional<Profile> bounded;
+  const Profile* current = &p;
+  LpaIciOptions local = o;
+  int found = 0;
+  for (; found < 3; ++found) {
+    const Kink kink = find_kink(*current, test);
+    if (!kink.found) break;
+    if (std::abs(kink.x) < 1e-9) {  // the vertex is the kink: each side extrapolates to it
+      local.two_sided = false;
+      ++found;
+      break;
+    }
+    // Keep the side holding x = 0, up to and with the hinge's sample: a contiguous run of the sorted
+    // profile.
+    const int begin = kink.x > 0.0 ? 0 : kink.index, end = kink.x > 0.0 ? kink.index + 1 : current->size;
+    Profile side;
+    for (int k = begin; k < end; ++k) {
+      (void)side.push(current->x[static_cast<std::size_t>(k)], current->y[static_cast<std::size_t>(k)]);
+    }
+    bounded = side;
+    current = &*bounded;
+  }
+  LpaIciResult r = fit(*current, local);
+  r.kinks = found;
+  return r;
 }
 
 }  // namespace contourmesh::detail

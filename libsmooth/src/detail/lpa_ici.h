@@ -49,6 +49,14 @@ struct LpaIciOptions {
   bool circle = false;
   /// The length of one x unit in y's unit (mm per slice spacing); used by the circle model only, > 0.
   double x_unit = 1.0;
+  /// Look for a slope break first (find_kink in profile_kinks.h, over the samples within max_half_width):
+  /// where one is significant, only the side of it holding x = 0 (with the hinge's own sample) is fitted,
+  /// and where it is at x = 0 only the one-sided windows are; repeated on what is left, up to three times.
+  bool kinks = false;
+  /// The kink test's false-alarm probability on a kink-free profile, in (0, 1).
+  double kink_false_rate = 0.01;
+  /// Fit the two-sided windows (parabola, line, mean); false: the one-sided windows only.
+  bool two_sided = true;
 };
 
 /// The chosen windows of one estimate, for diagnostics and feature detection.
@@ -58,6 +66,7 @@ struct LpaIciResult {
   int below = 0;          ///< half-width chosen by the window reaching to negative x (0: none usable)
   int above = 0;          ///< ... to positive x
   int symmetric = 0;      ///< ... by the symmetric window
+  int kinks = 0;          ///< slope breaks found (options.kinks): each bounded the profile
   bool valid = false;     ///< false when no window could be fitted (then value = y(0))
 };
 
@@ -89,7 +98,7 @@ struct CircleSums {
 /// One-sided windows fit parabolas (their estimate at the window's end is biased by third-order terms
 /// only), two-sided windows a parabola and, optionally, a line; with `circle`, circles replace the
 /// parabolas of both (exact on arcs), each window falling back to the parabola where its circle is
-/// ill-posed.
+/// ill-posed. With `kinks`, the profile is first bounded at its significant slope breaks.
 [[nodiscard]] LpaIciResult lpa_ici(const Profile& profile, const LpaIciOptions& options);
 
 }  // namespace contourmesh::detail

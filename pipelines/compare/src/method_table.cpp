@@ -192,7 +192,10 @@ std::string cross_slice_settings(const SmoothOptions& o) {
                                                             " contour vertices each way"
                                                       : " only")
     << ", LPA-ICI windows (gamma " << c.gamma << ", "
-    << (c.across_model == ProfileModel::Circle ? "circles" : "parabolas") << " across) for a noise level "
+    << (c.across_model == ProfileModel::Circle ? "circles" : "parabolas") << " across"
+    << (c.across_kinks == ProfileKinks::Bound ? ", bounded at slope breaks, false rate " + number(c.kink_false_rate)
+                                              : std::string())
+    << ") for a noise level "
     << (c.noise_across ? number(*c.noise_across) + " mm" : std::string("estimated from the mesh"))
     << (c.off_slice.filter == OffSliceFilter::BilateralNormals
             ? "; vertices between the slices fitted to bilaterally filtered normals (" +

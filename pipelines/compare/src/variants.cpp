@@ -106,6 +106,12 @@ const std::vector<Key>& keys() {
          o.cross_slice.across_model =
              v.choice<ProfileModel>({{"parabola", ProfileModel::Parabola}, {"circle", ProfileModel::Circle}});
        }},
+      {"kinks", kCrossSlice,
+       [](SmoothOptions& o, const Value& v) {
+         o.cross_slice.across_kinks =
+             v.choice<ProfileKinks>({{"ignore", ProfileKinks::Ignore}, {"bound", ProfileKinks::Bound}});
+       }},
+      {"kink-rate", kCrossSlice, [](SmoothOptions& o, const Value& v) { o.cross_slice.kink_false_rate = v.number(); }},
       {"stages", kCrossSlice,
        [](SmoothOptions& o, const Value& v) {
          o.cross_slice.stages = v.choice<CrossSliceStages>(

@@ -191,6 +191,13 @@ MethodConfig method_config(const py::object& method_arg, Options& o, Mesh& mesh)
       else if (s == "circle") co.across_model = ProfileModel::Circle;
       else throw InvalidInputError("profile_model must be 'parabola' or 'circle', got '" + s + "'");
     });
+    o.take("kinks", [&](const py::object& v) {
+      const std::string s = as_string(v, "kinks");
+      if (s == "ignore") co.across_kinks = ProfileKinks::Ignore;
+      else if (s == "bound") co.across_kinks = ProfileKinks::Bound;
+      else throw InvalidInputError("kinks must be 'ignore' or 'bound', got '" + s + "'");
+    });
+    o.take_double("kink_rate", co.kink_false_rate);
     o.take("stages", [&](const py::object& v) {
       const std::string s = as_string(v, "stages");
       if (s == "across-then-along") co.stages = CrossSliceStages::AcrossThenAlong;

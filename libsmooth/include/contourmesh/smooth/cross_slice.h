@@ -11,7 +11,9 @@
 //    with windows grown by the intersection of confidence intervals (LPA-ICI) from the measured noise
 //    level, gives the vertex's corrected offset: windows that would reach across a kink (a ridge within
 //    a slice plane, the end of a feature) stop before it, those on the smooth side grow. The local
-//    fit is a parabola, or (ProfileModel::Circle) an algebraic circle.
+//    fit is a parabola, or (ProfileModel::Circle) an algebraic circle. First, a hinge test over the
+//    whole profile finds a significant slope break (a junction between parts), and only the side of it
+//    holding the vertex is fitted (ProfileKinks).
 // 2. Along the contour: the same on the profile of the contour's own vertices (in-slice jitter), where
 //    windows stop at corners (ridges crossing the slices).
 // 3. Contour vertices move along their in-slice normals only, so they stay in their slice planes;
@@ -45,6 +47,16 @@ enum class ProfileModel {
   Circle,    ///< an algebraic circle in the tangent frame: exact on the arcs of spheres, cylinders seen
              ///< across their axis and tori; a window where it is ill-posed (too few or collinear
              ///< samples, a circle smaller than the window) falls back to the parabola
+};
+
+/// Whether the profiles across the slices are first cut at their slope breaks (docs/smoothing.md, "Kinks
+/// in the profiles"): where two parts of a surface meet (a shaft and a condyle), a profile has a kink that
+/// no smooth model fits, and every two-sided window reaching across it is biased.
+enum class ProfileKinks {
+  Ignore,  ///< the windows are chosen by LPA-ICI alone
+  Bound,   ///< (default) a hinge test over the whole profile (a parabola with a slope break at one sample,
+           ///< against one parabola, at the measured noise) finds the most significant break; where it
+           ///< passes, only the side holding the vertex is fitted (at the vertex: its one-sided windows)
 };
 
 /// What happens to the vertices between the slices after the contour vertices have moved.
@@ -118,6 +130,11 @@ struct CrossSliceOptions {
   /// The curve fitted to the profiles across the slices (the along-contour profiles always use
   /// parabolas: their abscissa is arc length, not a rigid frame).
   ProfileModel across_model = ProfileModel::Parabola;
+  /// Slope breaks in the profiles across the slices.
+  ProfileKinks across_kinks = ProfileKinks::Bound;
+  /// With ProfileKinks::Bound: the probability, in (0, 1), that a kink-free profile with Gaussian noise of
+  /// the measured level is cut (a Bonferroni bound over the hinges scanned).
+  double kink_false_rate = 0.01;
   CrossSliceStages stages = CrossSliceStages::AcrossThenAlong;
   /// Jacobi iterations of the harmonic extension to vertices off the slices, >= 0.
   int extension_iterations = 30;

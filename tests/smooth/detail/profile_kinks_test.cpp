@@ -1,0 +1,135 @@
+// SPDX-License-Identifier: BSD-3-Clause
+// White-box tests of the kink test of the cross-slice smoother's profiles
+// (libsmooth/src/detail/profile_kinks.h) and of lpa_ici bounded by it: analytic hinges and parabolas,
+// and the false-alarm rate at a known noise level.
+#include "detail/lpa_ici.h"
+#include "detail/profile_kinks.h"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <random>
+
+namespace contourmesh::detail {
+namespace {
+
+// A hinge: slope `left` up to x = `at`, slope `right` beyond it, continuous; sampled at integers
+// -8..8 shifted so that the vertex (x = 0) sits at `vertex` on the hinge's own axis. The truth at
+// x = 0 is hinge(vertex).
+double hinge(double u, double at, double left, double right) {
+  return u <= at ? left * u : left * at + right * (u - at);
+}
+
+Profile hinge_profile(double vertex, double at, double left, double right) {
+  Profile p;
+  for (int k = -8; k <= 8; ++k) p.push(k, hinge(vertex + k, at, left, right) - hinge(vertex, at, left, right));
+  return p;
+}
+
+LpaIciOptions options(double sigma, bool kinks) {
+  LpaIciOptions o;
+  o.sigma = sigma;
+  o.gamma = 2.0;
+  o.max_half_width = 8;
+  o.kinks = kinks;
+  o.kink_false_rate = 0.01;
+  return o;
+}
+
+TEST(Chi2Quantile, MatchesTables) {
+  EXPECT_NEAR(chi2_1_upper_quantile(0.05), 3.841459, 1e-5);
+  EXPECT_NEAR(chi2_1_upper_quantile(0.01), 6.634897, 1e-5);
+  EXPECT_NEAR(chi2_1_upper_quantile(0.001), 10.827566, 1e-5);
+}
+
+TEST(FindKink, LocatesTheHingeOfANoiseFreeProfile) {
+  // A concave junction (a shaft meeting a flare): slope 0.1 then 0.9 per slice, the break at x = 3.
+  const Profile p = hinge_profile(0.0, 3.0, 0.1, 0.9);
+  KinkTestOptions o;
+  o.sigma = 0.4;
+  const Kink kink = find_kink(p, o);
+  ASSERT_TRUE(kink.found);
+  EXPECT_DOUBLE_EQ(kink.x, 3.0);
+  EXPECT_GT(kink.statistic, chi2_1_upper_quantile(o.false_rate / kink.candidates));
+  EXPECT_LT(kink.p_value, o.false_rate);
+  EXPECT_EQ(kink.candidates, 13);  // -6..6: two samples beyond each
+}
+
+TEST(FindKink, FindsNoKinkOnAParabola) {
+  Profile p;
+  for (int k = -8; k <= 8; ++k) p.push(k, 0.2 * k + 0.05 * k * k - 0.3);
+  KinkTestOptions o;
+  o.sigma = 0.4;
+  const Kink kink = find_kink(p, o);
+  EXPECT_FALSE(kink.found);
+  EXPECT_LT(kink.statistic, 1e-12);
+}
+
+TEST(FindKink, NeverReportsWithoutNoise) {
+  // sigma 0: the noise-free guarantee (nothing is estimated, nothing is cut).
+  const Profile p = hinge_profile(0.0, 3.0, 0.1, 0.9);
+  KinkTestOptions o;
+  o.sigma = 0.0;
+  EXPECT_FALSE(find_kink(p, o).found);
+}
+
+TEST(LpaIciKinks, RecoversBothSidesOfAHingeExactly) {
+  // Every vertex position on either side of the hinge, and on it: the side holding the vertex is a line,
+  // fitted without bias; without the kink test the two-sided windows reaching across it are biased.
+  double worst_bounded = 0.0, worst_plain = 0.0;
+  for (int vertex = -5; vertex <= 5; ++vertex) {
+    const Profile p = hinge_profile(vertex, 0.0, -0.6, 0.6);
+    const LpaIciResult bounded = lpa_ici(p, options(0.1, true));
+    const LpaIciResult plain = lpa_ici(p, options(0.1, false));
+    ASSERT_TRUE(bounded.valid);
+    EXPECT_GE(bounded.kinks, 1) << "vertex " << vertex;
+    EXPECT_NEAR(bounded.value, 0.0, 1e-9) << "vertex " << vertex;
+    worst_bounded = std::max(worst_bounded, std::abs(bounded.value));
+    worst_plain = std::max(worst_plain, std::abs(plain.value));
+  }
+  EXPECT_GT(worst_plain, 0.05);  // the bias the test removes
+}
+
+TEST(LpaIciKinks, LeavesASmoothProfileAsItWas) {
+  Profile p;
+  for (int k = -8; k <= 8; ++k) p.push(k, 0.2 * k + 0.05 * k * k);
+  const LpaIciResult bounded = lpa_ici(p, options(0.4, true));
+  const LpaIciResult plain = lpa_ici(p, options(0.4, false));
+  EXPECT_EQ(bounded.kinks, 0);
+  EXPECT_DOUBLE_EQ(bounded.value, plain.value);
+  EXPECT_EQ(bounded.symmetric, plain.symmetric);
+}
+
+// The rate of kinks found on kink-free parabolas with Gaussian noise of sigma.
+double false_kink_rate(int half_width, double sigma, double alpha, int trials, unsigned seed) {
+  std::mt19937 rng(seed);
+  std::normal_distribution<double> noise(0.0, sigma);
+  KinkTestOptions o;
+  o.sigma = sigma;
+  o.false_rate = alpha;
+  int found = 0;
+  for (int t = 0; t < trials; ++t) {
+    Profile p;
+    for (int k = -half_width; k <= half_width; ++k) p.push(k, 0.03 * k * k - 0.1 * k + noise(rng));
+    found += find_kink(p, o).found ? 1 : 0;
+  }
+  return static_cast<double>(found) / trials;
+}
+
+TEST(FindKink, SingleCandidateFalseRateIsAlpha) {
+  // Five samples: one candidate hinge (the middle), so the statistic is exactly chi-square with one
+  // degree of freedom and the rate is alpha (binomial standard deviation of 4000 trials at 0.05: 0.0034).
+  const double rate = false_kink_rate(2, 0.4, 0.05, 4000, 11);
+  EXPECT_NEAR(rate, 0.05, 0.012);
+}
+
+TEST(FindKink, ScannedFalseRateIsBoundedByAlpha) {
+  // Seventeen samples, thirteen candidates: the Bonferroni bound keeps the rate at most alpha; the
+  // candidates are strongly correlated, so it is not far below either.
+  const double rate = false_kink_rate(8, 0.4, 0.05, 4000, 12);
+  EXPECT_LE(rate, 0.05 + 0.01);
+  EXPECT_GE(rate, 0.01);
+}
+
+}  // namespace
+}  // namespace contourmesh::detail
