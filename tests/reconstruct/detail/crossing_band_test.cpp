@@ -101,8 +101,12 @@ TEST(CrossingBand, TwoOffsetDiscsMeetInTwoLunesEachCoveredOnce) {
     const double nz = 0.5 * (q - p).cross(r - p).z();
     const Eigen::Vector2d m = ((p + q + r) / 3.0).head<2>();
     const bool in_a = m.norm() < 5.0, in_b = (m - Eigen::Vector2d(3, 0)).norm() < 5.0;
-    if (in_a && !in_b) EXPECT_GT(nz, 0.0);
-    if (in_b && !in_a) EXPECT_LT(nz, 0.0);
+    if (in_a && !in_b) {
+      EXPECT_GT(nz, 0.0);
+    }
+    if (in_b && !in_a) {
+      EXPECT_LT(nz, 0.0);
+    }
     (nz > 0.0 ? up : down) += std::abs(nz);
   }
   const double r = 5.0, d = 3.0;
