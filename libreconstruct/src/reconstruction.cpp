@@ -1,6 +1,8 @@
 // SPDX-License-Identifier: BSD-3-Clause
 #include "contourmesh/reconstruct/reconstruction.h"
 
+#include "detail/moved_face_flips.h"
+
 #include <contourmesh/smooth/errors.h>
 #include <contourmesh/smooth/topology.h>
 
@@ -116,6 +118,13 @@ Reconstruction reconstruct(const CtImage& image, const ReconstructionOptions& op
   OffSliceResult placed = fit_off_slice_heights(std::move(tiled.mesh), seg.smoothed_image ? *seg.smoothed_image : image,
                                                 seg.threshold, options.off_slice);
   tiled.mesh = std::move(placed.mesh);
+  if (options.off_slice.placement == OffSlicePlacement::ImageCrossing) {
+    // The heights move vertices without ids between the slices; flips mend the slivers that makes, within
+    // a quarter of the slice spacing of the surface (as the slabs' own face-quality pass).
+    const auto& direction = image.GetDirection();
+    const Eigen::Vector3d axis(direction[0][2], direction[1][2], direction[2][2]);
+    detail::flip_moved_slivers(tiled.mesh, tiled.face_roles, axis.normalized(), 0.25 * image.GetSpacing()[2]);
+  }
   out.report.off_slice = placed.report;
   out.report.seconds_off_slice = seconds_since(t0);
   const auto spacing = image.GetSpacing();
