@@ -9,7 +9,9 @@
 
 #include <algorithm>
 #include <cctype>
+#include <cerrno>
 #include <cstdint>
+#include <cstdlib>
 #include <cstring>
 #include <filesystem>
 #include <fstream>
@@ -25,6 +27,33 @@ namespace {
 constexpr vtkIdType kCellsPerPoint = 8;
 
 bool is_space(char c) { return std::isspace(static_cast<unsigned char>(c)) != 0; }  // as vtkXMLParser::IsSpace
+
+// Components a data array may have: far more than any mesh attribute needs (a tensor has 9).
+constexpr long long kMaxComponents = 1024;
+
+// The problem with the NumberOfComponents of the data arrays under `e` (PointData, CellData, Points or a
+// cell array); empty when there is none. VTK reads the attribute into an int without checking it, then
+// allocates and parses tuples x components values: 42949672963 components on 4 points kept it busy for
+// minutes (found by fuzz_read_vtp).
+std::string check_components(vtkXMLDataElement* e) {
+  if (e == nullptr) return {};
+  for (int k = 0; k < e->GetNumberOfNestedElements(); ++k) {
+    vtkXMLDataElement* da = e->GetNestedElement(k);
+    const char* value = da != nullptr ? da->GetAttribute("NumberOfComponents") : nullptr;
+    if (value == nullptr) continue;
+    char* end = nullptr;
+    errno = 0;
+    const long long n = std::strtoll(value, &end, 10);
+    const bool integer = end != value && errno == 0 && std::all_of(end, end + std::strlen(end), is_space);
+    if (!integer || n < 1 || n > kMaxComponents) {
+      const char* name = da->GetAttribute("Name");
+      return std::string("data array '") + (name != nullptr ? name : "") + "' of " + e->GetName() +
+             " has NumberOfComponents=\"" + value + "\", not an integer in [1, " + std::to_string(kMaxComponents) +
+             "]";
+    }
+  }
+  return {};
+}
 
 // The bytes of one data block of a file, raw or base64 as vtkBase64InputStream decodes them: groups
 // of four characters, a group with padding or another character ending the data.
@@ -145,6 +174,13 @@ int vtkCheckedXMLPolyDataReader::ReadPiece(vtkXMLDataElement* ePiece) {
   if (points < 0) {
     vtkErrorMacro(<< "the piece announces " << points << " points");
     return 0;
+  }
+  for (const char* kind : {"PointData", "CellData", "Points", "Verts", "Lines", "Strips", "Polys"}) {
+    const std::string problem = check_components(ePiece->FindNestedElementWithName(kind));
+    if (!problem.empty()) {
+      vtkErrorMacro(<< problem);
+      return 0;
+    }
   }
   // VTK refuses points with other than 3 components too, but leaks its array iterator on the way.
   if (vtkXMLDataElement* ePoints = ePiece->FindNestedElementWithName("Points");

@@ -251,6 +251,27 @@ TEST_F(FuzzFindings, VtpPointsNeedThreeComponents) {
   expect_rejected(write("six.vtp", vtp), "the points have 6 components, not 3");
 }
 
+// VTK read a data array's NumberOfComponents into an int unchecked and then parsed tuples x components
+// values: 42949672963 components on a point-data array of 4 points kept it busy for minutes (found by
+// fuzz_read_vtp). Now refused before it reads.
+TEST_F(FuzzFindings, VtpDataArrayWithAHugeComponentCountIsRefusedAtOnce) {
+  const std::string vtp =
+      "<?xml version=\"1.0\"?>\n<VTKFile type=\"PolyData\" version=\"1.0\" byte_order=\"LittleEndian\">\n"
+      "<PolyData><Piece NumberOfPoints=\"3\" NumberOfVerts=\"0\" NumberOfLines=\"0\" NumberOfStrips=\"0\" "
+      "NumberOfPolys=\"1\">\n<PointData><DataArray type=\"Float64\" Name=\"weights\" "
+      "NumberOfComponents=\"42949672963\" format=\"ascii\">0 0 1</DataArray></PointData>\n"
+      "<Points><DataArray type=\"Float64\" NumberOfComponents=\"3\" format=\"ascii\">0 0 0 1 0 0 0 1 0"
+      "</DataArray></Points>\n"
+      "<Polys><DataArray type=\"Int32\" Name=\"connectivity\" format=\"ascii\">0 1 2</DataArray>"
+      "<DataArray type=\"Int32\" Name=\"offsets\" format=\"ascii\">3</DataArray></Polys>\n"
+      "</Piece>\n</PolyData>\n</VTKFile>\n";
+  expect_rejected(write("components.vtp", vtp), "data array 'weights' of PointData has "
+                                                "NumberOfComponents=\"42949672963\", not an integer in [1, 1024]");
+  std::string zero = vtp;
+  zero.replace(zero.find("42949672963"), 11, "0");
+  expect_rejected(write("zero_components.vtp", zero), "has NumberOfComponents=\"0\"");
+}
+
 // VTK leaked an array's iterator when the file ended before a compressed array's header (found by
 // fuzz_read_vtp: the appended data cut off after its start tag, and in the middle of a header).
 TEST_F(FuzzFindings, VtpDataEndingBeforeACompressionHeaderIsReportedWithoutALeak) {
