@@ -4,11 +4,11 @@
 # unsmoothed tiling (`contourmesh reconstruct`), the contour route with the default smoothing
 # (`contourmesh run`) and 3D Slicer's voxel route (threshold, flying edges, windowed sinc 20), side by
 # side from one camera zoomed on a place where contours split or merge, by contourmesh_scan_render
-# under xvfb-run. Writes docs/results/real_scans/*.png (150-300 KB each). About 1 minute.
+# under xvfb-run. Writes docs/real_scans/*.png (150-300 KB each). About 1 minute.
 #   scripts/real_scan_renders.sh [OUTPUT_DIR]
 set -euo pipefail
 cd "$(dirname "$0")/.."
-out="${1:-docs/results/real_scans}"
+out="${1:-docs/real_scans}"
 data=../shared/data
 cmake --preset release >/dev/null
 cmake --build --preset release --target contourmesh contourmesh_scan_render >/dev/null
