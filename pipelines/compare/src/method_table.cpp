@@ -200,13 +200,17 @@ std::string cross_slice_settings(const SmoothOptions& o) {
     << (c.off_slice.filter == OffSliceFilter::BilateralNormals
             ? "; vertices between the slices fitted to bilaterally filtered normals (" +
                   std::to_string(c.off_slice.normal_iterations) + " iterations, " +
-                  number(c.off_slice.sigma_angle_degrees) + " degrees)"
+                  number(c.off_slice.sigma_angle_degrees) + " degrees" +
+                  (c.off_slice.range == OffSliceRange::PatchGuidance ? ", range on guidance normals)" : ")")
             : std::string())
     << "; labels: creases of the result (radius " << c.features.radius << " mm"
     << (c.features.confirm == CreaseConfirmation::Ball
             ? ", confirmed over " + number(c.features.confirm_radius) + " mm"
             : std::string())
-    << ", band " << c.features.band << " mm)";
+    << ", band " << c.features.band << " mm)"
+    << (c.features.link_radius > 0.0
+            ? ", lines linked across adjacent slices within " + number(c.features.link_radius) + " mm"
+            : std::string());
   return s.str();
 }
 
