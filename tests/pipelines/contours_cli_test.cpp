@@ -49,15 +49,14 @@ class ContoursCli : public ::testing::Test {
     test::write_rtstruct(path, rois);
     return path;
   }
-  void need_breast() {
-    if (!fs::exists(kBreast)) GTEST_SKIP() << "no " << kBreast;
-  }
+  // GTEST_SKIP only leaves the function it is in: call as `if (!have_breast()) GTEST_SKIP() << ...`.
+  static bool have_breast() { return fs::exists(kBreast); }
   test::ScopedTempDir tmp_{"contourmesh_contours_cli"};
   const fs::path& dir_ = tmp_.path();
 };
 
 TEST_F(ContoursCli, ListsTheRoisOfAStructureSet) {
-  need_breast();
+  if (!have_breast()) GTEST_SKIP() << "no " << kBreast;
   const CliRun r = run_cli("contours " + q(kBreast) + " --list", dir_);
   ASSERT_EQ(r.code, 0) << r.err;
   EXPECT_NE(r.out.find("Lt Lung"), std::string::npos) << r.out;
@@ -76,7 +75,7 @@ TEST_F(ContoursCli, ListsTheRoisOfAStructureSet) {
 }
 
 TEST_F(ContoursCli, ReconstructsAnRoiWithIdsAndReportsTheChecks) {
-  need_breast();
+  if (!have_breast()) GTEST_SKIP() << "no " << kBreast;
   const fs::path out = dir_ / "heart.vtp";
   const CliRun r = run_cli("reconstruct " + q(kBreast) + " --roi heart -o " + q(out) + " --json", dir_);
   ASSERT_EQ(r.code, 0) << r.err;
@@ -94,7 +93,7 @@ TEST_F(ContoursCli, ReconstructsAnRoiWithIdsAndReportsTheChecks) {
 }
 
 TEST_F(ContoursCli, AnRoiWithoutContoursIsAClearErrorAndWritesNothing) {
-  need_breast();
+  if (!have_breast()) GTEST_SKIP() << "no " << kBreast;
   const fs::path out = dir_ / "areola.vtp";
   const CliRun r = run_cli("reconstruct " + q(kBreast) + " --roi Areola -o " + q(out), dir_);
   EXPECT_EQ(r.code, 2);
@@ -104,7 +103,7 @@ TEST_F(ContoursCli, AnRoiWithoutContoursIsAClearErrorAndWritesNothing) {
 }
 
 TEST_F(ContoursCli, UsageErrorsExitOne) {
-  need_breast();
+  if (!have_breast()) GTEST_SKIP() << "no " << kBreast;
   CliRun r = run_cli("reconstruct " + q(kBreast) + " -o " + q(dir_ / "x.vtp"), dir_);
   EXPECT_EQ(r.code, 1);
   EXPECT_NE(r.err.find("--roi"), std::string::npos) << r.err;
