@@ -1,30 +1,18 @@
 // SPDX-License-Identifier: BSD-3-Clause
 #include "detail/moved_face_flips.h"
 
+#include "detail/face_shape.h"
+
 #include <algorithm>
 #include <cmath>
 #include <cstdint>
 #include <deque>
-#include <numbers>
 #include <unordered_map>
 #include <utility>
 
 namespace contourmesh::detail {
 
 namespace {
-
-const double kSliverCosine = std::cos(10.0 * std::numbers::pi / 180.0);
-const double kLevelCosine = std::cos(30.0 * std::numbers::pi / 180.0);
-const double kShelfCosine = std::cos(10.0 * std::numbers::pi / 180.0);
-
-// Cosine of the smallest angle (opposite the shortest edge); 1 for a degenerate triangle.
-double sharpness(const Eigen::Vector3d& a, const Eigen::Vector3d& b, const Eigen::Vector3d& c) {
-  double e[3] = {(b - c).squaredNorm(), (c - a).squaredNorm(), (a - b).squaredNorm()};
-  std::sort(e, e + 3);
-  const double denominator = 2.0 * std::sqrt(e[1] * e[2]);
-  if (!(denominator > 0.0)) return 1.0;
-  return std::clamp((e[1] + e[2] - e[0]) / denominator, -1.0, 1.0);
-}
 
 class Flipper {
  public:

@@ -2,6 +2,7 @@
 #include "detail/slab_remeshing.h"
 
 #include "contourmesh/internal/polygon2d.h"
+#include "detail/face_shape.h"
 
 #include <algorithm>
 #include <array>
@@ -17,13 +18,11 @@ namespace contourmesh::detail {
 
 namespace {
 
-// A face whose smallest angle is under 10 degrees is a sliver.
-const double kSliverCosine = std::cos(10.0 * std::numbers::pi / 180.0);
 // A face whose longest edge is at least this share of the sum of the other two is flat, not thin.
 constexpr double kFlatRatio = 0.97;
-// A face whose normal is within 30 degrees of the slice axis lies nearly in the slice planes: around
-// it the slab is a height field over the (u, v) plane, where points can be inserted as in a plane.
-const double kLevelCosine = std::cos(30.0 * std::numbers::pi / 180.0);
+// A face whose normal is within 30 degrees of the slice axis (kLevelCosine) lies nearly in the slice
+// planes: around it the slab is a height field over the (u, v) plane, where points can be inserted as in
+// a plane.
 // A point inserted into a sliver makes, with the sliver's shortest edge, a triangle with this angle at
 // the new point (the off-centre of Ungor 2004: the circumcentre when that is nearer): 20 degrees, twice
 // the angle that makes a sliver.
@@ -31,23 +30,10 @@ const double kOffCentreHeight = 0.5 / std::tan(10.0 * std::numbers::pi / 180.0);
 // A point is inserted only inside its face, this share of the face's barycentric range from each edge.
 constexpr double kMinBarycentric = 0.02;
 
-// A face whose normal is within 10 degrees of the slice axis is part of a shelf.
-const double kShelfCosine = std::cos(10.0 * std::numbers::pi / 180.0);
-
 // Twice the area of a face with normal n (its length) when the face is part of a shelf, else 0.
 double shelf_area(const Eigen::Vector3d& n) {
   const double length = n.norm();
   return std::abs(n.z()) >= kShelfCosine * length ? length : 0.0;
-}
-
-// Cosine of the smallest angle of a triangle (the angle opposite its shortest edge), in [0.5, 1]: a
-// measure of shape that falls as the smallest angle grows, without trigonometry. 1 for a degenerate one.
-double sharpness(const Eigen::Vector3d& a, const Eigen::Vector3d& b, const Eigen::Vector3d& c) {
-  double e[3] = {(b - c).squaredNorm(), (c - a).squaredNorm(), (a - b).squaredNorm()};
-  std::sort(e, e + 3);
-  const double denominator = 2.0 * std::sqrt(e[1] * e[2]);
-  if (!(denominator > 0.0)) return 1.0;
-  return std::clamp((e[1] + e[2] - e[0]) / denominator, -1.0, 1.0);
 }
 
 // The slab's faces over compact vertex indices, with a map from each directed edge to its face.
