@@ -59,6 +59,16 @@ enum class ProfileKinks {
            ///< passes, only the side holding the vertex is fitted (at the vertex: its one-sided windows)
 };
 
+/// The model of the one-sided windows of a profile cut at a slope break (ProfileKinks::Bound; docs/smoothing.md,
+/// "Lines beside a kink"). A profile without a significant break is fitted the same either way.
+enum class KinkSides {
+  Curves,  ///< the across model (parabola or circle), as on any profile
+  Lines,   ///< (default) a line grows beside each one-sided curve and replaces it where the two agree within
+           ///< gamma standard deviations of the curve and the line is more precise, or where the side has
+           ///< too few samples for a curve: a third of the parameters, half the variance or less at the
+           ///< window's end
+};
+
 /// What happens to the vertices between the slices after the contour vertices have moved.
 enum class OffSliceFilter {
   None,              ///< they follow the harmonic extension of the contour vertices' moves only
@@ -135,6 +145,8 @@ struct CrossSliceOptions {
   /// With ProfileKinks::Bound: the probability, in (0, 1), that a kink-free profile with Gaussian noise of
   /// the measured level is cut (a Bonferroni bound over the hinges scanned).
   double kink_false_rate = 0.01;
+  /// With ProfileKinks::Bound: the model of the one-sided windows of a profile cut at a slope break.
+  KinkSides kink_sides = KinkSides::Lines;
   CrossSliceStages stages = CrossSliceStages::AcrossThenAlong;
   /// Jacobi iterations of the harmonic extension to vertices off the slices, >= 0.
   int extension_iterations = 30;
