@@ -13,7 +13,7 @@
 //    a slice plane, the end of a feature) stop before it, those on the smooth side grow. The local
 //    fit is a parabola, or (ProfileModel::Circle) an algebraic circle. First, a hinge test over the
 //    whole profile finds a significant slope break (a junction between parts), and only the side of it
-//    holding the vertex is fitted (ProfileKinks).
+//    holding the vertex is fitted (ProfileKinks); there a line may replace each one-sided fit (KinkSides).
 // 2. Along the contour: the same on the profile of the contour's own vertices (in-slice jitter), where
 //    windows stop at corners (ridges crossing the slices).
 // 3. Contour vertices move along their in-slice normals only, so they stay in their slice planes;
