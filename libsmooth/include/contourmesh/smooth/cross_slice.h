@@ -62,8 +62,8 @@ enum class ProfileKinks {
 /// The model of the one-sided windows of a profile cut at a slope break (ProfileKinks::Bound; docs/smoothing.md,
 /// "Lines beside a kink"). A profile without a significant break is fitted the same either way.
 enum class KinkSides {
-  Curves,  ///< the across model (parabola or circle), as on any profile
-  Lines,   ///< (default) a line grows beside each one-sided curve and replaces it where the two agree within
+  Curves,  ///< (default) the across model (parabola or circle), as on any profile
+  Lines,   ///< a line grows beside each one-sided curve and replaces it where the two agree within
            ///< gamma standard deviations of the curve and the line is more precise, or where the side has
            ///< too few samples for a curve: a third of the parameters, half the variance or less at the
            ///< window's end
@@ -146,7 +146,7 @@ struct CrossSliceOptions {
   /// the measured level is cut (a Bonferroni bound over the hinges scanned).
   double kink_false_rate = 0.01;
   /// With ProfileKinks::Bound: the model of the one-sided windows of a profile cut at a slope break.
-  KinkSides kink_sides = KinkSides::Lines;
+  KinkSides kink_sides = KinkSides::Curves;
   CrossSliceStages stages = CrossSliceStages::AcrossThenAlong;
   /// Jacobi iterations of the harmonic extension to vertices off the slices, >= 0.
   int extension_iterations = 30;
