@@ -38,6 +38,9 @@ void check_options(const CrossSliceOptions& o) {
   if (o.across_kinks != ProfileKinks::Ignore && o.across_kinks != ProfileKinks::Bound) {
     fail("unknown kink handling " + std::to_string(static_cast<int>(o.across_kinks)));
   }
+  if (o.kink_sides != KinkSides::Curves && o.kink_sides != KinkSides::Lines) {
+    fail("unknown kink side model " + std::to_string(static_cast<int>(o.kink_sides)));
+  }
   if (!(o.kink_false_rate > 0.0 && o.kink_false_rate < 1.0)) fail("the kink false rate must be in (0, 1)");
   const OffSliceFilterOptions& f = o.off_slice;
   if (f.normal_iterations < 0 || f.vertex_iterations < 0) fail("off-slice filter iterations must be >= 0");
@@ -176,6 +179,7 @@ CrossSliceResult cross_slice_smooth(const Mesh& mesh, const CrossSliceOptions& o
   lpa.x_unit = frame.slice_spacing;  // the tangent frame's abscissa is in slice spacings, its ordinate in mm
   lpa.kinks = options.across_kinks == ProfileKinks::Bound;
   lpa.kink_false_rate = options.kink_false_rate;
+  lpa.kink_side_lines = options.kink_sides == KinkSides::Lines;
   const detail::NextCuts cuts = detail::next_cuts(frame, mesh.positions, normals);
   result.profiles = smooth_profiles(frame, mesh.positions, normals, lpa, ProfileFrame::Tangent, displacement,
                                     [&](const Eigen::Matrix3Xd& x, const Eigen::Matrix3Xd&, Index i,
@@ -196,6 +200,7 @@ CrossSliceResult cross_slice_smooth(const Mesh& mesh, const CrossSliceOptions& o
     lpa.max_half_width = options.along_reach;
     lpa.circle = false;
     lpa.kinks = false;
+    lpa.kink_side_lines = false;
     (void)smooth_profiles(frame, across, across_normals, lpa, ProfileFrame::InSlice, displacement,
                           [&](const Eigen::Matrix3Xd& x, const Eigen::Matrix3Xd&, Index i, const Eigen::Vector3d& m,
                               detail::Profile& p) {

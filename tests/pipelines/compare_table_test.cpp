@@ -70,6 +70,9 @@ TEST(MethodTable, VariantsParseIntoRowsOfTheirOwn) {
   EXPECT_EQ(v.options.cross_slice.across_kinks, ProfileKinks::Ignore);
   EXPECT_DOUBLE_EQ(v.options.cross_slice.kink_false_rate, 0.05);
   EXPECT_THROW((void)parse_variant("cut:kinks=cut"), InvalidInputError);
+  EXPECT_EQ(v.options.cross_slice.kink_sides, KinkSides::Curves);
+  EXPECT_EQ(parse_variant("straight-sides:kink-sides=lines").options.cross_slice.kink_sides, KinkSides::Lines);
+  EXPECT_THROW((void)parse_variant("flat-sides:kink-sides=flat"), InvalidInputError);
   v = parse_variant("paper-normal:preset=xu2006,measure=normal,in-slice=along-line");
   EXPECT_EQ(v.method, SmoothingMethod::FeaturePreserving);
   EXPECT_EQ(v.options.paper.detection.measure, UmbrellaMeasure::NormalComponent);

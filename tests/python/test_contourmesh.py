@@ -149,6 +149,12 @@ def test_cross_slice_kinks(box_mesh):
         cm.smooth(*box_mesh[:4], method="cross-slice", kinks="cut")
     with pytest.raises(cm.InvalidInputError, match="kink false rate"):
         cm.smooth(*box_mesh[:4], method="cross-slice", kinks="bound", kink_rate=1.5)
+    curves = cm.smooth(*box_mesh[:4], method="cross-slice", kink_sides="curves")
+    assert np.array_equal(default.points, curves.points)
+    lines = cm.smooth(*box_mesh[:4], method="cross-slice", kink_sides="lines")
+    assert lines.points.shape == default.points.shape and np.isfinite(lines.points).all()
+    with pytest.raises(cm.InvalidInputError, match="kink_sides must be"):
+        cm.smooth(*box_mesh[:4], method="cross-slice", kink_sides="flat")
 
 
 def test_errors_are_typed():

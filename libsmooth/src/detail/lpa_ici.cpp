@@ -160,8 +160,9 @@ bool fit_circle(const CircleSums& m, double x_unit, double& value, double& varia
 
 namespace {
 
-// The window kinds: below (x <= 0), above (x >= 0), and over both sides a parabola, a line, the mean.
-enum Kind { kBelow = 0, kAbove = 1, kSymmetric = 2, kLine = 3, kMean = 4, kKinds = 5 };
+// The window kinds: below (x <= 0), above (x >= 0), over both sides a parabola, a line, the mean, and
+// lines below and above (options.one_sided_lines).
+enum Kind { kBelow = 0, kAbove = 1, kSymmetric = 2, kLine = 3, kMean = 4, kBelowLine = 5, kAboveLine = 6, kKinds = 7 };
 
 // The ICI state of one window kind.
 struct Grown {
@@ -185,6 +186,16 @@ struct Grown {
     half_width = h;
   }
 };
+
+// A one-sided line replaces its side's curve where it agrees with it within gamma of the curve's
+// deviation and is more precise. A side too short for a curve gets no line either: a line through the
+// vertex and one more sample is the vertex itself, already counted by the other windows.
+void prefer_line(const Grown& line, const LpaIciOptions& o, Grown& curve) {
+  if (line.variance > 0.0 && curve.variance > 0.0 && line.variance < curve.variance &&
+      std::abs(line.value - curve.value) <= o.gamma * o.sigma * std::sqrt(curve.variance)) {
+    curve = line;
+  }
+}
 
 }  // namespace
 
@@ -212,6 +223,7 @@ LpaIciResult lpa_ici_impl(const Profile& p, const LpaIciOptions& o) {
   if constexpr (kCircle) circle_centre.add(0.0, r.value, o.x_unit);
   std::array<Grown, kKinds> g;
   if (!o.two_sided) g[kSymmetric].stopped = g[kLine].stopped = g[kMean].stopped = true;
+  if (!o.one_sided_lines) g[kBelowLine].stopped = g[kAboveLine].stopped = true;
   int lo = centre - 1, hi = centre + 1;
   for (int h = 1; h <= o.max_half_width; ++h) {
     const double reach = static_cast<double>(h) + 0.5;
@@ -236,6 +248,12 @@ LpaIciResult lpa_ici_impl(const Profile& p, const LpaIciOptions& o) {
                grow_mean = o.symmetric_mean && !g[kMean].stopped;
     const bool grow_both = (added_down || added_up) && (grow_symmetric || grow_line || grow_mean);
     double value = 0.0, variance = 0.0;
+    if (added_down && !g[kBelowLine].stopped && fit_line(centre_only + down, value, variance)) {
+      g[kBelowLine].offer(value, variance, h, o);
+    }
+    if (added_up && !g[kAboveLine].stopped && fit_line(centre_only + up, value, variance)) {
+      g[kAboveLine].offer(value, variance, h, o);
+    }
     // The curved model of a window: its circle where that is well posed (o.circle), else its parabola.
     // (Without kCircle the sums are never read and the calls reduce to fit_parabola.)
     const auto fit_curve = [&](const Moments& m, const CircleSums& c) {
@@ -286,6 +304,10 @@ LpaIciResult lpa_ici_impl(const Profile& p, const LpaIciOptions& o) {
       }
     }
     if (best != nullptr) symmetric = *best;
+  }
+  if (o.one_sided_lines) {
+    prefer_line(g[kBelowLine], o, g[kBelow]);
+    prefer_line(g[kAboveLine], o, g[kAbove]);
   }
   double num = 0.0, den = 0.0;
   for (const Grown* k : std::array<const Grown*, 3>{&g[kBelow], &g[kAbove], &symmetric}) {
@@ -338,6 +360,7 @@ LpaIciResult lpa_ici(const Profile& p, const LpaIciOptions& o) {
     bounded = side;
     current = &*bounded;
   }
+  local.one_sided_lines = o.one_sided_lines || (o.kink_side_lines && found > 0);
   LpaIciResult r = fit(*current, local);
   r.kinks = found;
   return r;

@@ -57,6 +57,14 @@ struct LpaIciOptions {
   double kink_false_rate = 0.01;
   /// Fit the two-sided windows (parabola, line, mean); false: the one-sided windows only.
   bool two_sided = true;
+  /// Where a kink bounds the profile (kinks above): grow a line on each one-sided window too, which
+  /// replaces that side's parabola where it agrees with it within gamma of the parabola's deviation and is
+  /// more precise (as the line replaces the two-sided parabola), or where the side is too short for a
+  /// parabola. A profile without a significant kink is fitted as without this option.
+  bool kink_side_lines = false;
+  /// Grow the one-sided lines on every profile, kink or not (lpa_ici turns them on where kink_side_lines
+  /// holds and a kink was found).
+  bool one_sided_lines = false;
 };
 
 /// The chosen windows of one estimate, for diagnostics and feature detection.
@@ -98,7 +106,8 @@ struct CircleSums {
 /// One-sided windows fit parabolas (their estimate at the window's end is biased by third-order terms
 /// only), two-sided windows a parabola and, optionally, a line; with `circle`, circles replace the
 /// parabolas of both (exact on arcs), each window falling back to the parabola where its circle is
-/// ill-posed. With `kinks`, the profile is first bounded at its significant slope breaks.
+/// ill-posed. With `kinks`, the profile is first bounded at its significant slope breaks; with
+/// `kink_side_lines` as well, the one-sided windows of a profile so bounded may take a line instead.
 [[nodiscard]] LpaIciResult lpa_ici(const Profile& profile, const LpaIciOptions& options);
 
 }  // namespace contourmesh::detail

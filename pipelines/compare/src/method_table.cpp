@@ -193,8 +193,10 @@ std::string cross_slice_settings(const SmoothOptions& o) {
                                                       : " only")
     << ", LPA-ICI windows (gamma " << c.gamma << ", "
     << (c.across_model == ProfileModel::Circle ? "circles" : "parabolas") << " across"
-    << (c.across_kinks == ProfileKinks::Bound ? ", bounded at slope breaks, false rate " + number(c.kink_false_rate)
-                                              : std::string())
+    << (c.across_kinks == ProfileKinks::Bound
+            ? ", bounded at slope breaks, false rate " + number(c.kink_false_rate) +
+                  (c.kink_sides == KinkSides::Lines ? ", lines beside them" : "")
+            : std::string())
     << ") for a noise level "
     << (c.noise_across ? number(*c.noise_across) + " mm" : std::string("estimated from the mesh"))
     << (c.off_slice.filter == OffSliceFilter::BilateralNormals

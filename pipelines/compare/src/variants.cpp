@@ -111,6 +111,10 @@ const std::vector<Key>& keys() {
          o.cross_slice.across_kinks =
              v.choice<ProfileKinks>({{"ignore", ProfileKinks::Ignore}, {"bound", ProfileKinks::Bound}});
        }},
+      {"kink-sides", kCrossSlice,
+       [](SmoothOptions& o, const Value& v) {
+         o.cross_slice.kink_sides = v.choice<KinkSides>({{"curves", KinkSides::Curves}, {"lines", KinkSides::Lines}});
+       }},
       {"kink-rate", kCrossSlice, [](SmoothOptions& o, const Value& v) { o.cross_slice.kink_false_rate = v.number(); }},
       {"stages", kCrossSlice,
        [](SmoothOptions& o, const Value& v) {

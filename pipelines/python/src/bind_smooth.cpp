@@ -198,6 +198,12 @@ MethodConfig method_config(const py::object& method_arg, Options& o, Mesh& mesh)
       else throw InvalidInputError("kinks must be 'ignore' or 'bound', got '" + s + "'");
     });
     o.take_double("kink_rate", co.kink_false_rate);
+    o.take("kink_sides", [&](const py::object& v) {
+      const std::string s = as_string(v, "kink_sides");
+      if (s == "curves") co.kink_sides = KinkSides::Curves;
+      else if (s == "lines") co.kink_sides = KinkSides::Lines;
+      else throw InvalidInputError("kink_sides must be 'curves' or 'lines', got '" + s + "'");
+    });
     o.take("stages", [&](const py::object& v) {
       const std::string s = as_string(v, "stages");
       if (s == "across-then-along") co.stages = CrossSliceStages::AcrossThenAlong;

@@ -100,6 +100,69 @@ TEST(LpaIciKinks, LeavesASmoothProfileAsItWas) {
   EXPECT_EQ(bounded.symmetric, plain.symmetric);
 }
 
+LpaIciOptions side_lines(double sigma, bool lines) {
+  LpaIciOptions o = options(sigma, true);
+  o.kink_side_lines = lines;
+  return o;
+}
+
+TEST(LpaIciKinkSides, LinesLowerTheErrorAtAStraightHinge) {
+  // A hinge between two straight sides (1.2 mm per slice each way: found at 0.4 mm of noise). With the
+  // vertex on it only the one-sided windows are fitted, and lines fit them without bias and with less
+  // variance than parabolas: the root-mean-square error drops. Beside it (one or two slices) the two-sided
+  // windows of the side holding the vertex dominate, and the lines must not make it worse.
+  std::mt19937 rng(21);
+  std::normal_distribution<double> noise(0.0, 0.4);
+  for (const int vertex : {0, -1, 2}) {
+    double sum2_lines = 0.0, sum2_curves = 0.0;
+    int both_found = 0;
+    constexpr int kTrials = 2000;
+    for (int t = 0; t < kTrials; ++t) {
+      Profile p = hinge_profile(vertex, 0.0, -1.2, 1.2);
+      for (int k = 0; k < p.size; ++k) p.y[static_cast<std::size_t>(k)] += noise(rng);
+      const LpaIciResult lines = lpa_ici(p, side_lines(0.4, true));
+      const LpaIciResult curves = lpa_ici(p, side_lines(0.4, false));
+      ASSERT_TRUE(lines.valid && curves.valid);
+      both_found += lines.kinks > 0 && curves.kinks > 0 ? 1 : 0;
+      sum2_lines += lines.value * lines.value;
+      sum2_curves += curves.value * curves.value;
+    }
+    const double rms_lines = std::sqrt(sum2_lines / kTrials), rms_curves = std::sqrt(sum2_curves / kTrials);
+    EXPECT_GT(both_found, kTrials * 9 / 10) << "vertex " << vertex;
+    EXPECT_LT(rms_lines, (vertex == 0 ? 0.85 : 1.0) * rms_curves) << "vertex " << vertex;
+  }
+}
+
+TEST(LpaIciKinkSides, CurvedSidesKeepTheirParabolas) {
+  // Two sides of the same curvature (0.3 mm per slice squared) with a slope break of 2 mm per slice
+  // between them: the hinge model is exact, and a line on either side disagrees with its parabola by far
+  // more than the noise (0.02 mm) allows, so the parabolas stay and every estimate is exact.
+  for (const int vertex : {-2, 0, 1, 3}) {
+    Profile p;
+    const auto side = [](double u) { return 0.3 * u * u + (u <= 0.0 ? -1.0 : 1.0) * u; };
+    for (int k = -8; k <= 8; ++k) p.push(k, side(vertex + k) - side(vertex));
+    const LpaIciResult lines = lpa_ici(p, side_lines(0.02, true));
+    ASSERT_TRUE(lines.valid);
+    EXPECT_GE(lines.kinks, 1) << "vertex " << vertex;
+    EXPECT_NEAR(lines.value, 0.0, 1e-9) << "vertex " << vertex;
+  }
+}
+
+TEST(LpaIciKinkSides, AProfileWithoutAKinkIsFittedAsBefore) {
+  std::mt19937 rng(22);
+  std::normal_distribution<double> noise(0.0, 0.4);
+  for (int t = 0; t < 200; ++t) {
+    Profile p;
+    for (int k = -8; k <= 8; ++k) p.push(k, 0.2 * k + 0.02 * k * k + noise(rng));
+    const LpaIciResult lines = lpa_ici(p, side_lines(0.4, true));
+    const LpaIciResult curves = lpa_ici(p, side_lines(0.4, false));
+    if (lines.kinks > 0) continue;  // a false alarm (rate 0.01): a bounded profile
+    EXPECT_EQ(lines.value, curves.value);
+    EXPECT_EQ(lines.below, curves.below);
+    EXPECT_EQ(lines.above, curves.above);
+  }
+}
+
 // The rate of kinks found on kink-free parabolas with Gaussian noise of sigma.
 double false_kink_rate(int half_width, double sigma, double alpha, int trials, unsigned seed) {
   std::mt19937 rng(seed);

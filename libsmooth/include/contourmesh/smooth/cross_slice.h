@@ -13,7 +13,7 @@
 //    a slice plane, the end of a feature) stop before it, those on the smooth side grow. The local
 //    fit is a parabola, or (ProfileModel::Circle) an algebraic circle. First, a hinge test over the
 //    whole profile finds a significant slope break (a junction between parts), and only the side of it
-//    holding the vertex is fitted (ProfileKinks).
+//    holding the vertex is fitted (ProfileKinks); there a line may replace each one-sided fit (KinkSides).
 // 2. Along the contour: the same on the profile of the contour's own vertices (in-slice jitter), where
 //    windows stop at corners (ridges crossing the slices).
 // 3. Contour vertices move along their in-slice normals only, so they stay in their slice planes;
@@ -57,6 +57,16 @@ enum class ProfileKinks {
   Bound,   ///< (default) a hinge test over the whole profile (a parabola with a slope break at one sample,
            ///< against one parabola, at the measured noise) finds the most significant break; where it
            ///< passes, only the side holding the vertex is fitted (at the vertex: its one-sided windows)
+};
+
+/// The model of the one-sided windows of a profile cut at a slope break (ProfileKinks::Bound; docs/smoothing.md,
+/// "Lines beside a kink"). A profile without a significant break is fitted the same either way.
+enum class KinkSides {
+  Curves,  ///< (default) the across model (parabola or circle), as on any profile
+  Lines,   ///< a line grows beside each one-sided curve and replaces it where the two agree within
+           ///< gamma standard deviations of the curve and the line is more precise, or where the side has
+           ///< too few samples for a curve: a third of the parameters, half the variance or less at the
+           ///< window's end
 };
 
 /// What happens to the vertices between the slices after the contour vertices have moved.
@@ -135,6 +145,8 @@ struct CrossSliceOptions {
   /// With ProfileKinks::Bound: the probability, in (0, 1), that a kink-free profile with Gaussian noise of
   /// the measured level is cut (a Bonferroni bound over the hinges scanned).
   double kink_false_rate = 0.01;
+  /// With ProfileKinks::Bound: the model of the one-sided windows of a profile cut at a slope break.
+  KinkSides kink_sides = KinkSides::Curves;
   CrossSliceStages stages = CrossSliceStages::AcrossThenAlong;
   /// Jacobi iterations of the harmonic extension to vertices off the slices, >= 0.
   int extension_iterations = 30;

@@ -96,10 +96,10 @@ struct MethodVariant {
 /// xu2006) with the listed options changed. NAME (letters, digits, '-', '_', '.') becomes the row's id.
 /// Keys, by method:
 /// - cross-slice: reach, along-reach, gamma, precise-noise (mm), noise-across, noise-along (mm),
-///   profile-model (parabola | circle), kinks (ignore | bound), kink-rate (probability), stages
-///   (across-then-along | across-only), extension-iterations, off-slice-filter (bilateral | none),
-///   off-slice-motion (free | axis), off-slice-range (faces | patches), normal-iterations, normal-sigma
-///   (degrees), vertex-iterations, max-move (slice spacings), contour-max-move (mm), crease-radius,
+///   profile-model (parabola | circle), kinks (ignore | bound), kink-rate (probability), kink-sides
+///   (lines | curves), stages (across-then-along | across-only), extension-iterations, off-slice-filter
+///   (bilateral | none), off-slice-motion (free | axis), off-slice-range (faces | patches), normal-iterations,
+///   normal-sigma (degrees), vertex-iterations, max-move (slice spacings), contour-max-move (mm), crease-radius,
 ///   edge-threshold, corner-threshold, min-extent, band;
 /// - paper: iterations, lambda, mu, max-levels, diffusion (taubin | laplacian), measure (length | normal),
 ///   in-slice (noise | along-line), gamma-factor, delta-factor, window, corner-spread, prefilter;
