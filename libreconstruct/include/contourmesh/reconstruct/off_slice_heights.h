@@ -61,6 +61,7 @@ struct OffSliceOptions {
   double min_fraction = 0.1;
   /// The image is read this many pixels inwards along the vertex's in-plane normal (scaled by the
   /// normal's in-plane part), >= 0: at a cap's rim the boundary column itself is blurred in the plane.
+  /// Off the caps the step is scaled by default (`inward_read`).
   double inward_pixels = 1.0;
   InwardRead inward_read = InwardRead::ScaledOffCaps;
 };
