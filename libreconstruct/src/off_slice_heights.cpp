@@ -112,8 +112,12 @@ Eigen::Vector3d face_normal(const Eigen::Matrix3Xd& x, const Triangle& t) {
 }  // namespace
 
 OffSliceResult fit_off_slice_heights(Mesh mesh, const CtImage& image, double threshold,
-                                     const OffSliceOptions& options) {
+                                     const OffSliceOptions& options, const std::vector<FaceRole>& face_roles) {
   check(mesh, options);
+  if (!face_roles.empty() && face_roles.size() != mesh.triangles.size()) {
+    throw InvalidInputError("off-slice heights: " + std::to_string(face_roles.size()) + " face roles for " +
+                            std::to_string(mesh.triangles.size()) + " faces");
+  }
   OffSliceResult result;
   if (options.placement == OffSlicePlacement::Tiled || mesh.num_vertices() == 0) {
     result.mesh = std::move(mesh);
@@ -125,6 +129,17 @@ OffSliceResult fit_off_slice_heights(Mesh mesh, const CtImage& image, double thr
   const double h = sampler.spacing(2);
   const Eigen::Matrix3Xd normals = vertex_normals(mesh.positions, mesh.triangles);
   const MeshAdjacency adjacency = build_adjacency(mesh);
+
+  // Which vertices read the whole step inwards: those of end caps (every vertex without roles, or when
+  // asked); the others a step that shrinks as the surface there turns towards the slices.
+  std::vector<std::uint8_t> reads_inward(static_cast<std::size_t>(n), 1);
+  if (options.inward_read == InwardRead::ScaledOffCaps && !face_roles.empty()) {
+    std::fill(reads_inward.begin(), reads_inward.end(), std::uint8_t{0});
+    for (std::size_t f = 0; f < face_roles.size(); ++f) {
+      if (face_roles[f] != FaceRole::Cap) continue;
+      for (Index v : mesh.triangles[f]) reads_inward[static_cast<std::size_t>(v)] = 1;
+    }
+  }
 
   // Data term and bounds per vertex, all as displacements along w in mm.
   std::vector<double> target(n, 0.0), weight(n, 0.0), low(n, 0.0), high(n, 0.0);
@@ -142,7 +157,11 @@ OffSliceResult fit_off_slice_heights(Mesh mesh, const CtImage& image, double thr
     high[v] = (1.0 - options.min_fraction - frac) * h;
     const Eigen::Vector3d nv = normals.col(v);
     const double nu = nv.dot(sampler.axis(0)), nw = nv.dot(w), nvv = nv.dot(sampler.axis(1));
-    const double x = index.x() - options.inward_pixels * nu, y = index.y() - options.inward_pixels * nvv;
+    const double tilt = std::abs(nw) / std::max(nv.norm(), 1e-12);  // |cos| of the angle to the slice axis
+    const double inward = reads_inward[static_cast<std::size_t>(v)]
+                              ? options.inward_pixels
+                              : options.inward_pixels * std::sqrt(std::max(0.0, 1.0 - tilt));
+    const double x = index.x() - inward * nu, y = index.y() - inward * nvv;
     double t = 0.0;
     if (!crossing(sampler, x, y, k, threshold, t)) continue;
     t = std::clamp(t, options.min_fraction, 1.0 - options.min_fraction);
@@ -179,6 +198,10 @@ OffSliceResult fit_off_slice_heights(Mesh mesh, const CtImage& image, double thr
              static_cast<long long>(std::floor(index.z()))}]
         .emplace_back(index.z() * h, v);
   }
+  // Two vertices of one column must keep at least this share of the gap the tiler left between them:
+  // nearer, their faces are all but degenerate (a zero-area face on the headsq scan once the vertices
+  // off the caps read their own columns, which gives the two the same data term).
+  constexpr double kMinGapShare = 0.3;
   for (auto& [key, column] : columns) {
     if (column.size() < 2) continue;
     std::sort(column.begin(), column.end());
@@ -186,7 +209,7 @@ OffSliceResult fit_off_slice_heights(Mesh mesh, const CtImage& image, double thr
     for (std::size_t k = 0; k + 1 < column.size(); ++k) {
       const auto& [z0, v0] = column[k];
       const auto& [z1, v1] = column[k + 1];
-      apart = apart && (z1 + d[v1]) - (z0 + d[v0]) > 1e-3 * (z1 - z0);
+      apart = apart && (z1 + d[v1]) - (z0 + d[v0]) > kMinGapShare * (z1 - z0);
     }
     if (!apart) {
       for (const auto& entry : column) d[entry.second] = 0.0;

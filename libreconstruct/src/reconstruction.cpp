@@ -116,7 +116,7 @@ Reconstruction reconstruct(const CtImage& image, const ReconstructionOptions& op
   }
   t0 = std::chrono::steady_clock::now();
   OffSliceResult placed = fit_off_slice_heights(std::move(tiled.mesh), seg.smoothed_image ? *seg.smoothed_image : image,
-                                                seg.threshold, options.off_slice);
+                                                seg.threshold, options.off_slice, tiled.face_roles);
   tiled.mesh = std::move(placed.mesh);
   if (options.off_slice.placement == OffSlicePlacement::ImageCrossing) {
     // The heights move vertices without ids between the slices; flips mend the slivers that makes, within

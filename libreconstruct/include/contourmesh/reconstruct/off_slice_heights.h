@@ -11,11 +11,13 @@
 // "Off-slice heights".
 #pragma once
 
+#include "contourmesh/reconstruct/tiling.h"
 #include "contourmesh/reconstruct/volume.h"
 
 #include <contourmesh/smooth/mesh.h>
 
 #include <cstddef>
+#include <vector>
 
 namespace contourmesh {
 
@@ -28,6 +30,22 @@ enum class OffSlicePlacement {
   /// Moved along the slice axis to where the image crosses the threshold between the two slices around
   /// them (fit_off_slice_heights). Default of the image route.
   ImageCrossing,
+};
+
+/// How far inwards of its own column each vertex reads the image.
+enum class InwardRead {
+  /// Vertices of end caps (faces of role FaceRole::Cap, when the face roles are given) read the whole
+  /// step of `inward_pixels`; every other vertex a step scaled by sqrt(1 - |n_w|) for its unit normal
+  /// n (the whole step on a wall along the slice axis, none on a face parallel to the slices). At a
+  /// cap's rim, and on a steep wall, the boundary column is blurred in the plane and the step reads a
+  /// column that crosses; on a face tilted off the slices the column a step inwards crosses at another
+  /// height than the vertex's own, a bias of about the step times the face's slope, which laid the
+  /// intermediate contours of the pelvis phantom's branchings out as flat rows
+  /// (docs/reconstruction.md, "Off-slice heights"). Without face roles every vertex reads the whole
+  /// step. Default.
+  ScaledOffCaps,
+  /// Every vertex reads the whole step (the rule until 2026-11-25).
+  Whole,
 };
 
 struct OffSliceOptions {
@@ -43,7 +61,9 @@ struct OffSliceOptions {
   double min_fraction = 0.1;
   /// The image is read this many pixels inwards along the vertex's in-plane normal (scaled by the
   /// normal's in-plane part), >= 0: at a cap's rim the boundary column itself is blurred in the plane.
+  /// Off the caps the step is scaled by default (`inward_read`).
   double inward_pixels = 1.0;
+  InwardRead inward_read = InwardRead::ScaledOffCaps;
 };
 
 struct OffSliceReport {
@@ -74,7 +94,10 @@ struct OffSliceResult {
 /// and the connectivity are unchanged. `threshold` is the one the contours were traced at; `image` is
 /// the one they were traced on. Throws InvalidInputError when the mesh has no ids or the options are
 /// out of range.
+/// `face_roles` (one per face, as tile_contours gives them, or empty) tell the end caps' vertices apart
+/// for InwardRead::ScaledOffCaps; InvalidInputError when given with another count than the faces.
 [[nodiscard]] OffSliceResult fit_off_slice_heights(Mesh mesh, const CtImage& image, double threshold,
-                                                   const OffSliceOptions& options = {});
+                                                   const OffSliceOptions& options = {},
+                                                   const std::vector<FaceRole>& face_roles = {});
 
 }  // namespace contourmesh
