@@ -100,7 +100,8 @@ TEST(Adjacency, ChunkedRingsMatchAPlainBuildClosedAndOpen) {
   Mesh open_mesh = closed;
   // Without the caps (the faces touching a vertex without ids): both end contours become boundaries.
   std::erase_if(open_mesh.triangles, [&](const Triangle& t) {
-    return std::any_of(t.begin(), t.end(), [&](Index v) { return open_mesh.slice_ids[static_cast<std::size_t>(v)] < 0; });
+    return std::any_of(t.begin(), t.end(),
+                       [&](Index v) { return open_mesh.slice_ids[static_cast<std::size_t>(v)] < 0; });
   });
   ASSERT_GT(closed.num_vertices(), 2 * 16384);
   const Mesh& open = open_mesh;
