@@ -195,7 +195,9 @@ CrossSliceResult cross_slice_smooth(const Mesh& mesh, const CrossSliceOptions& o
   result.mesh = mesh;
   if (options.stages == CrossSliceStages::AcrossThenAlong) {
     Eigen::Matrix3Xd& across = result.mesh.positions;
-    across += displacement;
+    detail::parallel_chunks(static_cast<std::size_t>(n), 16384, [&](std::size_t, std::size_t begin, std::size_t end) {
+      for (auto i = static_cast<Index>(begin); i < static_cast<Index>(end); ++i) across.col(i) += displacement.col(i);
+    });
     const Eigen::Matrix3Xd across_normals = vertex_normals(across, mesh.triangles, frame.adjacency);
     result.noise_along = options.noise_along.value_or(detail::profile_noise(frame, across, across_normals, false));
     lpa.sigma = result.noise_along;
@@ -211,7 +213,11 @@ CrossSliceResult cross_slice_smooth(const Mesh& mesh, const CrossSliceOptions& o
 
   // 3. Vertices off the slices follow.
   extend_displacements(frame, options.extension_iterations, displacement);
-  result.mesh.positions = mesh.positions + displacement;
+  detail::parallel_chunks(static_cast<std::size_t>(n), 16384, [&](std::size_t, std::size_t begin, std::size_t end) {
+    for (auto i = static_cast<Index>(begin); i < static_cast<Index>(end); ++i) {
+      result.mesh.positions.col(i) = mesh.positions.col(i) + displacement.col(i);
+    }
+  });
   result.off_slice_moved =
       detail::filter_off_slice_normals(frame, mesh.triangles, options.off_slice, result.mesh.positions);
   result.seconds_smooth = seconds_since(t);

@@ -434,10 +434,12 @@ void filter_normals(const Workspace& w, const OffSliceFilterOptions& options, co
       last_guidance.swap(guidance);
       guidance = normals;
       guidance_normals(w, *patches, normals, changed, all, min_cos, mean, consistency, guidance);
-      for (std::size_t l = 0; l < nl; ++l) {
-        const auto ll = static_cast<Index>(l);
-        guided_changed[l] = all || !same_bits(guidance.col(ll), last_guidance.col(ll));
-      }
+      parallel_chunks(nl, 8192, [&](std::size_t, std::size_t begin, std::size_t end) {
+        for (std::size_t l = begin; l < end; ++l) {
+          const auto ll = static_cast<Index>(l);
+          guided_changed[l] = all || !same_bits(guidance.col(ll), last_guidance.col(ll));
+        }
+      });
     }
     const Eigen::Matrix3Xd& compared = patches ? guidance : normals;
     const std::vector<std::uint8_t>& compared_changed = patches ? guided_changed : changed;
@@ -544,12 +546,14 @@ void update_vertices(const ContourFrame& frame, const Workspace& w, const Eigen:
         updated.col(static_cast<Index>(m)) = x0 + d;
       }
     });
-    for (std::size_t m = 0; m < nm; ++m) {
-      const Index i = w.moving[m];
-      const auto u = updated.col(static_cast<Index>(m));
-      moved[static_cast<std::size_t>(i)] = same_bits(u, x.col(i)) ? 0 : 1;
-      x.col(i) = u;
-    }
+    parallel_chunks(nm, 4096, [&](std::size_t, std::size_t begin, std::size_t end) {
+      for (std::size_t m = begin; m < end; ++m) {
+        const Index i = w.moving[m];
+        const auto u = updated.col(static_cast<Index>(m));
+        moved[static_cast<std::size_t>(i)] = same_bits(u, x.col(i)) ? 0 : 1;
+        x.col(i) = u;
+      }
+    });
   }
 }
 
