@@ -22,7 +22,8 @@ namespace contourmesh {
                                               const std::vector<Triangle>& triangles);
 
 /// The same normals, bit for bit, on every core: each vertex sums its incident faces (`adjacency`, built
-/// from these triangles) in ascending face order, as the one-pass version adds them.
+/// from these triangles) in ascending face order, as the one-pass version adds them. Throws
+/// InvalidInputError when the adjacency's vertex count is not the positions'.
 [[nodiscard]] Eigen::Matrix3Xd vertex_normals(const Eigen::Matrix3Xd& positions, const std::vector<Triangle>& triangles,
                                               const MeshAdjacency& adjacency);
 
