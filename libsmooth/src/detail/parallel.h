@@ -40,8 +40,7 @@ class ScopedWorkerCount {
 };
 
 /// Calls body(chunk, begin, end) for the chunks [k * chunk_size, min(n, (k + 1) * chunk_size)), on all
-/// cores (the calling thread among them). The first exception thrown by a body is rethrown after every
-/// thread has stopped.
+/// cores. The first exception thrown by a body is rethrown after every thread has stopped.
 template <typename Body>
 void parallel_chunks(std::size_t n, std::size_t chunk_size, const Body& body) {
   chunk_size = std::max<std::size_t>(chunk_size, 1);
@@ -61,12 +60,14 @@ void parallel_chunks(std::size_t n, std::size_t chunk_size, const Body& body) {
       }
     }
   };
-  // The calling thread takes chunks too: one thread fewer to start for each of the many short loops.
-  std::vector<std::thread> pool;
-  pool.reserve(threads > 0 ? threads - 1 : 0);
-  for (unsigned t = 1; t < threads; ++t) pool.emplace_back(work);
-  work();
-  for (std::thread& t : pool) t.join();
+  if (threads <= 1) {
+    work();
+  } else {
+    std::vector<std::thread> pool;
+    pool.reserve(threads);
+    for (unsigned t = 0; t < threads; ++t) pool.emplace_back(work);
+    for (std::thread& t : pool) t.join();
+  }
   if (error) std::rethrow_exception(error);
 }
 
