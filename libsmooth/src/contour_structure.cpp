@@ -4,6 +4,7 @@
 #include "contourmesh/smooth/errors.h"
 
 #include "contourmesh/internal/union_find.h"
+#include "detail/parallel.h"
 
 #include <Eigen/Eigenvalues>
 
@@ -50,25 +51,28 @@ ContourNeighbours contour_neighbours(const Mesh& mesh, const MeshAdjacency& adj)
   out.of.assign(static_cast<std::size_t>(n), {-1, -1});
   const auto& slice = mesh.slice_ids;
   const auto& contour = mesh.contour_ids;
-  for (Index i = 0; i < n; ++i) {
-    if (slice[i] == kNoId) continue;
-    std::array<Index, 2> found{-1, -1};
-    int count = 0;
-    for (Index j : adj.ring(i)) {
-      if (slice[j] != slice[i] || contour[j] != contour[i]) continue;
-      // A contour edge has a triangle reaching off the slice; a cap chord has none.
-      bool off_slice = false;
-      for (Index f : adj.incident_faces(i)) {
-        const Triangle& t = mesh.triangles[f];
-        if (std::find(t.begin(), t.end(), j) == t.end()) continue;
-        for (Index v : t) off_slice = off_slice || slice[v] != slice[i];
+  // Each vertex reads its own ring only: fixed chunks on every core.
+  detail::parallel_chunks(static_cast<std::size_t>(n), 8192, [&](std::size_t, std::size_t begin, std::size_t end) {
+    for (auto i = static_cast<Index>(begin); i < static_cast<Index>(end); ++i) {
+      if (slice[i] == kNoId) continue;
+      std::array<Index, 2> found{-1, -1};
+      int count = 0;
+      for (Index j : adj.ring(i)) {
+        if (slice[j] != slice[i] || contour[j] != contour[i]) continue;
+        // A contour edge has a triangle reaching off the slice; a cap chord has none.
+        bool off_slice = false;
+        for (Index f : adj.incident_faces(i)) {
+          const Triangle& t = mesh.triangles[f];
+          if (std::find(t.begin(), t.end(), j) == t.end()) continue;
+          for (Index v : t) off_slice = off_slice || slice[v] != slice[i];
+        }
+        if (!off_slice) continue;
+        if (count < 2) found[count] = j;
+        ++count;
       }
-      if (!off_slice) continue;
-      if (count < 2) found[count] = j;
-      ++count;
+      if (count == 2) out.of[i] = found;
     }
-    if (count == 2) out.of[i] = found;
-  }
+  });
   return out;
 }
 

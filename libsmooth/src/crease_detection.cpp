@@ -286,28 +286,31 @@ CreaseDetection detect_creases(const Mesh& mesh, const MeshAdjacency& adjacency,
     return result.corner_strength[i] >= options.corner_threshold &&
            (!confirm || result.confirm_corner_strength[i] >= options.confirm_corner_threshold);
   };
-  for (Index i = 0; i < n; ++i) {
-    const bool corner = is_corner(i);
-    if (!corner && result.edge_strength[i] < options.edge_threshold) continue;
-    if (confirm && result.confirm_strength[i] < threshold[i]) {
-      result.labels[static_cast<std::size_t>(i)] = VertexLabel::Noise;  // not a crease at the ball's scale
-      continue;
-    }
-    bool maximum = true;
-    if (!corner) {
-      const Eigen::Vector3d t = along.col(i);
-      for (Index j : adjacency.ring(i)) {
-        const Eigen::Vector3d d = mesh.positions.col(j) - mesh.positions.col(i);
-        const double along_part = std::abs(d.dot(t));
-        const double across_part = (d - d.dot(t) * t).norm();
-        if (across_part > along_part && result.edge_strength[j] > result.edge_strength[i]) {
-          maximum = false;
-          break;
+  // Each vertex reads the strengths and sets its own entries only: fixed chunks on every core.
+  detail::parallel_chunks(static_cast<std::size_t>(n), 8192, [&](std::size_t, std::size_t begin, std::size_t end) {
+    for (auto i = static_cast<Index>(begin); i < static_cast<Index>(end); ++i) {
+      const bool corner = is_corner(i);
+      if (!corner && result.edge_strength[i] < options.edge_threshold) continue;
+      if (confirm && result.confirm_strength[i] < threshold[i]) {
+        result.labels[static_cast<std::size_t>(i)] = VertexLabel::Noise;  // not a crease at the ball's scale
+        continue;
+      }
+      bool maximum = true;
+      if (!corner) {
+        const Eigen::Vector3d t = along.col(i);
+        for (Index j : adjacency.ring(i)) {
+          const Eigen::Vector3d d = mesh.positions.col(j) - mesh.positions.col(i);
+          const double along_part = std::abs(d.dot(t));
+          const double across_part = (d - d.dot(t) * t).norm();
+          if (across_part > along_part && result.edge_strength[j] > result.edge_strength[i]) {
+            maximum = false;
+            break;
+          }
         }
       }
+      core[static_cast<std::size_t>(i)] = maximum;
     }
-    core[static_cast<std::size_t>(i)] = maximum;
-  }
+  });
   // Two core vertices on adjacent contours' slices within link_radius of each other (through vertices
   // within it) belong to one line when the segment between them runs along the crease at both ends (a
   // corner has no crease direction): a crease oblique to the slices meets adjacent contours at vertices

@@ -141,16 +141,22 @@ void extend_displacements(const detail::ContourFrame& frame, int iterations, Eig
     if (!frame.is_contour_vertex(i) && frame.adjacency.valence(i) > 0) free.push_back(i);
   }
   if (free.empty()) return;
-  // Each iteration's averages, for the free vertices only (the others are held), then written back.
+  // Each iteration's averages, for the free vertices only (the others are held), then written back:
+  // Jacobi steps, each vertex independent, in fixed chunks on every core.
   Eigen::Matrix3Xd next(3, static_cast<Index>(free.size()));
+  constexpr std::size_t kChunk = 4096;
   for (int it = 0; it < iterations; ++it) {
-    for (std::size_t k = 0; k < free.size(); ++k) {
-      Eigen::Vector3d sum = Eigen::Vector3d::Zero();
-      const auto ring = frame.adjacency.ring(free[k]);
-      for (Index j : ring) sum += displacement.col(j);
-      next.col(static_cast<Index>(k)) = sum / static_cast<double>(ring.size());
-    }
-    for (std::size_t k = 0; k < free.size(); ++k) displacement.col(free[k]) = next.col(static_cast<Index>(k));
+    detail::parallel_chunks(free.size(), kChunk, [&](std::size_t, std::size_t begin, std::size_t end) {
+      for (std::size_t k = begin; k < end; ++k) {
+        Eigen::Vector3d sum = Eigen::Vector3d::Zero();
+        const auto ring = frame.adjacency.ring(free[k]);
+        for (Index j : ring) sum += displacement.col(j);
+        next.col(static_cast<Index>(k)) = sum / static_cast<double>(ring.size());
+      }
+    });
+    detail::parallel_chunks(free.size(), kChunk, [&](std::size_t, std::size_t begin, std::size_t end) {
+      for (std::size_t k = begin; k < end; ++k) displacement.col(free[k]) = next.col(static_cast<Index>(k));
+    });
   }
 }
 
@@ -168,7 +174,7 @@ CrossSliceResult cross_slice_smooth(const Mesh& mesh, const CrossSliceOptions& o
   detail::LpaIciOptions lpa;
 
   // 1. Across the slices.
-  const Eigen::Matrix3Xd normals = vertex_normals(mesh.positions, mesh.triangles);
+  const Eigen::Matrix3Xd normals = vertex_normals(mesh.positions, mesh.triangles, frame.adjacency);
   result.noise_across = options.noise_across.value_or(detail::profile_noise(frame, mesh.positions, normals, true));
   // The reach: short where the contours are precise, long where they are noisy (precise_noise).
   result.reach = options.reach.value_or(result.noise_across < options.precise_noise ? 4 : 8);
@@ -193,8 +199,10 @@ CrossSliceResult cross_slice_smooth(const Mesh& mesh, const CrossSliceOptions& o
   result.mesh = mesh;
   if (options.stages == CrossSliceStages::AcrossThenAlong) {
     Eigen::Matrix3Xd& across = result.mesh.positions;
-    across += displacement;
-    const Eigen::Matrix3Xd across_normals = vertex_normals(across, mesh.triangles);
+    detail::parallel_chunks(static_cast<std::size_t>(n), 16384, [&](std::size_t, std::size_t begin, std::size_t end) {
+      for (auto i = static_cast<Index>(begin); i < static_cast<Index>(end); ++i) across.col(i) += displacement.col(i);
+    });
+    const Eigen::Matrix3Xd across_normals = vertex_normals(across, mesh.triangles, frame.adjacency);
     result.noise_along = options.noise_along.value_or(detail::profile_noise(frame, across, across_normals, false));
     lpa.sigma = result.noise_along;
     lpa.max_half_width = options.along_reach;
@@ -210,7 +218,11 @@ CrossSliceResult cross_slice_smooth(const Mesh& mesh, const CrossSliceOptions& o
 
   // 3. Vertices off the slices follow.
   extend_displacements(frame, options.extension_iterations, displacement);
-  result.mesh.positions = mesh.positions + displacement;
+  detail::parallel_chunks(static_cast<std::size_t>(n), 16384, [&](std::size_t, std::size_t begin, std::size_t end) {
+    for (auto i = static_cast<Index>(begin); i < static_cast<Index>(end); ++i) {
+      result.mesh.positions.col(i) = mesh.positions.col(i) + displacement.col(i);
+    }
+  });
   result.off_slice_moved =
       detail::filter_off_slice_normals(frame, mesh.triangles, options.off_slice, result.mesh.positions);
   result.seconds_smooth = seconds_since(t);

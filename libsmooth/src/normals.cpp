@@ -1,6 +1,11 @@
 // SPDX-License-Identifier: BSD-3-Clause
 #include "contourmesh/smooth/normals.h"
 
+#include "detail/parallel.h"
+#include "contourmesh/smooth/errors.h"
+
+#include <string>
+
 namespace contourmesh {
 
 Eigen::Matrix3Xd face_normals(const Eigen::Matrix3Xd& positions, const std::vector<Triangle>& triangles) {
@@ -37,6 +42,35 @@ Eigen::Matrix3Xd vertex_normals(const Eigen::Matrix3Xd& positions, const std::ve
     const double len = normals.col(i).norm();
     if (len > 0.0) normals.col(i) /= len;
   }
+  return normals;
+}
+
+Eigen::Matrix3Xd vertex_normals(const Eigen::Matrix3Xd& positions, const std::vector<Triangle>& triangles,
+                                const MeshAdjacency& adjacency) {
+  if (adjacency.num_vertices() != static_cast<Index>(positions.cols())) {
+    throw InvalidInputError("vertex normals: the adjacency has " + std::to_string(adjacency.num_vertices()) +
+                            " vertices, the positions " + std::to_string(positions.cols()));
+  }
+  // The faces' unnormalised cross products first (each once), then every vertex's sum over its faces.
+  Eigen::Matrix3Xd cross(3, static_cast<Eigen::Index>(triangles.size()));
+  detail::parallel_chunks(triangles.size(), 16384, [&](std::size_t, std::size_t begin, std::size_t end) {
+    for (std::size_t f = begin; f < end; ++f) {
+      const Triangle& t = triangles[f];
+      cross.col(static_cast<Eigen::Index>(f)) =
+          (positions.col(t[1]) - positions.col(t[0])).cross(positions.col(t[2]) - positions.col(t[0]));
+    }
+  });
+  Eigen::Matrix3Xd normals(3, positions.cols());
+  const auto n = static_cast<std::size_t>(positions.cols());
+  detail::parallel_chunks(n, 16384, [&](std::size_t, std::size_t begin, std::size_t end) {
+    for (auto i = static_cast<Index>(begin); i < static_cast<Index>(end); ++i) {
+      Eigen::Vector3d sum = Eigen::Vector3d::Zero();
+      for (Index f : adjacency.incident_faces(i)) sum += cross.col(f);
+      normals.col(i) = sum;
+      const double len = normals.col(i).norm();
+      if (len > 0.0) normals.col(i) /= len;
+    }
+  });
   return normals;
 }
 

@@ -132,6 +132,42 @@ TEST(CrossSliceOffSlice, SameResultOnOneThreadAndOnSeveral) {
   EXPECT_EQ(one.labels, several.labels);
 }
 
+// Every stage of the default (adjacency, contour frame, vertex normals, noise estimates, next cuts,
+// profiles, extension, off-slice filter, creases) runs in fixed chunks: on a mesh of several chunks of
+// each (about 40k vertices, contours with noise and a ridge, vertices between them with noise) the whole
+// result is the same, bit for bit, on one thread and on several.
+TEST(CrossSlice, WholeDefaultSameOnOneThreadAndOnSeveral) {
+  ContourStackSpec spec = test::cylinder_spec(20.0, 101);
+  spec.curve = ridge_circle_curve(20.0, 4.0, 0.4);
+  spec.points_per_contour = 400;
+  Mesh mesh = noisy_off_slice_cylinder(spec);
+  std::mt19937_64 rng(3);
+  std::normal_distribution<double> noise(0.0, 0.1);
+  for (Index i = 0; i < mesh.num_vertices(); ++i) {
+    if (mesh.slice_ids[i] < 0) continue;
+    for (int a = 0; a < 2; ++a) mesh.positions(a, i) += noise(rng);  // within the slice plane
+  }
+  ASSERT_GT(mesh.num_vertices(), 2 * 16384);
+  CrossSliceResult one, several;
+  {
+    const detail::ScopedWorkerCount threads(1);
+    one = cross_slice_smooth(mesh);
+  }
+  {
+    const detail::ScopedWorkerCount threads(3);
+    several = cross_slice_smooth(mesh);
+  }
+  EXPECT_GT(one.profiles, 16384u);
+  EXPECT_GT(one.off_slice_moved, 4096u);
+  EXPECT_EQ(one.noise_across, several.noise_across);
+  EXPECT_EQ(one.noise_along, several.noise_along);
+  EXPECT_EQ(one.profiles, several.profiles);
+  EXPECT_EQ(one.off_slice_moved, several.off_slice_moved);
+  EXPECT_TRUE(one.mesh.positions == several.mesh.positions);
+  EXPECT_EQ(one.labels, several.labels);
+  EXPECT_EQ(one.features.edge_strength, several.features.edge_strength);
+}
+
 // A cone (radius 10 + 1.5 z: walls 34 degrees off the slice planes) sampled every half millimetre, whose
 // slices at multiples of 2 mm are contours and the three between each pair are rows of vertices without
 // ids, with their heights pulled towards the middle of their slab by `compression` (0: exact, 1: all at

@@ -1,6 +1,7 @@
 // SPDX-License-Identifier: BSD-3-Clause
 #include "detail/contour_profiles.h"
 
+#include "detail/parallel.h"
 #include "contourmesh/smooth/errors.h"
 
 #include <algorithm>
@@ -58,23 +59,25 @@ ContourFrame make_contour_frame(const Mesh& mesh) {
   }
   f.above.assign(static_cast<std::size_t>(n), -1);
   f.below.assign(static_cast<std::size_t>(n), -1);
-  for (Index i = 0; i < n; ++i) {
-    if (!f.is_contour_vertex(i)) continue;
-    for (const bool upward : {true, false}) {
-      double best = std::numeric_limits<double>::infinity();
-      Index pick = -1;
-      for (Index j : upward ? f.rings.above(i) : f.rings.below(i)) {
-        if (!f.is_contour_vertex(j)) continue;
-        const Eigen::Vector3d d = mesh.positions.col(j) - mesh.positions.col(i);
-        const double in_plane = (d - d.dot(f.axis) * f.axis).squaredNorm();
-        if (in_plane < best) {
-          best = in_plane;
-          pick = j;
+  parallel_chunks(static_cast<std::size_t>(n), 8192, [&](std::size_t, std::size_t begin, std::size_t end) {
+    for (auto i = static_cast<Index>(begin); i < static_cast<Index>(end); ++i) {
+      if (!f.is_contour_vertex(i)) continue;
+      for (const bool upward : {true, false}) {
+        double best = std::numeric_limits<double>::infinity();
+        Index pick = -1;
+        for (Index j : upward ? f.rings.above(i) : f.rings.below(i)) {
+          if (!f.is_contour_vertex(j)) continue;
+          const Eigen::Vector3d d = mesh.positions.col(j) - mesh.positions.col(i);
+          const double in_plane = (d - d.dot(f.axis) * f.axis).squaredNorm();
+          if (in_plane < best) {
+            best = in_plane;
+            pick = j;
+          }
         }
+        (upward ? f.above : f.below)[static_cast<std::size_t>(i)] = pick;
       }
-      (upward ? f.above : f.below)[static_cast<std::size_t>(i)] = pick;
     }
-  }
+  });
   std::nth_element(heights.begin(), heights.begin() + static_cast<std::ptrdiff_t>(heights.size() / 2), heights.end());
   f.slice_spacing = heights[heights.size() / 2];
   f.point_spacing = edge_sum / static_cast<double>(edges);
@@ -241,35 +244,38 @@ NextCuts next_cuts(const ContourFrame& f, const Eigen::Matrix3Xd& x, const Eigen
   cuts.down.assign(static_cast<std::size_t>(n), EdgePoint{});
   const double max_offset = 6.0 * f.slice_spacing;
   const double search_radius = 1.5 * f.slice_spacing;
-  std::array<Index, kMaxStarts> start{};
-  for (Index i = 0; i < n; ++i) {
-    Eigen::Vector3d m;
-    if (!f.is_contour_vertex(i) || !in_slice_normal(f, normals.col(i), m)) continue;
-    const Eigen::Vector3d v = x.col(i);
-    const Eigen::Vector3d plane_normal = f.axis.cross(m);
-    for (const bool upward : {true, false}) {
-      int starts = 0;
-      next_slice(f, i, upward, [&](Index j) {
-        if (starts < kMaxStarts) start[static_cast<std::size_t>(starts++)] = j;
-      });
-      Eigen::Vector3d cut = Eigen::Vector3d::Zero();
-      Index a = -1, b = -1;
-      if (starts == 0 || !cut_contour(f, x, start.data(), starts, v, plane_normal, cut, a, b)) {
-        EdgeCut found;
-        const std::int32_t slice = f.mesh->slice_ids[static_cast<std::size_t>(i)] + (upward ? 1 : -1);
-        if (!f.edges.cut(slice, x, normals, v, plane_normal, v, m, search_radius, found)) continue;
-        cut = found.point;
-        a = found.a;
-        b = found.b;
+  // Each vertex's cuts read the positions only: independent, in fixed chunks on every core.
+  parallel_chunks(static_cast<std::size_t>(n), 4096, [&](std::size_t, std::size_t chunk_begin, std::size_t chunk_end) {
+    std::array<Index, kMaxStarts> start{};
+    for (auto i = static_cast<Index>(chunk_begin); i < static_cast<Index>(chunk_end); ++i) {
+      Eigen::Vector3d m;
+      if (!f.is_contour_vertex(i) || !in_slice_normal(f, normals.col(i), m)) continue;
+      const Eigen::Vector3d v = x.col(i);
+      const Eigen::Vector3d plane_normal = f.axis.cross(m);
+      for (const bool upward : {true, false}) {
+        int starts = 0;
+        next_slice(f, i, upward, [&](Index j) {
+          if (starts < kMaxStarts) start[static_cast<std::size_t>(starts++)] = j;
+        });
+        Eigen::Vector3d cut = Eigen::Vector3d::Zero();
+        Index a = -1, b = -1;
+        if (starts == 0 || !cut_contour(f, x, start.data(), starts, v, plane_normal, cut, a, b)) {
+          EdgeCut found;
+          const std::int32_t slice = f.mesh->slice_ids[static_cast<std::size_t>(i)] + (upward ? 1 : -1);
+          if (!f.edges.cut(slice, x, normals, v, plane_normal, v, m, search_radius, found)) continue;
+          cut = found.point;
+          a = found.a;
+          b = found.b;
+        }
+        const Eigen::Vector3d r = cut - v;
+        if ((r - r.dot(f.axis) * f.axis).squaredNorm() > max_offset * max_offset) continue;
+        const Eigen::Vector3d e = x.col(b) - x.col(a);
+        const double len2 = e.squaredNorm();
+        const double t = len2 > 0.0 ? std::clamp((cut - x.col(a)).dot(e) / len2, 0.0, 1.0) : 0.0;
+        (upward ? cuts.up : cuts.down)[static_cast<std::size_t>(i)] = EdgePoint{a, b, t};
       }
-      const Eigen::Vector3d r = cut - v;
-      if ((r - r.dot(f.axis) * f.axis).squaredNorm() > max_offset * max_offset) continue;
-      const Eigen::Vector3d e = x.col(b) - x.col(a);
-      const double len2 = e.squaredNorm();
-      const double t = len2 > 0.0 ? std::clamp((cut - x.col(a)).dot(e) / len2, 0.0, 1.0) : 0.0;
-      (upward ? cuts.up : cuts.down)[static_cast<std::size_t>(i)] = EdgePoint{a, b, t};
     }
-  }
+  });
   return cuts;
 }
 
@@ -431,23 +437,37 @@ void along_contour_profile(const ContourFrame& f, const Eigen::Matrix3Xd& x, Ind
 
 double profile_noise(const ContourFrame& f, const Eigen::Matrix3Xd& x, const Eigen::Matrix3Xd& normals, bool across,
                      Index stride) {
-  std::vector<double> d4;
-  Profile p;
-  Eigen::Vector3d m;
-  for (Index i = 0; i < x.cols(); i += std::max<Index>(stride, 1)) {
-    if (!f.is_contour_vertex(i) || !in_slice_normal(f, normals.col(i), m)) continue;
-    if (across) {
-      cross_slice_profile(f, x, normals, i, m, 2, p);
-    } else {
-      along_contour_profile(f, x, i, m, 2, p);
+  // The sampled vertices in fixed chunks on every core; each chunk's differences are joined in chunk
+  // order, so the list (and its median) is the one a single thread makes.
+  stride = std::max<Index>(stride, 1);
+  const auto samples = static_cast<std::size_t>((x.cols() + stride - 1) / stride);
+  constexpr std::size_t kChunk = 2048;
+  std::vector<std::vector<double>> parts((samples + kChunk - 1) / kChunk);
+  parallel_chunks(samples, kChunk, [&](std::size_t chunk, std::size_t begin, std::size_t end) {
+    std::vector<double>& d4 = parts[chunk];
+    Profile p;
+    Eigen::Vector3d m;
+    for (std::size_t s = begin; s < end; ++s) {
+      const Index i = static_cast<Index>(s) * stride;
+      if (!f.is_contour_vertex(i) || !in_slice_normal(f, normals.col(i), m)) continue;
+      if (across) {
+        cross_slice_profile(f, x, normals, i, m, 2, p);
+      } else {
+        along_contour_profile(f, x, i, m, 2, p);
+      }
+      if (p.size != 5) continue;
+      // Samples should sit near -2..2; a gap (a missing slice) would make the difference meaningless.
+      bool regular = true;
+      for (int k = 0; k < 5; ++k) regular = regular && std::abs(p.x[static_cast<std::size_t>(k)] - (k - 2)) < 0.5;
+      if (!regular) continue;
+      d4.push_back(std::abs(p.y[0] - 4.0 * p.y[1] + 6.0 * p.y[2] - 4.0 * p.y[3] + p.y[4]));
     }
-    if (p.size != 5) continue;
-    // Samples should sit near -2..2; a gap (a missing slice) would make the difference meaningless.
-    bool regular = true;
-    for (int k = 0; k < 5; ++k) regular = regular && std::abs(p.x[static_cast<std::size_t>(k)] - (k - 2)) < 0.5;
-    if (!regular) continue;
-    d4.push_back(std::abs(p.y[0] - 4.0 * p.y[1] + 6.0 * p.y[2] - 4.0 * p.y[3] + p.y[4]));
-  }
+  });
+  std::vector<double> d4;
+  std::size_t total = 0;
+  for (const auto& part : parts) total += part.size();
+  d4.reserve(total);
+  for (const auto& part : parts) d4.insert(d4.end(), part.begin(), part.end());
   if (d4.empty()) return 0.0;
   std::nth_element(d4.begin(), d4.begin() + static_cast<std::ptrdiff_t>(d4.size() / 2), d4.end());
   return 1.4826 * d4[d4.size() / 2] / std::sqrt(70.0);

@@ -117,25 +117,40 @@ void select_region(const ContourFrame& frame, std::size_t num_faces, const OffSl
 // two faces share a vertex or not).
 void assign_pair_slots(const std::vector<Index>& filtered_of, Workspace& w) {
   w.ring_slot.resize(w.ring.size());
-  for (std::size_t k = 0; k < w.filtered.size(); ++k) {
-    const Index f = w.filtered[k];
-    for (Index r = w.ring_offsets[k]; r < w.ring_offsets[k + 1]; ++r) {
-      const Index g = w.ring[static_cast<std::size_t>(r)];
-      const Index kg = filtered_of[static_cast<std::size_t>(g)];
-      if (kg >= 0 && static_cast<std::size_t>(kg) < k) {
+  // First, on every core, each entry's mirror (the entry of an earlier filtered face that it pairs with),
+  // or -1 where the entry opens a slot of its own (a mirror always does); then the new slots are
+  // numbered in ring order, and the mirrors' slots copied.
+  std::vector<Index> mirror_of(w.ring.size(), -1);
+  parallel_chunks(w.filtered.size(), 4096, [&](std::size_t, std::size_t begin, std::size_t end) {
+    for (std::size_t k = begin; k < end; ++k) {
+      const Index f = w.filtered[k];
+      for (Index r = w.ring_offsets[k]; r < w.ring_offsets[k + 1]; ++r) {
+        const Index g = w.ring[static_cast<std::size_t>(r)];
+        const Index kg = filtered_of[static_cast<std::size_t>(g)];
+        if (kg < 0 || static_cast<std::size_t>(kg) >= k) continue;
         const auto first = w.ring.begin() + w.ring_offsets[static_cast<std::size_t>(kg)];
         const auto last = w.ring.begin() + w.ring_offsets[static_cast<std::size_t>(kg) + 1];
         const auto mirror = std::lower_bound(first, last, f);
-        if (mirror != last && *mirror == f) {
-          w.ring_slot[static_cast<std::size_t>(r)] = w.ring_slot[static_cast<std::size_t>(mirror - w.ring.begin())];
-          continue;
-        }
+        if (mirror != last && *mirror == f)
+          mirror_of[static_cast<std::size_t>(r)] = static_cast<Index>(mirror - w.ring.begin());
       }
+    }
+  });
+  for (std::size_t k = 0; k < w.filtered.size(); ++k) {
+    const Index f = w.filtered[k];
+    for (Index r = w.ring_offsets[k]; r < w.ring_offsets[k + 1]; ++r) {
+      if (mirror_of[static_cast<std::size_t>(r)] >= 0) continue;
       w.ring_slot[static_cast<std::size_t>(r)] = static_cast<Index>(w.slot_a.size());
       w.slot_a.push_back(f);
-      w.slot_b.push_back(g);
+      w.slot_b.push_back(w.ring[static_cast<std::size_t>(r)]);
     }
   }
+  parallel_chunks(w.ring.size(), 16384, [&](std::size_t, std::size_t begin, std::size_t end) {
+    for (std::size_t r = begin; r < end; ++r) {
+      const Index m = mirror_of[r];
+      if (m >= 0) w.ring_slot[r] = w.ring_slot[static_cast<std::size_t>(m)];
+    }
+  });
 }
 
 // Numbers the faces and vertices (see Workspace) and the neighbourhoods of the filtered faces.
@@ -175,19 +190,30 @@ Workspace make_workspace(const ContourFrame& frame, const std::vector<Triangle>&
   // ascending as mesh ids are).
   w.corners.resize(filtered.size());
   w.ring_offsets.assign(filtered.size() + 1, 0);
-  std::vector<Index> local;
-  for (std::size_t k = 0; k < filtered.size(); ++k) {
-    const Triangle& t = triangles[static_cast<std::size_t>(filtered[k])];
-    local.clear();
-    for (int c = 0; c < 3; ++c) {
-      w.corners[k][static_cast<std::size_t>(c)] = vertex_map[static_cast<std::size_t>(t[c])];
-      for (Index g : adj.incident_faces(t[c])) local.push_back(face_map[static_cast<std::size_t>(g)]);
+  // In fixed chunks on every core, each into its own list; the lists are joined in chunk order.
+  constexpr std::size_t kChunk = 4096;
+  std::vector<std::vector<Index>> parts((filtered.size() + kChunk - 1) / kChunk);
+  parallel_chunks(filtered.size(), kChunk, [&](std::size_t chunk, std::size_t begin, std::size_t end) {
+    std::vector<Index>& part = parts[chunk];
+    std::vector<Index> local;
+    for (std::size_t k = begin; k < end; ++k) {
+      const Triangle& t = triangles[static_cast<std::size_t>(filtered[k])];
+      local.clear();
+      for (int c = 0; c < 3; ++c) {
+        w.corners[k][static_cast<std::size_t>(c)] = vertex_map[static_cast<std::size_t>(t[c])];
+        for (Index g : adj.incident_faces(t[c])) local.push_back(face_map[static_cast<std::size_t>(g)]);
+      }
+      std::sort(local.begin(), local.end());
+      local.erase(std::unique(local.begin(), local.end()), local.end());
+      part.insert(part.end(), local.begin(), local.end());
+      w.ring_offsets[k + 1] = static_cast<Index>(local.size());
     }
-    std::sort(local.begin(), local.end());
-    local.erase(std::unique(local.begin(), local.end()), local.end());
-    w.ring.insert(w.ring.end(), local.begin(), local.end());
-    w.ring_offsets[k + 1] = static_cast<Index>(w.ring.size());
-  }
+  });
+  for (std::size_t k = 0; k < filtered.size(); ++k) w.ring_offsets[k + 1] += w.ring_offsets[k];
+  w.ring.resize(static_cast<std::size_t>(w.ring_offsets.back()));
+  parallel_chunks(parts.size(), 1, [&](std::size_t chunk, std::size_t, std::size_t) {
+    std::copy(parts[chunk].begin(), parts[chunk].end(), w.ring.begin() + w.ring_offsets[chunk * kChunk]);
+  });
   // The filtered face of each local face (for the pair slots and the moving vertices' faces).
   std::vector<Index> filtered_of(w.faces.size(), -1);
   for (std::size_t k = 0; k < filtered.size(); ++k) {
@@ -408,10 +434,12 @@ void filter_normals(const Workspace& w, const OffSliceFilterOptions& options, co
       last_guidance.swap(guidance);
       guidance = normals;
       guidance_normals(w, *patches, normals, changed, all, min_cos, mean, consistency, guidance);
-      for (std::size_t l = 0; l < nl; ++l) {
-        const auto ll = static_cast<Index>(l);
-        guided_changed[l] = all || !same_bits(guidance.col(ll), last_guidance.col(ll));
-      }
+      parallel_chunks(nl, 8192, [&](std::size_t, std::size_t begin, std::size_t end) {
+        for (std::size_t l = begin; l < end; ++l) {
+          const auto ll = static_cast<Index>(l);
+          guided_changed[l] = all || !same_bits(guidance.col(ll), last_guidance.col(ll));
+        }
+      });
     }
     const Eigen::Matrix3Xd& compared = patches ? guidance : normals;
     const std::vector<std::uint8_t>& compared_changed = patches ? guided_changed : changed;
@@ -518,12 +546,14 @@ void update_vertices(const ContourFrame& frame, const Workspace& w, const Eigen:
         updated.col(static_cast<Index>(m)) = x0 + d;
       }
     });
-    for (std::size_t m = 0; m < nm; ++m) {
-      const Index i = w.moving[m];
-      const auto u = updated.col(static_cast<Index>(m));
-      moved[static_cast<std::size_t>(i)] = same_bits(u, x.col(i)) ? 0 : 1;
-      x.col(i) = u;
-    }
+    parallel_chunks(nm, 4096, [&](std::size_t, std::size_t begin, std::size_t end) {
+      for (std::size_t m = begin; m < end; ++m) {
+        const Index i = w.moving[m];
+        const auto u = updated.col(static_cast<Index>(m));
+        moved[static_cast<std::size_t>(i)] = same_bits(u, x.col(i)) ? 0 : 1;
+        x.col(i) = u;
+      }
+    });
   }
 }
 

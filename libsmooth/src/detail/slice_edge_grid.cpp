@@ -1,6 +1,8 @@
 // SPDX-License-Identifier: BSD-3-Clause
 #include "detail/slice_edge_grid.h"
 
+#include "detail/parallel.h"
+
 #include <algorithm>
 #include <cmath>
 #include <limits>
@@ -54,51 +56,54 @@ SliceEdgeGrid::SliceEdgeGrid(const Mesh& mesh, const ContourNeighbours& contour,
       by_slice[static_cast<std::size_t>(fill[slice_of(e)]++)] = static_cast<Index>(e);
     }
   }
-  std::vector<Index> count;  // per cell of the current slice: edges, then the next free slot
-  for (std::size_t s = 0; s < slices_.size(); ++s) {
-    Slice& sl = slices_[s];
-    if (bounds[s].isEmpty()) continue;
-    sl.u0 = bounds[s].min().x();
-    sl.v0 = bounds[s].min().y();
-    sl.nu = static_cast<std::int64_t>(std::floor(bounds[s].sizes().x() / cell_)) + 1;
-    sl.nv = static_cast<std::int64_t>(std::floor(bounds[s].sizes().y() / cell_)) + 1;
-    const auto cells_of = [&](std::size_t e, auto&& visit) {
-      const Eigen::Vector2d a = uv(edge_a_[e]), b = uv(edge_b_[e]);
-      const auto cu = [&](double u) {
-        return std::clamp<std::int64_t>(static_cast<std::int64_t>(std::floor((u - sl.u0) / cell_)), 0, sl.nu - 1);
-      };
-      const auto cv = [&](double v) {
-        return std::clamp<std::int64_t>(static_cast<std::int64_t>(std::floor((v - sl.v0) / cell_)), 0, sl.nv - 1);
-      };
-      for (std::int64_t y = cv(std::min(a.y(), b.y())); y <= cv(std::max(a.y(), b.y())); ++y) {
-        for (std::int64_t x = cu(std::min(a.x(), b.x())); x <= cu(std::max(a.x(), b.x())); ++x) {
-          visit(static_cast<std::size_t>(y * sl.nu + x));
+  // The slices are independent: a few at a time on every core, each chunk with its own count scratch.
+  parallel_chunks(slices_.size(), 4, [&](std::size_t, std::size_t chunk_begin, std::size_t chunk_end) {
+    std::vector<Index> count;  // per cell of the current slice: edges, then the next free slot
+    for (std::size_t s = chunk_begin; s < chunk_end; ++s) {
+      Slice& sl = slices_[s];
+      if (bounds[s].isEmpty()) continue;
+      sl.u0 = bounds[s].min().x();
+      sl.v0 = bounds[s].min().y();
+      sl.nu = static_cast<std::int64_t>(std::floor(bounds[s].sizes().x() / cell_)) + 1;
+      sl.nv = static_cast<std::int64_t>(std::floor(bounds[s].sizes().y() / cell_)) + 1;
+      const auto cells_of = [&](std::size_t e, auto&& visit) {
+        const Eigen::Vector2d a = uv(edge_a_[e]), b = uv(edge_b_[e]);
+        const auto cu = [&](double u) {
+          return std::clamp<std::int64_t>(static_cast<std::int64_t>(std::floor((u - sl.u0) / cell_)), 0, sl.nu - 1);
+        };
+        const auto cv = [&](double v) {
+          return std::clamp<std::int64_t>(static_cast<std::int64_t>(std::floor((v - sl.v0) / cell_)), 0, sl.nv - 1);
+        };
+        for (std::int64_t y = cv(std::min(a.y(), b.y())); y <= cv(std::max(a.y(), b.y())); ++y) {
+          for (std::int64_t x = cu(std::min(a.x(), b.x())); x <= cu(std::max(a.x(), b.x())); ++x) {
+            visit(static_cast<std::size_t>(y * sl.nu + x));
+          }
         }
+      };
+      const auto first = static_cast<std::size_t>(slice_start[s]), last = static_cast<std::size_t>(slice_start[s + 1]);
+      count.assign(static_cast<std::size_t>(sl.nu * sl.nv), 0);
+      Index total = 0;
+      for (std::size_t k = first; k < last; ++k) {
+        cells_of(static_cast<std::size_t>(by_slice[k]), [&](std::size_t c) {
+          ++count[c];
+          ++total;
+        });
       }
-    };
-    const auto first = static_cast<std::size_t>(slice_start[s]), last = static_cast<std::size_t>(slice_start[s + 1]);
-    count.assign(static_cast<std::size_t>(sl.nu * sl.nv), 0);
-    Index total = 0;
-    for (std::size_t k = first; k < last; ++k) {
-      cells_of(static_cast<std::size_t>(by_slice[k]), [&](std::size_t c) {
-        ++count[c];
-        ++total;
-      });
+      sl.start.push_back(0);
+      for (std::size_t c = 0; c < count.size(); ++c) {
+        if (count[c] == 0) continue;
+        const Index begin = sl.start.back();
+        sl.cells.push_back(static_cast<std::int64_t>(c));
+        sl.start.push_back(begin + count[c]);
+        count[c] = begin;
+      }
+      sl.edges.resize(static_cast<std::size_t>(total));
+      for (std::size_t k = first; k < last; ++k) {
+        cells_of(static_cast<std::size_t>(by_slice[k]),
+                 [&](std::size_t c) { sl.edges[static_cast<std::size_t>(count[c]++)] = by_slice[k]; });
+      }
     }
-    sl.start.push_back(0);
-    for (std::size_t c = 0; c < count.size(); ++c) {
-      if (count[c] == 0) continue;
-      const Index begin = sl.start.back();
-      sl.cells.push_back(static_cast<std::int64_t>(c));
-      sl.start.push_back(begin + count[c]);
-      count[c] = begin;
-    }
-    sl.edges.resize(static_cast<std::size_t>(total));
-    for (std::size_t k = first; k < last; ++k) {
-      cells_of(static_cast<std::size_t>(by_slice[k]),
-               [&](std::size_t c) { sl.edges[static_cast<std::size_t>(count[c]++)] = by_slice[k]; });
-    }
-  }
+  });
 }
 
 bool SliceEdgeGrid::cut(std::int32_t slice, const Eigen::Matrix3Xd& x, const Eigen::Matrix3Xd& normals,

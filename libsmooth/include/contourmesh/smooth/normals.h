@@ -21,6 +21,12 @@ namespace contourmesh {
 [[nodiscard]] Eigen::Matrix3Xd vertex_normals(const Eigen::Matrix3Xd& positions,
                                               const std::vector<Triangle>& triangles);
 
+/// The same normals, bit for bit, on every core: each vertex sums its incident faces (`adjacency`, built
+/// from these triangles) in ascending face order, as the one-pass version adds them. Throws
+/// InvalidInputError when the adjacency's vertex count is not the positions'.
+[[nodiscard]] Eigen::Matrix3Xd vertex_normals(const Eigen::Matrix3Xd& positions, const std::vector<Triangle>& triangles,
+                                              const MeshAdjacency& adjacency);
+
 /// Mean length of the mesh's undirected edges (0 for a mesh without edges).
 [[nodiscard]] double mean_edge_length(const Eigen::Matrix3Xd& positions, const MeshAdjacency& adjacency);
 
