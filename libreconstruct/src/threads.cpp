@@ -2,6 +2,7 @@
 #include "contourmesh/reconstruct/threads.h"
 
 #include <contourmesh/smooth/errors.h>
+#include <contourmesh/smooth/threads.h>
 
 #include <itkMultiThreaderBase.h>
 #include <tbb/global_control.h>
@@ -13,6 +14,8 @@
 namespace contourmesh {
 
 struct ThreadLimit::Impl {
+  explicit Impl(int threads) : smooth_limit(threads) {}
+  SmoothThreadLimit smooth_limit;
   std::optional<tbb::global_control> tbb_limit;
   itk::ThreadIdType previous_itk = 0;
 };
@@ -21,7 +24,7 @@ ThreadLimit::ThreadLimit(int threads) : threads_(threads) {
   if (threads < 0)
     throw InvalidInputError("the thread count must be >= 0 (0: every core), got " + std::to_string(threads));
   if (threads == 0) return;
-  impl_ = std::make_unique<Impl>();
+  impl_ = std::make_unique<Impl>(threads);
   impl_->tbb_limit.emplace(tbb::global_control::max_allowed_parallelism, static_cast<std::size_t>(threads));
   impl_->previous_itk = itk::MultiThreaderBase::GetGlobalDefaultNumberOfThreads();
   const auto itk_threads = std::min(static_cast<itk::ThreadIdType>(threads), impl_->previous_itk);

@@ -7,8 +7,8 @@
 //   build/release/pipelines/bench/contourmesh_route_bench --case skull --reps 7 --threads 2
 //
 // Contour route: what `contourmesh run` does after reading the volume: reconstruct() (segmentation,
-// tiling, the component filter) and the default smoothing (feature_preserving_smooth, default
-// options, the call `run` makes). Voxel route: what `contourmesh compare` runs as 3D Slicer's chain:
+// tiling, the component filter) and the default smoothing (smooth() with the default preset, the call
+// `run` makes). Voxel route: what `contourmesh compare` runs as 3D Slicer's chain:
 // threshold, islands and holes under the speck size removed, one voxel of padding,
 // vtkDiscreteFlyingEdges3D, then vtkWindowedSincPolyDataFilter (20 iterations, pass band 0.01). The two
 // routes alternate within each repetition, so both see the same load. Times are wall clock (threads);
@@ -18,7 +18,7 @@
 #include <contourmesh/reconstruct/reconstruction.h>
 #include <contourmesh/reconstruct/threads.h>
 #include <contourmesh/reconstruct/volume.h>
-#include <contourmesh/smooth/feature_smoothing.h>
+#include <contourmesh/smooth/smooth.h>
 
 #include <vtkDiscreteFlyingEdges3D.h>
 #include <vtkImageConnectivityFilter.h>
@@ -123,10 +123,11 @@ std::size_t contour_route(const Case& c, StageTimes& times) {
   // Segmentation once more on its own, for its process CPU time (how many cores it kept busy).
   const Sample alone = measure([&] { (void)segment_contours(*c.image, ro.segmentation); });
   times.add("segment_contours() alone", alone);
-  FeatureSmoothingResult smoothed;
-  const Sample smooth = measure([&] { smoothed = feature_preserving_smooth(rec.mesh, FeatureSmoothingOptions{}); });
-  times.add("smooth (default)", smooth);
-  times.add("contour total", {whole.wall + smooth.wall, whole.cpu + smooth.cpu});
+  SmoothResult smoothed;
+  const MethodConfig config = preset(Preset::Default);
+  const Sample smoothing = measure([&] { smoothed = smooth(rec.mesh, config.method, config.options); });
+  times.add("smooth (default)", smoothing);
+  times.add("contour total", {whole.wall + smoothing.wall, whole.cpu + smoothing.cpu});
   return static_cast<std::size_t>(smoothed.mesh.num_vertices());
 }
 

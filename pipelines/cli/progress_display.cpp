@@ -33,7 +33,8 @@ void add_common_options(CLI::App* command, CommonArgs& args) {
   command->add_flag("--verbose", args.verbose,
                     "Let ITK, GDCM, MetaIO and VTK print their own (multi-line) messages on stderr");
   command->add_option("--threads", args.threads,
-                      "Threads for every parallel stage (segmentation, tiling, ITK and VTK filters; 0: every core)")
+                      "Threads for every parallel stage (segmentation, tiling, smoothing, ITK and VTK filters; "
+                      "0: every core)")
       ->capture_default_str();
 }
 

@@ -3,6 +3,7 @@
 #include <contourmesh/reconstruct/segmentation.h>
 #include <contourmesh/reconstruct/threads.h>
 #include <contourmesh/smooth/errors.h>
+#include <contourmesh/smooth/threads.h>
 
 #include <itkMultiThreaderBase.h>
 
@@ -14,12 +15,14 @@ namespace {
 TEST(Threads, ALimitCapsTbbAndItkAndRestoresItk) {
   const auto itk_before = itk::MultiThreaderBase::GetGlobalDefaultNumberOfThreads();
   const int before = available_threads();
+  const int smooth_before = smooth_threads();
   EXPECT_GE(before, 1);
   {
     const ThreadLimit one(1);
     EXPECT_EQ(one.threads(), 1);
     EXPECT_EQ(available_threads(), 1);
     EXPECT_EQ(itk::MultiThreaderBase::GetGlobalDefaultNumberOfThreads(), 1u);
+    EXPECT_EQ(smooth_threads(), 1);  // libsmooth's loops too
     {
       const ThreadLimit more(4);  // an inner limit never raises an outer one
       EXPECT_EQ(available_threads(), 1);
@@ -29,6 +32,7 @@ TEST(Threads, ALimitCapsTbbAndItkAndRestoresItk) {
   }
   EXPECT_EQ(available_threads(), before);
   EXPECT_EQ(itk::MultiThreaderBase::GetGlobalDefaultNumberOfThreads(), itk_before);
+  EXPECT_EQ(smooth_threads(), smooth_before);
   {
     const ThreadLimit none(0);  // no cap
     EXPECT_EQ(available_threads(), before);

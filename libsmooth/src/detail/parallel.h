@@ -21,10 +21,20 @@ inline std::atomic<unsigned>& worker_count_override() {
   return count;
 }
 
-/// Number of worker threads: hardware concurrency (or the override), at least 1, at most 64.
+/// When non-zero, the most threads a parallel loop may use (SmoothThreadLimit, threads.h).
+inline std::atomic<unsigned>& thread_cap() {
+  static std::atomic<unsigned> cap{0};
+  return cap;
+}
+
+/// Number of worker threads: the override if set, else hardware concurrency under the live cap; at
+/// least 1, at most 64.
 inline unsigned worker_count() {
   const unsigned forced = worker_count_override();
-  return std::clamp(forced != 0 ? forced : std::thread::hardware_concurrency(), 1u, 64u);
+  if (forced != 0) return std::clamp(forced, 1u, 64u);
+  const unsigned cap = thread_cap();
+  const unsigned cores = std::thread::hardware_concurrency();
+  return std::clamp(cap != 0 ? std::min(cap, std::max(cores, 1u)) : cores, 1u, 64u);
 }
 
 /// Runs parallel loops on `count` threads while it lives (even beyond the number of cores).

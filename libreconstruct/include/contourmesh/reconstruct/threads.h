@@ -7,8 +7,9 @@
 namespace contourmesh {
 
 /// While alive, caps the worker threads of every parallel stage in the process at `threads`:
-/// the TBB loops of libreconstruct (segmentation runs its slices in parallel), VTK's SMP tools when
-/// VTK runs them on TBB (as Debian's VTK does: flying edges, windowed sinc), and ITK's filters
+/// the TBB loops of libreconstruct (segmentation runs its slices in parallel), libsmooth's loops
+/// (cross-slice smoothing; through a SmoothThreadLimit, contourmesh/smooth/threads.h), VTK's SMP
+/// tools when VTK runs them on TBB (as Debian's VTK does: flying edges, windowed sinc), and ITK's filters
 /// (denoising, Otsu). 0 = no cap: every core the process may use. The calling thread counts as one
 /// of the `threads`.
 ///
