@@ -26,6 +26,7 @@ namespace {
 // two faces, recorded as the cycle (a_i, b_j+1, b_j, a_i+1) that follows the composite's direction.
 struct Composite {
   LevelContour ring;
+  std::vector<std::uint8_t> from_hole;  ///< per point of `ring`: whether it comes from a hole's copy
   std::vector<std::array<VertexRef, 4>> quads;
   std::vector<std::array<Eigen::Vector2d, 4>> quad_points;
 };
@@ -55,11 +56,21 @@ bool crosses_any(const Eigen::Vector2d& p, const Eigen::Vector2d& q, const std::
 
 // The pair (point of `a`, point of `b`) a bridge joins: the nearest pair; with `obstacles`, the nearest of the
 // kBridgeTries nearest pairs whose quad's sides cross none of those contours (a bridge across another
-// contour makes the composite cross itself); for a hole that opens (`gap` given: the other level), the nearest
-// pair whose midpoint lies outside the other level's outer contours, where the wall between hole and outer
-// contour is open on the other side (the nearest pair overall when there is none).
-std::pair<std::size_t, std::size_t> bridge_ends(const LevelContour& a, const LevelContour& b, const Outline* gap,
-                                                double& distance, const std::vector<const Polygon*>* obstacles) {
+// contour makes the composite cross itself). With `other` (the other level), the bridge goes where that
+// level joins what the bridge joins, if such a pair is not much farther than the nearest one:
+// - across a wall (between a hole's copy and anything; `a_hole` says which points of `a` come from a
+//   hole), where the other level has no material at the bridge's midpoint: the wall is open there (with
+//   `opening`: a hole that opens is among the copies);
+// - between two outer contours, where the other level has material there: the two are one contour (with
+//   `outers`).
+// A bridge elsewhere makes a composite that runs round the contours in another order than the other
+// level's contour, and the band between them crosses the slab along the arcs in between. Without such a
+// pair, the nearest clear one (with `obstacles`), then the nearest whose midpoint obeys the rule, then the
+// nearest.
+std::pair<std::size_t, std::size_t> bridge_ends(const LevelContour& a, const std::vector<std::uint8_t>& a_hole,
+                                                const LevelContour& b, const Outline* other, bool opening,
+                                                bool outers, double& distance,
+                                                const std::vector<const Polygon*>* obstacles) {
   std::vector<std::tuple<double, std::size_t, std::size_t>> nearest;
   nearest.reserve(a.points.size());
   for (std::size_t i = 0; i < a.points.size(); ++i) {
@@ -75,18 +86,25 @@ std::pair<std::size_t, std::size_t> bridge_ends(const LevelContour& a, const Lev
     nearest.emplace_back(best, i, bj);
   }
   std::sort(nearest.begin(), nearest.end());
+  // Whether the pair's bridge breaks the rule above (false where no rule applies).
+  const auto astray = [&](std::size_t i, std::size_t j) {
+    const bool wall = a_hole[i] != 0 || b.is_hole;
+    if (!other || (wall ? !opening : !outers)) return false;
+    return other->contains(0.5 * (a.points[i] + b.points[j])) == wall;
+  };
+  const bool ruled = other && (opening || outers);
   if (obstacles) {
-    // The first of the nearest pairs whose bridge, both sides of its quad, crosses no contour; for a hole,
-    // one open on the other side if there is one not much farther than the nearest pair (a long bridge
-    // to a far opening folds the band above it into pleats).
+    // The first of the nearest pairs whose bridge, both sides of its quad, crosses no contour; one the
+    // rule prefers if there is one not much farther than the nearest pair (a long bridge to a far opening
+    // folds the band above it into pleats).
     const std::size_t na = a.points.size(), nb = b.points.size();
     const double reach = 2.0 * std::sqrt(std::get<0>(nearest.front())) + a.spacing() + b.spacing();
-    for (const bool open : {true, false}) {
-      if (open && !gap) continue;
+    for (const bool prefer : {true, false}) {
+      if (prefer && !ruled) continue;
       std::size_t tried = 0;
       for (const auto& [d, i, j] : nearest) {
-        if (open && std::sqrt(d) > reach) break;
-        if (open && gap->contains(0.5 * (a.points[i] + b.points[j]))) continue;
+        if (prefer && std::sqrt(d) > reach) break;
+        if (prefer && astray(i, j)) continue;
         if (++tried > kBridgeTries) break;
         if (!crosses_any(a.points[i], b.points[j], *obstacles) &&
             !crosses_any(b.points[(j + nb - 1) % nb], a.points[(i + 1) % na], *obstacles)) {
@@ -96,9 +114,9 @@ std::pair<std::size_t, std::size_t> bridge_ends(const LevelContour& a, const Lev
       }
     }
   }
-  if (gap) {
+  if (ruled) {
     for (const auto& [d, i, j] : nearest) {
-      if (!gap->contains(0.5 * (a.points[i] + b.points[j]))) {
+      if (!astray(i, j)) {
         distance = d;
         return {i, j};
       }
@@ -111,11 +129,12 @@ std::pair<std::size_t, std::size_t> bridge_ends(const LevelContour& a, const Lev
 Composite make_composite(const std::vector<LevelContour>& copies, const Level& other, bool clear_bridges) {
   Composite comp;
   comp.ring = copies[0];
+  comp.from_hole.assign(copies[0].points.size(), copies[0].is_hole ? 1 : 0);
   std::vector<bool> used(copies.size(), false);
   used[0] = true;
   const bool opening = std::any_of(copies.begin(), copies.end(), [](const LevelContour& c) { return c.is_hole; });
   std::optional<Outline> outline;
-  if (opening) outline.emplace(other);
+  if (opening || clear_bridges) outline.emplace(other);
   for (std::size_t round = 1; round < copies.size(); ++round) {
     // The contour not yet joined that is nearest to the composite.
     double best = std::numeric_limits<double>::infinity();
@@ -130,8 +149,8 @@ Composite make_composite(const std::vector<LevelContour>& copies, const Level& o
           if (!used[o]) obstacles.push_back(&copies[o].points);
         }
       }
-      const auto [a, b] =
-          bridge_ends(comp.ring, copies[r], outline ? &*outline : nullptr, d, clear_bridges ? &obstacles : nullptr);
+      const auto [a, b] = bridge_ends(comp.ring, comp.from_hole, copies[r], outline ? &*outline : nullptr, opening,
+                                      clear_bridges, d, clear_bridges ? &obstacles : nullptr);
       if (d < best) {
         best = d;
         which = r;
@@ -143,18 +162,22 @@ Composite make_composite(const std::vector<LevelContour>& copies, const Level& o
     const LevelContour& x = copies[which];
     const std::size_t na = comp.ring.points.size(), nb = x.points.size();
     LevelContour merged;
+    std::vector<std::uint8_t> from_hole;
     for (std::size_t k = 1; k <= na; ++k) {  // a_i+1 ... a_i
       merged.ids.push_back(comp.ring.ids[(ba + k) % na]);
       merged.points.push_back(comp.ring.points[(ba + k) % na]);
+      from_hole.push_back(comp.from_hole[(ba + k) % na]);
     }
     for (std::size_t k = 0; k < nb; ++k) {  // b_j+1 = x[bb] ... b_j = x[bb - 1]
       merged.ids.push_back(x.ids[(bb + k) % nb]);
       merged.points.push_back(x.points[(bb + k) % nb]);
+      from_hole.push_back(x.is_hole ? 1 : 0);
     }
     const std::size_t bj = (bb + nb - 1) % nb, ai1 = (ba + 1) % na;
     comp.quads.push_back({comp.ring.ids[ba], x.ids[bb], x.ids[bj], comp.ring.ids[ai1]});
     comp.quad_points.push_back({comp.ring.points[ba], x.points[bb], x.points[bj], comp.ring.points[ai1]});
     comp.ring = std::move(merged);
+    comp.from_hole = std::move(from_hole);
   }
   return comp;
 }

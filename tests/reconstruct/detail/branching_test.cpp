@@ -9,6 +9,7 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <numbers>
 #include <random>
@@ -154,6 +155,37 @@ TEST(Branching, ContoursInsideOneAreJoinedByAWellShapedFill) {
   const test::Topology t = test::topology_of(closed(stack, lower, upper, out));
   EXPECT_TRUE(t.closed && t.manifold) << t.problems;
   EXPECT_EQ(t.components, 1);
+}
+
+TEST(Branching, TwoPiecesAreBridgedWhereTheOtherLevelJoinsThem) {
+  // Two halves of a ring wall above, apart by 0.6-0.8 mm at angle 0 and by 1.8-2.4 mm at angle pi; below,
+  // one C-shaped wall open at angle 0 only. The bridge must cross the wider gap, where the wall below
+  // joins the halves: at the nearest pair (angle 0) the composite would be a C open at pi, and the band
+  // between it and the C below would cross the slab along the wall.
+  test::TestStack stack;
+  const double pi = std::numbers::pi;
+  const Level lower{0.0, {stack.contour(arc_points(0.02, 2 * pi - 0.02, 15, 20, 120), 0.0)}};
+  const Level upper{1.0,
+                    {stack.contour(arc_points(0.02, pi - 0.06, 15, 20, 60), 1.0),
+                     stack.contour(arc_points(pi + 0.06, 2 * pi - 0.02, 15, 20, 60), 1.0)}};
+  SlabMesh out = stack.slab();
+  tile_composite(lower, upper, TilingOptions{}, out);
+  int bridges = 0;
+  double longest = 0.0;
+  for (std::size_t f = 0; f < out.triangles.size(); ++f) {
+    const Triangle& t = out.triangles[f];
+    const Eigen::Vector3d a = out.position(t[0]), b = out.position(t[1]), c = out.position(t[2]);
+    if (out.roles[f] == FaceRole::Bridge) {
+      ++bridges;
+      const Eigen::Vector3d m = (a + b + c) / 3.0;
+      EXPECT_GT(std::abs(std::atan2(m.y(), m.x())), pi - 0.1) << "bridged at angle " << std::atan2(m.y(), m.x());
+    }
+    longest = std::max({longest, (b - a).norm(), (c - b).norm(), (a - c).norm()});
+  }
+  EXPECT_EQ(bridges, 2);
+  EXPECT_LT(longest, 8.0) << "the band crosses the slab along the wall";  // the walls' ends are 5 mm
+  const test::Topology t = test::topology_of(closed(stack, lower, upper, out));
+  EXPECT_TRUE(t.closed && t.manifold) << t.problems;
 }
 
 TEST(Branching, AnOpeningHoleIsBridgedWhereTheWallIsOpenAbove) {
