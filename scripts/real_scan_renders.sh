@@ -33,6 +33,7 @@ scan() {
 
 # Head and neck, 300 HU: the left wall of the skull where an outer layer parts from it.
 scan headneck "$data/dicom_series_headneck" 300 20,-170,-507 170 -35 15
+scan headneck_wall "$data/dicom_series_headneck" 300 40,-175,-505 120 -50 -10
 # Abdomen, 300 HU: the lumbar spine (processes and end plates).
 scan abdomen "$data/totalsegmentator_ct/example_ct.nii.gz" 300 -5,-120,300 220 0 10
 # headsq at quarter resolution, 1150 (raw values): the face, orbits and nasal cavity.
