@@ -26,7 +26,8 @@ namespace {
 // two faces, recorded as the cycle (a_i, b_j+1, b_j, a_i+1) that follows the composite's direction.
 struct Composite {
   LevelContour ring;
-  std::vector<std::uint8_t> from_hole;  ///< per point of `ring`: whether it comes from a hole's copy
+  std::vector<std::uint8_t> from_hole;      ///< per point of `ring`: whether it comes from a hole's copy
+  std::vector<std::pair<int, int>> origin;  ///< per point of `ring`: its copy and its index there
   std::vector<std::array<VertexRef, 4>> quads;
   std::vector<std::array<Eigen::Vector2d, 4>> quad_points;
 };
@@ -68,9 +69,8 @@ bool crosses_any(const Eigen::Vector2d& p, const Eigen::Vector2d& q, const std::
 // pair, the nearest clear one (with `obstacles`), then the nearest whose midpoint obeys the rule, then the
 // nearest.
 std::pair<std::size_t, std::size_t> bridge_ends(const LevelContour& a, const std::vector<std::uint8_t>& a_hole,
-                                                const LevelContour& b, const Outline* other, bool opening,
-                                                bool outers, double& distance,
-                                                const std::vector<const Polygon*>* obstacles) {
+                                                const LevelContour& b, const Outline* other, bool opening, bool outers,
+                                                double& distance, const std::vector<const Polygon*>* obstacles) {
   std::vector<std::tuple<double, std::size_t, std::size_t>> nearest;
   nearest.reserve(a.points.size());
   for (std::size_t i = 0; i < a.points.size(); ++i) {
@@ -126,20 +126,171 @@ std::pair<std::size_t, std::size_t> bridge_ends(const LevelContour& a, const std
   return {std::get<1>(nearest.front()), std::get<2>(nearest.front())};
 }
 
-Composite make_composite(const std::vector<LevelContour>& copies, const Level& other, bool clear_bridges) {
+// For each point of `guide`, the copy and the point of it nearest to that point (a grid of the copies'
+// points, searched ring by ring of cells until no nearer point can remain).
+std::vector<std::pair<int, int>> nearest_copy_points(const std::vector<LevelContour>& copies, const Polygon& guide) {
+  Eigen::AlignedBox2d box;
+  double spacing = 0.0;
+  std::size_t count = 0;
+  for (const LevelContour& c : copies) {
+    box.extend(c.box);
+    spacing += c.spacing() * static_cast<double>(c.points.size());
+    count += c.points.size();
+  }
+  const double cell = std::max(2.0 * spacing / static_cast<double>(std::max<std::size_t>(count, 1)), 1e-6);
+  const Eigen::Vector2d size = box.sizes();
+  const int nx = std::max(1, static_cast<int>(std::ceil(size.x() / cell)) + 1);
+  const int ny = std::max(1, static_cast<int>(std::ceil(size.y() / cell)) + 1);
+  const auto cell_of = [&](const Eigen::Vector2d& p, int& ix, int& iy) {
+    ix = std::clamp(static_cast<int>(std::floor((p.x() - box.min().x()) / cell)), 0, nx - 1);
+    iy = std::clamp(static_cast<int>(std::floor((p.y() - box.min().y()) / cell)), 0, ny - 1);
+  };
+  std::vector<int> start(static_cast<std::size_t>(nx) * static_cast<std::size_t>(ny) + 1, 0);
+  std::vector<std::pair<int, int>> entries(count);
+  for (int pass = 0; pass < 2; ++pass) {
+    std::vector<int> fill;
+    if (pass == 1) {
+      for (std::size_t k = 1; k < start.size(); ++k) start[k] += start[k - 1];
+      fill.assign(start.begin(), start.end() - 1);
+    }
+    for (std::size_t c = 0; c < copies.size(); ++c) {
+      for (std::size_t i = 0; i < copies[c].points.size(); ++i) {
+        int ix = 0, iy = 0;
+        cell_of(copies[c].points[i], ix, iy);
+        const std::size_t slot =
+            static_cast<std::size_t>(iy) * static_cast<std::size_t>(nx) + static_cast<std::size_t>(ix);
+        if (pass == 0) ++start[slot + 1];
+        else entries[static_cast<std::size_t>(fill[slot]++)] = {static_cast<int>(c), static_cast<int>(i)};
+      }
+    }
+  }
+  std::vector<std::pair<int, int>> result(guide.size(), {-1, -1});
+  for (std::size_t g = 0; g < guide.size(); ++g) {
+    int cx = 0, cy = 0;
+    cell_of(guide[g], cx, cy);
+    double best = std::numeric_limits<double>::infinity();
+    for (int r = 0; r <= std::max(nx, ny); ++r) {
+      // Points beyond ring r of cells are at least (r - 1) cells away (the guide point may lie off the box).
+      const double reach = (r - 1) * cell;
+      if (r > 0 && reach > 0.0 && reach * reach > best) break;
+      for (int iy = cy - r; iy <= cy + r; ++iy) {
+        for (int ix = cx - r; ix <= cx + r; ++ix) {
+          if (std::max(std::abs(ix - cx), std::abs(iy - cy)) != r || ix < 0 || iy < 0 || ix >= nx || iy >= ny) continue;
+          const std::size_t slot =
+              static_cast<std::size_t>(iy) * static_cast<std::size_t>(nx) + static_cast<std::size_t>(ix);
+          for (int e = start[slot]; e < start[slot + 1]; ++e) {
+            const auto [c, i] = entries[static_cast<std::size_t>(e)];
+            const double d =
+                (copies[static_cast<std::size_t>(c)].points[static_cast<std::size_t>(i)] - guide[g]).squaredNorm();
+            if (d < best) {
+              best = d;
+              result[g] = {c, i};
+            }
+          }
+        }
+      }
+    }
+  }
+  return result;
+}
+
+// How many guide points either side of its passage from the composite to a copy a guided bridge may end at.
+constexpr std::size_t kGuideReach = 8;
+
+// The bridge that joins copy `r` to the composite where `guide` (the one contour the composite is tiled
+// to) passes from the composite's contours to r: the guide's point pair where its nearest copy changes
+// from a joined one to r gives the two ends. Only where the guide enters r once and leaves it once (r is
+// one stretch of the guide), and the bridge's quad crosses no contour; false otherwise.
+bool guided_bridge(const Composite& comp, const std::vector<LevelContour>& copies, std::size_t r,
+                   const std::vector<bool>& used, const std::vector<std::pair<int, int>>& labels,
+                   const std::vector<const Polygon*>& obstacles, std::size_t& ba, std::size_t& bb) {
+  const std::size_t n = labels.size();
+  std::size_t entries = 0, exits = 0, entry = 0;
+  for (std::size_t g = 0; g < n; ++g) {
+    const int c0 = labels[g].first, c1 = labels[(g + 1) % n].first;
+    if (c0 < 0 || c1 < 0) return false;
+    const bool in0 = used[static_cast<std::size_t>(c0)], in1 = used[static_cast<std::size_t>(c1)];
+    if (in0 && c1 == static_cast<int>(r)) {
+      ++entries;
+      entry = g;
+    } else if (c0 == static_cast<int>(r) && in1) {
+      ++exits;
+    }
+  }
+  if (entries != 1 || exits != 1) return false;
+  // Pairs of a composite point met just before the entry and a point of r met just after it; the first
+  // whose quad crosses no contour.
+  const std::size_t na = comp.ring.points.size(), nb = copies[r].points.size();
+  std::vector<std::vector<int>> position(copies.size());
+  for (std::size_t k = 0; k < na; ++k) {
+    auto& p = position[static_cast<std::size_t>(comp.origin[k].first)];
+    if (p.empty()) p.assign(copies[static_cast<std::size_t>(comp.origin[k].first)].points.size(), -1);
+    p[static_cast<std::size_t>(comp.origin[k].second)] = static_cast<int>(k);
+  }
+  std::vector<std::size_t> before, after;
+  for (std::size_t s = 0; s < kGuideReach; ++s) {
+    const auto [c0, i0] = labels[(entry + n - s) % n];
+    if (!used[static_cast<std::size_t>(c0)]) break;
+    const std::vector<int>& at = position[static_cast<std::size_t>(c0)];
+    if (!at.empty() && at[static_cast<std::size_t>(i0)] >= 0)
+      before.push_back(static_cast<std::size_t>(at[static_cast<std::size_t>(i0)]));
+  }
+  for (std::size_t s = 1; s <= kGuideReach; ++s) {
+    const auto [c1, i1] = labels[(entry + s) % n];
+    if (c1 != static_cast<int>(r)) break;
+    after.push_back(static_cast<std::size_t>(i1));
+  }
+  const Polygon& ap = comp.ring.points;
+  const Polygon& bp = copies[r].points;
+  // Nearest the passage first: by how many guide points the two ends lie from it, then by length.
+  std::vector<std::tuple<std::size_t, double, std::size_t, std::size_t>> pairs;
+  for (std::size_t i = 0; i < before.size(); ++i) {
+    for (std::size_t j = 0; j < after.size(); ++j) {
+      pairs.emplace_back(i + j, (ap[before[i]] - bp[after[j]]).squaredNorm(), before[i], after[j]);
+    }
+  }
+  std::sort(pairs.begin(), pairs.end());
+  for (const auto& [steps, d, a, b] : pairs) {
+    if (!crosses_any(ap[a], bp[b], obstacles) && !crosses_any(bp[(b + nb - 1) % nb], ap[(a + 1) % na], obstacles)) {
+      ba = a;
+      bb = b;
+      return true;
+    }
+  }
+  return false;
+}
+
+Composite make_composite(const std::vector<LevelContour>& copies, const Level& other, bool clear_bridges,
+                         const Polygon* guide) {
   Composite comp;
   comp.ring = copies[0];
   comp.from_hole.assign(copies[0].points.size(), copies[0].is_hole ? 1 : 0);
+  for (std::size_t i = 0; i < copies[0].points.size(); ++i) comp.origin.emplace_back(0, static_cast<int>(i));
+  std::vector<std::pair<int, int>> labels;
+  if (guide && clear_bridges && !guide->empty()) labels = nearest_copy_points(copies, *guide);
   std::vector<bool> used(copies.size(), false);
   used[0] = true;
   const bool opening = std::any_of(copies.begin(), copies.end(), [](const LevelContour& c) { return c.is_hole; });
   std::optional<Outline> outline;
   if (opening || clear_bridges) outline.emplace(other);
   for (std::size_t round = 1; round < copies.size(); ++round) {
-    // The contour not yet joined that is nearest to the composite.
+    // The contour not yet joined that is nearest to the composite; one the guide joins to it first.
     double best = std::numeric_limits<double>::infinity();
     std::size_t which = 0, ba = 0, bb = 0;
-    for (std::size_t r = 0; r < copies.size(); ++r) {
+    bool guided = false;
+    if (!labels.empty()) {
+      std::vector<const Polygon*> obstacles{&comp.ring.points};
+      for (std::size_t o = 0; o < copies.size(); ++o) {
+        if (!used[o]) obstacles.push_back(&copies[o].points);
+      }
+      for (std::size_t r = 0; r < copies.size() && !guided; ++r) {
+        if (!used[r] && guided_bridge(comp, copies, r, used, labels, obstacles, ba, bb)) {
+          guided = true;
+          which = r;
+        }
+      }
+    }
+    for (std::size_t r = 0; r < copies.size() && !guided; ++r) {
       if (used[r]) continue;
       double d = 0.0;
       std::vector<const Polygon*> obstacles;
@@ -163,21 +314,25 @@ Composite make_composite(const std::vector<LevelContour>& copies, const Level& o
     const std::size_t na = comp.ring.points.size(), nb = x.points.size();
     LevelContour merged;
     std::vector<std::uint8_t> from_hole;
+    std::vector<std::pair<int, int>> origin;
     for (std::size_t k = 1; k <= na; ++k) {  // a_i+1 ... a_i
       merged.ids.push_back(comp.ring.ids[(ba + k) % na]);
       merged.points.push_back(comp.ring.points[(ba + k) % na]);
       from_hole.push_back(comp.from_hole[(ba + k) % na]);
+      origin.push_back(comp.origin[(ba + k) % na]);
     }
     for (std::size_t k = 0; k < nb; ++k) {  // b_j+1 = x[bb] ... b_j = x[bb - 1]
       merged.ids.push_back(x.ids[(bb + k) % nb]);
       merged.points.push_back(x.points[(bb + k) % nb]);
       from_hole.push_back(x.is_hole ? 1 : 0);
+      origin.emplace_back(static_cast<int>(which), static_cast<int>((bb + k) % nb));
     }
     const std::size_t bj = (bb + nb - 1) % nb, ai1 = (ba + 1) % na;
     comp.quads.push_back({comp.ring.ids[ba], x.ids[bb], x.ids[bj], comp.ring.ids[ai1]});
     comp.quad_points.push_back({comp.ring.points[ba], x.points[bb], x.points[bj], comp.ring.points[ai1]});
     comp.ring = std::move(merged);
     comp.from_hole = std::move(from_hole);
+    comp.origin = std::move(origin);
   }
   return comp;
 }
@@ -198,11 +353,10 @@ void close_quad(std::array<VertexRef, 4> c, std::array<Eigen::Vector2d, 4> p, bo
   }
 }
 
-
 // The contours `members` of `level` copied onto plane w and joined into one composite contour; `below`
 // says whether the originals lie below the plane.
 LevelContour composite_of(const Level& level, const std::vector<int>& members, const Level& other, double w, bool below,
-                          bool clear_bridges, SlabMesh& out) {
+                          bool clear_bridges, SlabMesh& out, const Polygon* guide = nullptr) {
   std::vector<LevelContour> copies;
   for (int i : members) {
     const LevelContour& c = level.contours[static_cast<std::size_t>(i)];
@@ -210,7 +364,7 @@ LevelContour composite_of(const Level& level, const std::vector<int>& members, c
     if (below) emit_copy_band(c.ids, copies.back().ids, out);
     else emit_copy_band(copies.back().ids, c.ids, out);
   }
-  const Composite comp = make_composite(copies, other, clear_bridges);
+  const Composite comp = make_composite(copies, other, clear_bridges, guide);
   for (std::size_t q = 0; q < comp.quads.size(); ++q) close_quad(comp.quads[q], comp.quad_points[q], !below, out);
   ++out.stats.composites;
   return comp.ring;
@@ -374,10 +528,22 @@ void tile_composite(const Level& lower, const Level& upper, const TilingOptions&
     const bool clear = options.band_refinement == BandRefinement::Interpolated;
     const double wl = L.size() > 1 ? (both ? w0 + (w1 - w0) / 3.0 : 0.5 * (w0 + w1)) : w0;
     const double wu = U.size() > 1 ? (both ? w0 + 2.0 * (w1 - w0) / 3.0 : 0.5 * (w0 + w1)) : w1;
-    const LevelContour lower_ring = L.size() > 1 ? composite_of(lower, L, upper, wl, true, clear, out)
-                                                 : lower.contours[static_cast<std::size_t>(L[0])];
-    const LevelContour upper_ring = U.size() > 1 ? composite_of(upper, U, lower, wu, false, clear, out)
-                                                 : upper.contours[static_cast<std::size_t>(U[0])];
+    // A composite tiled to one contour bridges its pieces where that contour passes from piece to piece
+    // (guided_bridge); of two composites the upper one is made first and guides the lower one.
+    LevelContour lower_ring, upper_ring;
+    if (both && clear) {
+      upper_ring = composite_of(upper, U, lower, wu, false, clear, out);
+      lower_ring = composite_of(lower, L, upper, wl, true, clear, out, &upper_ring.points);
+    } else {
+      const Polygon* lower_guide =
+          clear && U.size() == 1 ? &upper.contours[static_cast<std::size_t>(U[0])].points : nullptr;
+      const Polygon* upper_guide =
+          clear && L.size() == 1 ? &lower.contours[static_cast<std::size_t>(L[0])].points : nullptr;
+      lower_ring = L.size() > 1 ? composite_of(lower, L, upper, wl, true, clear, out, lower_guide)
+                                : lower.contours[static_cast<std::size_t>(L[0])];
+      upper_ring = U.size() > 1 ? composite_of(upper, U, lower, wu, false, clear, out, upper_guide)
+                                : upper.contours[static_cast<std::size_t>(U[0])];
+    }
     if (deferred) {
       deferred->push_back({lower_ring, upper_ring, wl, wu, out.triangles.size(), L.size() > 1, U.size() > 1});
       continue;

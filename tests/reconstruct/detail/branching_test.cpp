@@ -188,6 +188,52 @@ TEST(Branching, TwoPiecesAreBridgedWhereTheOtherLevelJoinsThem) {
   EXPECT_TRUE(t.closed && t.manifold) << t.problems;
 }
 
+TEST(Branching, AnOpeningHoleIsBridgedWhereTheContourAboveRunsIntoIt) {
+  // A wall 1 mm thick at angle 0 and 8 mm at angle pi (an off-centre hole), open above at angle pi/2
+  // where it is about 4.4 mm thick: farther from the nearest pair (1 mm) than the opening rule reaches
+  // (twice it plus the two spacings, about 4.1 mm). The contour above runs from the outer wall into the
+  // hole there, and the bridge must follow it: at the nearest pair the composite would run round the
+  // hole in another order than the contour above, and the band between them would cross the slab.
+  test::TestStack stack;
+  const double pi = std::numbers::pi;
+  const Eigen::Vector2d centre(3.5, 0.0);
+  const double ro = 20.0, rh = 15.5, gap = 0.08;  // the opening spans pi/2 -+ gap (rad) on the outer wall
+  const Level lower{0.0,
+                    {stack.contour(circle_points(0, 0, ro, 120), 0.0),
+                     stack.contour(circle_points(centre.x(), centre.y(), rh, 90, true), 0.0, true, 0)}};
+  // Above: the outer wall from pi/2 + gap round to pi/2 - gap, then the hole's wall back, clockwise.
+  Polygon above;
+  for (int k = 0; k <= 110; ++k) {
+    const double a = pi / 2 + gap + (2 * pi - 2 * gap) * k / 110;
+    above.emplace_back(ro * std::cos(a), ro * std::sin(a));
+  }
+  // The hole's wall between the rays from its centre through the opening's two ends, clockwise.
+  const double h0 = std::atan2(ro * std::sin(pi / 2 - gap) - centre.y(), ro * std::cos(pi / 2 - gap) - centre.x());
+  const double h1 = std::atan2(ro * std::sin(pi / 2 + gap) - centre.y(), ro * std::cos(pi / 2 + gap) - centre.x());
+  for (int k = 0; k <= 85; ++k) {
+    const double a = h0 - (2 * pi - (h1 - h0)) * k / 85;
+    above.emplace_back(centre.x() + rh * std::cos(a), centre.y() + rh * std::sin(a));
+  }
+  const Level upper{1.0, {stack.contour(above, 1.0)}};
+  SlabMesh out = stack.slab();
+  tile_composite(lower, upper, TilingOptions{}, out);
+  int bridges = 0;
+  double longest = 0.0;
+  for (std::size_t f = 0; f < out.triangles.size(); ++f) {
+    const Triangle& t = out.triangles[f];
+    const Eigen::Vector3d a = out.position(t[0]), b = out.position(t[1]), c = out.position(t[2]);
+    longest = std::max({longest, (b - a).norm(), (c - b).norm(), (a - c).norm()});
+    if (out.roles[f] != FaceRole::Bridge) continue;
+    ++bridges;
+    const Eigen::Vector3d m = (a + b + c) / 3.0;
+    EXPECT_NEAR(std::atan2(m.y(), m.x()), pi / 2, 0.2) << "bridged away from the opening";
+  }
+  EXPECT_EQ(bridges, 2);
+  EXPECT_LT(longest, 8.0) << "the band crosses the slab";
+  const test::Topology t = test::topology_of(closed(stack, lower, upper, out));
+  EXPECT_TRUE(t.closed && t.manifold) << t.problems;
+}
+
 TEST(Branching, AnOpeningHoleIsBridgedWhereTheWallIsOpenAbove) {
   // A ring below a ring wall with one slit at angle 2 rad: the composite of outer contour and hole is
   // bridged across the wall at the slit, so that the band above follows the wall.
