@@ -197,15 +197,17 @@ std::vector<std::pair<int, int>> nearest_copy_points(const std::vector<LevelCont
 // How many guide points either side of its passage from the composite to a copy a guided bridge may end at.
 constexpr std::size_t kGuideReach = 8;
 
-// The bridge that joins copy `r` to the composite where `guide` (the one contour the composite is tiled
-// to) passes from the composite's contours to r: the guide's point pair where its nearest copy changes
-// from a joined one to r gives the two ends. Only where the guide enters r once and leaves it once (r is
-// one stretch of the guide), and the bridge's quad crosses no contour; false otherwise.
+// Checks the bridge (ba, bb) that joins copy `r` to the composite against `guide` (the one contour the
+// composite is tiled to; `labels`: its points' nearest copy points) and replaces it where it would give
+// the composite another order of its pieces than the guide's: then the bridge goes where the guide passes
+// from the composite's pieces to r (the guide's point pair where its nearest copy changes from a joined
+// one to r gives the two ends). Only where the guide enters r once and leaves it once (r is one stretch
+// of the guide), and the new quad crosses no contour; false (the bridge stays) otherwise.
 bool guided_bridge(const Composite& comp, const std::vector<LevelContour>& copies, std::size_t r,
                    const std::vector<bool>& used, const std::vector<std::pair<int, int>>& labels,
                    const std::vector<const Polygon*>& obstacles, std::size_t& ba, std::size_t& bb) {
   const std::size_t n = labels.size();
-  std::size_t entries = 0, exits = 0, entry = 0;
+  std::size_t entries = 0, exits = 0, entry = 0, exit = 0;
   for (std::size_t g = 0; g < n; ++g) {
     const int c0 = labels[g].first, c1 = labels[(g + 1) % n].first;
     if (c0 < 0 || c1 < 0) return false;
@@ -215,11 +217,10 @@ bool guided_bridge(const Composite& comp, const std::vector<LevelContour>& copie
       entry = g;
     } else if (c0 == static_cast<int>(r) && in1) {
       ++exits;
+      exit = g;
     }
   }
   if (entries != 1 || exits != 1) return false;
-  // Pairs of a composite point met just before the entry and a point of r met just after it; the first
-  // whose quad crosses no contour.
   const std::size_t na = comp.ring.points.size(), nb = copies[r].points.size();
   std::vector<std::vector<int>> position(copies.size());
   for (std::size_t k = 0; k < na; ++k) {
@@ -227,13 +228,34 @@ bool guided_bridge(const Composite& comp, const std::vector<LevelContour>& copie
     if (p.empty()) p.assign(copies[static_cast<std::size_t>(comp.origin[k].first)].points.size(), -1);
     p[static_cast<std::size_t>(comp.origin[k].second)] = static_cast<int>(k);
   }
+  const auto ring_index = [&](const std::pair<int, int>& label) {
+    const std::vector<int>& at = position[static_cast<std::size_t>(label.first)];
+    return at.empty() ? -1 : at[static_cast<std::size_t>(label.second)];
+  };
+  // The given bridge stands when it lies where the guide skips both contours: on the composite between
+  // where the guide leaves it and where it comes back, on r between where the guide leaves r and where it
+  // entered. Any bridge there gives the composite the guide's order of the pieces (the nearest is the
+  // shortest); one elsewhere does not.
+  const int leave = ring_index(labels[entry]), back = ring_index(labels[(exit + 1) % n]);
+  if (leave >= 0 && back >= 0) {
+    const auto on_arc = [](std::size_t x, std::size_t from, std::size_t to, std::size_t m) {
+      return (x + m - from) % m <= (to + m - from) % m;
+    };
+    const std::size_t r_in = static_cast<std::size_t>(labels[(entry + 1) % n].second);
+    const std::size_t r_out = static_cast<std::size_t>(labels[exit].second);
+    if (on_arc(ba, static_cast<std::size_t>(leave), static_cast<std::size_t>(back), na) &&
+        on_arc(bb, r_out, r_in, nb)) {
+      return false;
+    }
+  }
+  // Pairs of a composite point met just before the entry and a point of r met just after it; the first
+  // whose quad crosses no contour.
   std::vector<std::size_t> before, after;
   for (std::size_t s = 0; s < kGuideReach; ++s) {
     const auto [c0, i0] = labels[(entry + n - s) % n];
     if (!used[static_cast<std::size_t>(c0)]) break;
-    const std::vector<int>& at = position[static_cast<std::size_t>(c0)];
-    if (!at.empty() && at[static_cast<std::size_t>(i0)] >= 0)
-      before.push_back(static_cast<std::size_t>(at[static_cast<std::size_t>(i0)]));
+    const int k = ring_index({c0, i0});
+    if (k >= 0) before.push_back(static_cast<std::size_t>(k));
   }
   for (std::size_t s = 1; s <= kGuideReach; ++s) {
     const auto [c1, i1] = labels[(entry + s) % n];
@@ -274,23 +296,11 @@ Composite make_composite(const std::vector<LevelContour>& copies, const Level& o
   std::optional<Outline> outline;
   if (opening || clear_bridges) outline.emplace(other);
   for (std::size_t round = 1; round < copies.size(); ++round) {
-    // The contour not yet joined that is nearest to the composite; one the guide joins to it first.
+    // The contour not yet joined that is nearest to the composite, bridged by the rule of bridge_ends;
+    // with a guide, where the guide says so instead (guided_bridge).
     double best = std::numeric_limits<double>::infinity();
     std::size_t which = 0, ba = 0, bb = 0;
-    bool guided = false;
-    if (!labels.empty()) {
-      std::vector<const Polygon*> obstacles{&comp.ring.points};
-      for (std::size_t o = 0; o < copies.size(); ++o) {
-        if (!used[o]) obstacles.push_back(&copies[o].points);
-      }
-      for (std::size_t r = 0; r < copies.size() && !guided; ++r) {
-        if (!used[r] && guided_bridge(comp, copies, r, used, labels, obstacles, ba, bb)) {
-          guided = true;
-          which = r;
-        }
-      }
-    }
-    for (std::size_t r = 0; r < copies.size() && !guided; ++r) {
+    for (std::size_t r = 0; r < copies.size(); ++r) {
       if (used[r]) continue;
       double d = 0.0;
       std::vector<const Polygon*> obstacles;
@@ -308,6 +318,13 @@ Composite make_composite(const std::vector<LevelContour>& copies, const Level& o
         ba = a;
         bb = b;
       }
+    }
+    if (!labels.empty()) {
+      std::vector<const Polygon*> obstacles{&comp.ring.points};
+      for (std::size_t o = 0; o < copies.size(); ++o) {
+        if (!used[o]) obstacles.push_back(&copies[o].points);
+      }
+      guided_bridge(comp, copies, which, used, labels, obstacles, ba, bb);
     }
     used[which] = true;
     const LevelContour& x = copies[which];
