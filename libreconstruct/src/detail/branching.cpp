@@ -26,7 +26,6 @@ namespace {
 // two faces, recorded as the cycle (a_i, b_j+1, b_j, a_i+1) that follows the composite's direction.
 struct Composite {
   LevelContour ring;
-  std::vector<std::uint8_t> from_hole;      ///< per point of `ring`: whether it comes from a hole's copy
   std::vector<std::pair<int, int>> origin;  ///< per point of `ring`: its copy and its index there
   std::vector<std::array<VertexRef, 4>> quads;
   std::vector<std::array<Eigen::Vector2d, 4>> quad_points;
@@ -59,7 +58,7 @@ bool crosses_any(const Eigen::Vector2d& p, const Eigen::Vector2d& q, const std::
 // kBridgeTries nearest pairs whose quad's sides cross none of those contours (a bridge across another
 // contour makes the composite cross itself). With `other` (the other level), the bridge goes where that
 // level joins what the bridge joins, if such a pair is not much farther than the nearest one:
-// - across a wall (between a hole's copy and anything; `a_hole` says which points of `a` come from a
+// - across a wall (between a hole's copy and anything; `a_hole(i)` says whether point i of `a` comes from a
 //   hole), where the other level has no material at the bridge's midpoint: the wall is open there (with
 //   `opening`: a hole that opens is among the copies);
 // - between two outer contours, where the other level has material there: the two are one contour (with
@@ -68,9 +67,10 @@ bool crosses_any(const Eigen::Vector2d& p, const Eigen::Vector2d& q, const std::
 // level's contour, and the band between them crosses the slab along the arcs in between. Without such a
 // pair, the nearest clear one (with `obstacles`), then the nearest whose midpoint obeys the rule, then the
 // nearest.
-std::pair<std::size_t, std::size_t> bridge_ends(const LevelContour& a, const std::vector<std::uint8_t>& a_hole,
-                                                const LevelContour& b, const Outline* other, bool opening, bool outers,
-                                                double& distance, const std::vector<const Polygon*>* obstacles) {
+template <class AHole>
+std::pair<std::size_t, std::size_t> bridge_ends(const LevelContour& a, const AHole& a_hole, const LevelContour& b,
+                                                const Outline* other, bool opening, bool outers, double& distance,
+                                                const std::vector<const Polygon*>* obstacles) {
   std::vector<std::tuple<double, std::size_t, std::size_t>> nearest;
   nearest.reserve(a.points.size());
   for (std::size_t i = 0; i < a.points.size(); ++i) {
@@ -88,7 +88,7 @@ std::pair<std::size_t, std::size_t> bridge_ends(const LevelContour& a, const std
   std::sort(nearest.begin(), nearest.end());
   // Whether the pair's bridge breaks the rule above (false where no rule applies).
   const auto astray = [&](std::size_t i, std::size_t j) {
-    const bool wall = a_hole[i] != 0 || b.is_hole;
+    const bool wall = a_hole(i) || b.is_hole;
     if (!other || (wall ? !opening : !outers)) return false;
     return other->contains(0.5 * (a.points[i] + b.points[j])) == wall;
   };
@@ -286,7 +286,6 @@ Composite make_composite(const std::vector<LevelContour>& copies, const Level& o
                          const Polygon* guide) {
   Composite comp;
   comp.ring = copies[0];
-  comp.from_hole.assign(copies[0].points.size(), copies[0].is_hole ? 1 : 0);
   for (std::size_t i = 0; i < copies[0].points.size(); ++i) comp.origin.emplace_back(0, static_cast<int>(i));
   std::vector<std::pair<int, int>> labels;
   if (guide && clear_bridges && !guide->empty()) labels = nearest_copy_points(copies, *guide);
@@ -310,7 +309,10 @@ Composite make_composite(const std::vector<LevelContour>& copies, const Level& o
           if (!used[o]) obstacles.push_back(&copies[o].points);
         }
       }
-      const auto [a, b] = bridge_ends(comp.ring, comp.from_hole, copies[r], outline ? &*outline : nullptr, opening,
+      const auto from_hole = [&](std::size_t i) {
+        return copies[static_cast<std::size_t>(comp.origin[i].first)].is_hole;
+      };
+      const auto [a, b] = bridge_ends(comp.ring, from_hole, copies[r], outline ? &*outline : nullptr, opening,
                                       clear_bridges, d, clear_bridges ? &obstacles : nullptr);
       if (d < best) {
         best = d;
@@ -330,25 +332,21 @@ Composite make_composite(const std::vector<LevelContour>& copies, const Level& o
     const LevelContour& x = copies[which];
     const std::size_t na = comp.ring.points.size(), nb = x.points.size();
     LevelContour merged;
-    std::vector<std::uint8_t> from_hole;
     std::vector<std::pair<int, int>> origin;
     for (std::size_t k = 1; k <= na; ++k) {  // a_i+1 ... a_i
       merged.ids.push_back(comp.ring.ids[(ba + k) % na]);
       merged.points.push_back(comp.ring.points[(ba + k) % na]);
-      from_hole.push_back(comp.from_hole[(ba + k) % na]);
       origin.push_back(comp.origin[(ba + k) % na]);
     }
     for (std::size_t k = 0; k < nb; ++k) {  // b_j+1 = x[bb] ... b_j = x[bb - 1]
       merged.ids.push_back(x.ids[(bb + k) % nb]);
       merged.points.push_back(x.points[(bb + k) % nb]);
-      from_hole.push_back(x.is_hole ? 1 : 0);
       origin.emplace_back(static_cast<int>(which), static_cast<int>((bb + k) % nb));
     }
     const std::size_t bj = (bb + nb - 1) % nb, ai1 = (ba + 1) % na;
     comp.quads.push_back({comp.ring.ids[ba], x.ids[bb], x.ids[bj], comp.ring.ids[ai1]});
     comp.quad_points.push_back({comp.ring.points[ba], x.points[bb], x.points[bj], comp.ring.points[ai1]});
     comp.ring = std::move(merged);
-    comp.from_hole = std::move(from_hole);
     comp.origin = std::move(origin);
   }
   return comp;
