@@ -9,6 +9,7 @@ set(CONTOURMESH_TILING_SOURCES
   src/detail/branching.cpp
   src/detail/cap_refinement.cpp
   src/detail/caps.cpp
+  src/detail/composite.cpp
   src/detail/correspondence.cpp
   src/detail/crossing_band.cpp
   src/detail/lifted_transition.cpp
