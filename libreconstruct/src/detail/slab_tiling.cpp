@@ -6,6 +6,7 @@
 #include "detail/caps.h"
 #include "detail/correspondence.h"
 #include "detail/lifted_transition.h"
+#include "detail/sliver_collapse.h"
 #include "detail/shape_interpolation.h"
 #include "detail/slab_remeshing.h"
 
@@ -177,6 +178,10 @@ class Interpolation {
 constexpr double kMaxFlipDeviation = 0.25;
 // ... and split edges longer than this many contour spacings.
 constexpr double kMinSplitLength = 0.5;
+// Collapses that remove slivers join vertices at most this many contour spacings apart, and move the
+// surface by at most a tenth of that.
+constexpr double kMaxCollapseLength = 1.0;
+constexpr double kMaxCollapseDeviation = 0.1;
 
 // A candidate tiling whose flat and sliver area (TilingDefects::score) is at most this share of its area
 // is kept without trying the costlier ones.
@@ -513,6 +518,8 @@ void tile_slab(const Level& lower, const Level& upper, const TilingOptions& opti
   SlabTiler(options).tile(lower, upper, {}, 0, true, true, out);
   if (options.band_refinement == BandRefinement::Interpolated) {
     improve_slab_faces(out, kMaxFlipDeviation * (upper.w - lower.w), kMinSplitLength * mean_spacing(lower, upper));
+    const double spacing = mean_spacing(lower, upper);
+    collapse_slivers(out, kMaxCollapseLength * spacing, kMaxCollapseDeviation * spacing);
   }
 }
 
