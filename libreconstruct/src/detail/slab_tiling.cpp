@@ -6,9 +6,9 @@
 #include "detail/caps.h"
 #include "detail/correspondence.h"
 #include "detail/lifted_transition.h"
-#include "detail/sliver_collapse.h"
 #include "detail/shape_interpolation.h"
 #include "detail/slab_remeshing.h"
+#include "detail/sliver_collapse.h"
 
 #include <algorithm>
 #include <cmath>
@@ -517,8 +517,8 @@ class SlabTiler {
 void tile_slab(const Level& lower, const Level& upper, const TilingOptions& options, SlabMesh& out) {
   SlabTiler(options).tile(lower, upper, {}, 0, true, true, out);
   if (options.band_refinement == BandRefinement::Interpolated) {
-    improve_slab_faces(out, kMaxFlipDeviation * (upper.w - lower.w), kMinSplitLength * mean_spacing(lower, upper));
     const double spacing = mean_spacing(lower, upper);
+    improve_slab_faces(out, kMaxFlipDeviation * (upper.w - lower.w), kMinSplitLength * spacing);
     collapse_slivers(out, kMaxCollapseLength * spacing, kMaxCollapseDeviation * spacing);
   }
 }
