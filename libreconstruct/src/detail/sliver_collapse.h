@@ -15,8 +15,8 @@ namespace contourmesh::detail {
 ///
 /// The corner that goes is a vertex the slab added itself (no ids: an intermediate contour, a copy, a
 /// split's midpoint), never on the slab's boundary and never a corner of a cap; it moves onto one of its
-/// neighbours at most `max_length` (mm) away, which stays where it is. Of the collapses a sliver allows, the one that leaves the best
-/// smallest angle is made, and a collapse is allowed only when:
+/// neighbours at most `max_length` (mm) away, which stays where it is. Of the collapses a sliver
+/// allows, the one that leaves the best smallest angle is made, and a collapse is allowed only when:
 /// - the surface stays an edge-manifold (the two ends share no neighbour but the third corners of the
 ///   edge's two faces), and no new edge joins two contour vertices of one slice (a chord in its plane,
 ///   which the next slab may hold too);
