@@ -8,7 +8,9 @@
 #include <contourmesh/smooth/mesh.h>
 
 #include <cmath>
+#include <map>
 #include <numbers>
+#include <utility>
 #include <vector>
 
 namespace contourmesh::test {
@@ -35,6 +37,25 @@ inline detail::Polygon arc_points(double a0, double a1, double r0, double r1, in
     c.emplace_back(r0 * std::cos(a), r0 * std::sin(a));
   }
   return c;
+}
+
+/// A level contour on plane w whose points are vertices the slab adds itself (a composite's or an
+/// intermediate contour's), without ids.
+inline detail::LevelContour local_contour(const detail::Polygon& points, double w, detail::SlabMesh& mesh) {
+  detail::LevelContour c;
+  c.points = points;
+  for (const Eigen::Vector2d& p : points) c.ids.push_back(mesh.add_vertex(p, w));
+  detail::finish_contour(c);
+  return c;
+}
+
+/// A slab mesh's directed edges and how often each occurs.
+inline std::map<std::pair<detail::VertexRef, detail::VertexRef>, int> directed_edges(const detail::SlabMesh& m) {
+  std::map<std::pair<detail::VertexRef, detail::VertexRef>, int> edges;
+  for (const Triangle& t : m.triangles) {
+    for (int k = 0; k < 3; ++k) ++edges[{t[k], t[(k + 1) % 3]}];
+  }
+  return edges;
 }
 
 /// Vertices of the stack's own contours, numbered as the driver numbers them, with their positions.

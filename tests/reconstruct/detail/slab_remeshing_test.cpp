@@ -21,6 +21,8 @@ namespace contourmesh::detail {
 namespace {
 
 using test::circle_points;
+using test::directed_edges;
+using test::local_contour;
 
 double sliver_share(const SlabMesh& m) {
   double area = 0.0, sliver = 0.0;
@@ -41,15 +43,6 @@ double area(const SlabMesh& m) {
   return total;
 }
 
-// Directed edges and how often each occurs.
-std::map<std::pair<VertexRef, VertexRef>, int> directed_edges(const SlabMesh& m) {
-  std::map<std::pair<VertexRef, VertexRef>, int> edges;
-  for (const Triangle& t : m.triangles) {
-    for (int k = 0; k < 3; ++k) ++edges[{t[k], t[(k + 1) % 3]}];
-  }
-  return edges;
-}
-
 // A nearly flat band: a small contour 0.3 mm above a large one, off its centre (a wall that shrinks
 // from one slice to the next): the least-area band fans long slivers across the gap.
 struct FlatBand {
@@ -63,15 +56,6 @@ struct FlatBand {
     emit_band(lower, upper, minimum_area_band(lower.points, 0.0, upper.points, 0.3, TilingOptions{}), mesh);
   }
 };
-
-// Vertices the slab adds itself (a composite's or an intermediate contour's), without ids.
-LevelContour local_contour(const Polygon& points, double w, SlabMesh& mesh) {
-  LevelContour c;
-  c.points = points;
-  for (const Eigen::Vector2d& p : points) c.ids.push_back(mesh.add_vertex(p, w));
-  finish_contour(c);
-  return c;
-}
 
 // The same nearly flat band between two rings of vertices without ids (two composites of a branching,
 // 0.4 mm apart): a fan from the small ring's vertices across the whole gap.

@@ -22,6 +22,8 @@ namespace contourmesh::detail {
 namespace {
 
 using test::circle_points;
+using test::directed_edges;
+using test::local_contour;
 
 double sliver_area(const SlabMesh& m) {
   double sliver = 0.0;
@@ -32,14 +34,6 @@ double sliver_area(const SlabMesh& m) {
   return sliver;
 }
 
-std::map<std::pair<VertexRef, VertexRef>, int> directed_edges(const SlabMesh& m) {
-  std::map<std::pair<VertexRef, VertexRef>, int> edges;
-  for (const Triangle& t : m.triangles) {
-    for (int k = 0; k < 3; ++k) ++edges[{t[k], t[(k + 1) % 3]}];
-  }
-  return edges;
-}
-
 // Edges with no twin: the slab's boundary.
 std::set<std::pair<VertexRef, VertexRef>> boundary(const SlabMesh& m) {
   const auto edges = directed_edges(m);
@@ -48,14 +42,6 @@ std::set<std::pair<VertexRef, VertexRef>> boundary(const SlabMesh& m) {
     if (!edges.count({e.second, e.first})) out.insert(e);
   }
   return out;
-}
-
-LevelContour local_contour(const Polygon& points, double w, SlabMesh& mesh) {
-  LevelContour c;
-  c.points = points;
-  for (const Eigen::Vector2d& p : points) c.ids.push_back(mesh.add_vertex(p, w));
-  finish_contour(c);
-  return c;
 }
 
 // A slab of 2 mm halved into a sub-slab of 0.1 mm and the rest: the intermediate level (vertices
