@@ -20,7 +20,9 @@ const double kMaxTurnCosine = std::cos(45.0 * std::numbers::pi / 180.0);
 const double kFlatCosine = std::cos(10.0 * std::numbers::pi / 180.0);
 
 // The slab's faces over compact vertex numbers (the slab's local vertices first, in order, then the
-// contour vertices its faces use), with each vertex's faces.
+// contour vertices its faces use). Only the patch around the slivers takes part: the faces that touch a
+// vertex within one edge of a sliver's corner. Those vertices are complete (every face of theirs is in the
+// patch, so their rings are whole); the patch's other vertices never go and nothing goes onto them.
 class Collapser {
  public:
   explicit Collapser(SlabMesh& mesh) : mesh_(mesh), locals_(mesh.vertices.size()) {
@@ -37,27 +39,48 @@ class Collapser {
     faces_.reserve(mesh.triangles.size());
     for (const Triangle& t : mesh.triangles) faces_.push_back({compact(t[0]), compact(t[1]), compact(t[2])});
     alive_.assign(faces_.size(), 1);
+    // The patch: sliver corners, their neighbours (complete), and every face that touches one of those.
+    std::vector<std::uint8_t> corner(n, 0);
+    complete_.assign(n, 0);
+    for (std::size_t f = 0; f < faces_.size(); ++f) {
+      if (sliver(static_cast<int>(f))) {
+        for (int v : faces_[f]) corner[static_cast<std::size_t>(v)] = 1;
+      }
+    }
+    for (const auto& t : faces_) {
+      if (corner[static_cast<std::size_t>(t[0])] || corner[static_cast<std::size_t>(t[1])] ||
+          corner[static_cast<std::size_t>(t[2])]) {
+        for (int v : t) complete_[static_cast<std::size_t>(v)] = 1;
+      }
+    }
     around_.resize(n);
     for (std::size_t f = 0; f < faces_.size(); ++f) {
-      for (int v : faces_[f]) around_[static_cast<std::size_t>(v)].push_back(static_cast<int>(f));
+      const auto& t = faces_[f];
+      if (!complete_[static_cast<std::size_t>(t[0])] && !complete_[static_cast<std::size_t>(t[1])] &&
+          !complete_[static_cast<std::size_t>(t[2])]) {
+        continue;
+      }
+      patch_.push_back(static_cast<int>(f));
+      for (int v : t) around_[static_cast<std::size_t>(v)].push_back(static_cast<int>(f));
     }
-    // Contour vertices, vertices on the slab's boundary (an edge with one face, or more than two) and
-    // the corners of caps never go.
+    // Contour vertices, vertices on the slab's boundary (an edge with one face, or more than two), the
+    // corners of caps and the patch's incomplete vertices never go.
     fixed_.assign(n, 0);
-    for (std::size_t v = locals_; v < n; ++v) fixed_[v] = 1;
+    for (std::size_t v = 0; v < n; ++v) fixed_[v] = v >= locals_ || !complete_[v] ? 1 : 0;
     std::vector<std::uint64_t> edges;
-    edges.reserve(3 * faces_.size());
-    for (std::size_t f = 0; f < faces_.size(); ++f) {
+    edges.reserve(3 * patch_.size());
+    for (int f : patch_) {
+      const auto& t = faces_[static_cast<std::size_t>(f)];
       for (int k = 0; k < 3; ++k) {
-        const int a = faces_[f][k], b = faces_[f][(k + 1) % 3];
-        edges.push_back(key(a, b));
-        if (mesh.roles[f] == FaceRole::Cap) fixed_[static_cast<std::size_t>(a)] = 1;
+        edges.push_back(key(t[k], t[(k + 1) % 3]));
+        if (mesh.roles[static_cast<std::size_t>(f)] == FaceRole::Cap) fixed_[static_cast<std::size_t>(t[k])] = 1;
       }
     }
     std::sort(edges.begin(), edges.end());
     for (std::size_t i = 0; i < edges.size();) {
       std::size_t j = i;
       while (j < edges.size() && edges[j] == edges[i]) ++j;
+      // An edge of a complete vertex has all its faces in the patch; an incomplete vertex is fixed anyway.
       if (j - i != 2) {
         fixed_[static_cast<std::size_t>(edges[i] >> 32)] = 1;
         fixed_[static_cast<std::size_t>(edges[i] & 0xffffffffU)] = 1;
@@ -66,7 +89,8 @@ class Collapser {
     }
   }
 
-  [[nodiscard]] std::size_t faces() const { return faces_.size(); }
+  /// The faces of the patch (indices into the slab's faces).
+  [[nodiscard]] const std::vector<int>& patch() const { return patch_; }
   [[nodiscard]] bool alive(int f) const { return alive_[static_cast<std::size_t>(f)] != 0; }
 
   [[nodiscard]] bool sliver(int f) const {
@@ -84,7 +108,10 @@ class Collapser {
   // first: they are cheap and turn most candidates down.
   [[nodiscard]] double try_collapse(int gone, const std::vector<int>& gone_ring, int kept, double max_length,
                                     double max_deviation, double& before) const {
-    if (fixed_[static_cast<std::size_t>(gone)] || (pos(kept) - pos(gone)).norm() > max_length) return -1.0;
+    if (fixed_[static_cast<std::size_t>(gone)] || !complete_[static_cast<std::size_t>(kept)] ||
+        (pos(kept) - pos(gone)).norm() > max_length) {
+      return -1.0;
+    }
     before = 180.0;
     double after = 180.0;
     double flat_before = 0.0, flat_after = 0.0;  // twice the area within 10 degrees of the slice planes
@@ -240,6 +267,8 @@ class Collapser {
   std::vector<std::uint8_t> alive_;
   std::vector<std::vector<int>> around_;
   std::vector<std::uint8_t> fixed_;
+  std::vector<std::uint8_t> complete_;
+  std::vector<int> patch_;
   std::vector<int> removed_;
 };
 
@@ -257,10 +286,8 @@ std::size_t collapse_slivers(SlabMesh& mesh, double max_length, double max_devia
   // its turn comes, and further sweeps take what the first one left or made.
   for (int sweep = 0; sweep < 3; ++sweep) {
     std::vector<std::pair<double, int>> work;
-    for (std::size_t f = 0; f < c.faces(); ++f) {
-      if (c.alive(static_cast<int>(f)) && c.sliver(static_cast<int>(f))) {
-        work.emplace_back(c.min_angle(static_cast<int>(f)), static_cast<int>(f));
-      }
+    for (int f : c.patch()) {
+      if (c.alive(f) && c.sliver(f)) work.emplace_back(c.min_angle(f), f);
     }
     std::sort(work.begin(), work.end());
     const std::size_t before_sweep = collapses;

@@ -13,7 +13,8 @@ namespace contourmesh::detail {
 /// between two levels of an interpolation that nearly coincide (sub-slabs a fraction of a millimetre
 /// thick, where a halved slab runs along a wall) are rows of slivers that no flip or split can mend.
 ///
-/// The corner that goes is a vertex the slab added itself (no ids: an intermediate contour, a copy, a
+/// Only the faces around the slivers take part (those that touch a vertex within one edge of a sliver's
+/// corner). The corner that goes is a vertex the slab added itself (no ids: an intermediate contour, a copy, a
 /// split's midpoint), never on the slab's boundary and never a corner of a cap; it moves onto one of its
 /// neighbours at most `max_length` (mm) away, which stays where it is. Of the collapses a sliver
 /// allows, the one that leaves the best smallest angle is made, and a collapse is allowed only when:
