@@ -104,16 +104,15 @@ class Collapser {
   [[nodiscard]] bool removable(int v) const { return fixed_[static_cast<std::size_t>(v)] == 0; }
 
   // The smallest angle (degrees) of the faces around `gone` after it moves onto `kept`, or -1 when the
-  // collapse is not allowed; `before`: the smallest angle of those faces now. The geometric tests come
-  // first: they are cheap and turn most candidates down.
+  // collapse is not allowed. `gone_ring`: ring(gone). The geometric tests come first: they are cheap and
+  // turn most candidates down.
   [[nodiscard]] double try_collapse(int gone, const std::vector<int>& gone_ring, int kept, double max_length,
-                                    double max_deviation, double& before) const {
+                                    double max_deviation) const {
     if (fixed_[static_cast<std::size_t>(gone)] || !complete_[static_cast<std::size_t>(kept)] ||
         (pos(kept) - pos(gone)).norm() > max_length) {
       return -1.0;
     }
-    before = 180.0;
-    double after = 180.0;
+    double before = 180.0, after = 180.0;
     double flat_before = 0.0, flat_after = 0.0;  // twice the area within 10 degrees of the slice planes
     std::array<int, 2> opposite{-1, -1};
     int shared = 0;  // faces that hold the edge
@@ -170,9 +169,6 @@ class Collapser {
     return after;
   }
 
-  // The neighbours of v, sorted.
-  [[nodiscard]] std::vector<int> neighbours(int v) const { return ring(v); }
-
   void collapse(int gone, int kept) {
     for (int f : around_[static_cast<std::size_t>(gone)]) {
       auto& t = faces_[static_cast<std::size_t>(f)];
@@ -228,6 +224,19 @@ class Collapser {
     mesh_.roles = std::move(roles);
   }
 
+  // The vertices that share a face with v, sorted, without v.
+  [[nodiscard]] std::vector<int> ring(int v) const {
+    std::vector<int> out;
+    for (int f : around_[static_cast<std::size_t>(v)]) {
+      for (int u : faces_[static_cast<std::size_t>(f)]) {
+        if (u != v) out.push_back(u);
+      }
+    }
+    std::sort(out.begin(), out.end());
+    out.erase(std::unique(out.begin(), out.end()), out.end());
+    return out;
+  }
+
  private:
   static std::uint64_t key(int a, int b) {
     if (a > b) std::swap(a, b);
@@ -246,18 +255,7 @@ class Collapser {
 
   [[nodiscard]] const Eigen::Vector3d& pos(int v) const { return positions_[static_cast<std::size_t>(v)]; }
 
-  // The vertices that share a face with v, sorted, without v.
-  [[nodiscard]] std::vector<int> ring(int v) const {
-    std::vector<int> out;
-    for (int f : around_[static_cast<std::size_t>(v)]) {
-      for (int u : faces_[static_cast<std::size_t>(f)]) {
-        if (u != v) out.push_back(u);
-      }
-    }
-    std::sort(out.begin(), out.end());
-    out.erase(std::unique(out.begin(), out.end()), out.end());
-    return out;
-  }
+
 
   SlabMesh& mesh_;
   std::size_t locals_;
@@ -299,10 +297,9 @@ std::size_t collapse_slivers(SlabMesh& mesh, double max_length, double max_devia
       double best = -1.0;
       for (int gone : c.face(f)) {
         if (!c.removable(gone)) continue;
-        const std::vector<int> ring = c.neighbours(gone);
+        const std::vector<int> ring = c.ring(gone);
         for (int kept : ring) {
-          double before = 0.0;
-          const double after = c.try_collapse(gone, ring, kept, max_length, max_deviation, before);
+          const double after = c.try_collapse(gone, ring, kept, max_length, max_deviation);
           if (after > best) {
             best = after;
             best_gone = gone;
