@@ -13,10 +13,10 @@ set(CONTOURMESH_TILING_SOURCES
   src/detail/correspondence.cpp
   src/detail/crossing_band.cpp
   src/detail/lifted_transition.cpp
-  src/detail/sliver_collapse.cpp
   src/detail/shape_interpolation.cpp
   src/detail/slab_remeshing.cpp
   src/detail/slab_tiling.cpp
+  src/detail/sliver_collapse.cpp
   src/detail/stack_preparation.cpp
   src/detail/tiling_types.cpp
   src/tiling.cpp)

@@ -25,7 +25,9 @@ const double kFlatCosine = std::cos(10.0 * std::numbers::pi / 180.0);
 // patch, so their rings are whole); the patch's other vertices never go and nothing goes onto them.
 class Collapser {
  public:
-  explicit Collapser(SlabMesh& mesh) : mesh_(mesh), locals_(mesh.vertices.size()) {
+  // `slivers`: the slab's sliver faces (indices into its faces).
+  Collapser(SlabMesh& mesh, const std::vector<std::size_t>& slivers)
+      : mesh_(mesh), locals_(mesh.vertices.size()) {
     for (const Triangle& t : mesh.triangles) {
       for (VertexRef r : t) {
         if (!is_local(r)) contour_refs_.push_back(r);
@@ -42,10 +44,8 @@ class Collapser {
     // The patch: sliver corners, their neighbours (complete), and every face that touches one of those.
     std::vector<std::uint8_t> corner(n, 0);
     complete_.assign(n, 0);
-    for (std::size_t f = 0; f < faces_.size(); ++f) {
-      if (sliver(static_cast<int>(f))) {
-        for (int v : faces_[f]) corner[static_cast<std::size_t>(v)] = 1;
-      }
+    for (std::size_t f : slivers) {
+      for (int v : faces_[f]) corner[static_cast<std::size_t>(v)] = 1;
     }
     for (const auto& t : faces_) {
       if (corner[static_cast<std::size_t>(t[0])] || corner[static_cast<std::size_t>(t[1])] ||
@@ -255,8 +255,6 @@ class Collapser {
 
   [[nodiscard]] const Eigen::Vector3d& pos(int v) const { return positions_[static_cast<std::size_t>(v)]; }
 
-
-
   SlabMesh& mesh_;
   std::size_t locals_;
   std::vector<VertexRef> contour_refs_;  // sorted
@@ -274,11 +272,13 @@ class Collapser {
 
 std::size_t collapse_slivers(SlabMesh& mesh, double max_length, double max_deviation) {
   if (!(max_length > 0.0 && max_deviation > 0.0)) return 0;
-  const bool any = std::any_of(mesh.triangles.begin(), mesh.triangles.end(), [&](const Triangle& t) {
-    return is_sliver(mesh.position(t[0]), mesh.position(t[1]), mesh.position(t[2]));
-  });
-  if (!any) return 0;
-  Collapser c(mesh);
+  std::vector<std::size_t> slivers;
+  for (std::size_t f = 0; f < mesh.triangles.size(); ++f) {
+    const Triangle& t = mesh.triangles[f];
+    if (is_sliver(mesh.position(t[0]), mesh.position(t[1]), mesh.position(t[2]))) slivers.push_back(f);
+  }
+  if (slivers.empty()) return 0;
+  Collapser c(mesh, slivers);
   std::size_t collapses = 0;
   // The sharpest slivers first; a collapse changes the faces around it, so each is checked again when
   // its turn comes, and further sweeps take what the first one left or made.
