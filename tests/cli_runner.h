@@ -81,6 +81,13 @@ inline CliRun run_cli(std::filesystem::path cli, const std::string& args, const 
   return run_program(cli, args, scratch, prefix);
 }
 
+#ifdef CONTOURMESH_CLI
+/// run_cli for the contourmesh command of this test target (CONTOURMESH_CLI, set by tests/CMakeLists.txt).
+inline CliRun run_cli(const std::string& args, const std::filesystem::path& scratch) {
+  return run_cli(CONTOURMESH_CLI, args, scratch);
+}
+#endif
+
 /// Lines of stderr other than the progress display's "STAGE done in X s" lines.
 inline int non_progress_lines(const std::string& err) {
   std::istringstream in(err);

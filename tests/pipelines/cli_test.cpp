@@ -32,7 +32,7 @@ namespace fs = std::filesystem;
 
 using test::CliRun;
 
-CliRun run_cli(const std::string& args, const fs::path& dir) { return test::run_cli(CONTOURMESH_CLI, args, dir); }
+using test::run_cli;
 
 class Cli : public ::testing::Test {
  protected:

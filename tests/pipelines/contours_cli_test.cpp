@@ -23,7 +23,7 @@ const fs::path kBreast = fs::path(CONTOURMESH_SHARED_DATA) / "rtstruct_breast" /
 
 using test::CliRun;
 
-CliRun run_cli(const std::string& args, const fs::path& dir) { return test::run_cli(CONTOURMESH_CLI, args, dir); }
+using test::run_cli;
 
 // The path quoted for the shell.
 std::string q(const fs::path& p) { return test::shell_quote(p.string()); }

@@ -8,6 +8,7 @@
 #include <array>
 #include <cstddef>
 #include <optional>
+#include <vector>
 
 namespace contourmesh::test {
 
@@ -16,6 +17,12 @@ inline const Phantom& phantom_of(PhantomShape shape) {
   std::optional<Phantom>& p = phantoms.at(static_cast<std::size_t>(shape));
   if (!p) p = make_phantom(shape);
   return *p;
+}
+
+/// Every voxel value of `image`, in ITK's buffer order (x fastest).
+inline std::vector<float> values(const CtImage& image) {
+  const float* data = image.GetBufferPointer();
+  return {data, data + image.GetLargestPossibleRegion().GetNumberOfPixels()};
 }
 
 }  // namespace contourmesh::test

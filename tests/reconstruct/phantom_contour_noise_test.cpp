@@ -2,6 +2,7 @@
 // Contour noise of render_phantom: each slice's boundary is displaced along its normal by the slice's own
 // random field, with the requested RMS over the true boundary, independently from slice to slice.
 #include "contourmesh/reconstruct/phantom.h"
+#include "reconstruct/phantom_cache.h"
 
 #include <contourmesh/smooth/errors.h>
 
@@ -20,12 +21,9 @@ namespace {
 
 using Vec3 = Eigen::Vector3d;
 
-constexpr double kPi = std::numbers::pi;
+using std::numbers::pi;
 
-std::vector<float> values(const CtImage& image) {
-  const float* data = image.GetBufferPointer();
-  return {data, data + image.GetLargestPossibleRegion().GetNumberOfPixels()};
-}
+using test::values;
 
 // Bilinear interpolation of slice k at the physical point (x, y).
 double sample(const CtImage& image, std::int64_t k, double x, double y) {
@@ -52,7 +50,7 @@ constexpr double kRadius = 28.0;
 std::vector<double> radial_displacement(const CtImage& image, std::int64_t k, double level, int angles) {
   std::vector<double> d;
   for (int a = 0; a < angles; ++a) {
-    const double theta = 2.0 * kPi * (a + 0.5) / angles;
+    const double theta = 2.0 * pi * (a + 0.5) / angles;
     const double c = std::cos(theta), s = std::sin(theta);
     double best = std::nan("");
     double previous = sample(image, k, (kRadius - 5.0) * c, (kRadius - 5.0) * s) - level;
@@ -176,7 +174,7 @@ TEST(PhantomContourNoise, FacesParallelToTheSlicesStayWallsMove) {
       }
     }
   }
-  for (double t = 0.0; t < 2.0 * kPi; t += 0.05) {
+  for (double t = 0.0; t < 2.0 * pi; t += 0.05) {
     const auto index = index_of(-20.0 + 14.0 * std::cos(t), 14.0 * std::sin(t), 1.0);
     wall_moved += image->GetPixel(index) != clean->GetPixel(index) ? 1 : 0;
   }

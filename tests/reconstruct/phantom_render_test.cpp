@@ -32,10 +32,7 @@ float value_at(const CtImage& image, const Vec3& point) {
   return image.GetPixel(index);
 }
 
-std::vector<float> values(const CtImage& image) {
-  const float* data = image.GetBufferPointer();
-  return {data, data + image.GetLargestPossibleRegion().GetNumberOfPixels()};
-}
+using test::values;
 
 TEST(PhantomRender, GeometryAndValues) {
   const Phantom& p = phantom_of(PhantomShape::RidgeBox);

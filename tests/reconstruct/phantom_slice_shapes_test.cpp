@@ -21,9 +21,9 @@ namespace {
 using Vec3 = Eigen::Vector3d;
 using Vec2 = Eigen::Vector2d;
 
-constexpr double kPi = std::numbers::pi;
+using std::numbers::pi;
 
-double degrees(double d) { return d * kPi / 180.0; }
+double degrees(double d) { return d * pi / 180.0; }
 
 // Stratified Monte Carlo: one uniformly random point in each cube of side h over the bounds.
 double integrated_volume(const Phantom& p, double h) {
@@ -99,7 +99,7 @@ TEST(PhantomSliceShapes, VolumesMatchNumericIntegration) {
   }
   // The analytic values themselves.
   EXPECT_NEAR(make_phantom(PhantomShape::InSliceRidge).volume, 1102.0 * 50.0, 1e-9);  // section area 1102 mm^2
-  EXPECT_NEAR(make_phantom(PhantomShape::EndFaceOnSlice).volume, kPi * 14.0 * 14.0 * 28.0 + 26.0 * 20.0 * 40.0, 1e-9);
+  EXPECT_NEAR(make_phantom(PhantomShape::EndFaceOnSlice).volume, pi * 14.0 * 14.0 * 28.0 + 26.0 * 20.0 * 40.0, 1e-9);
 }
 
 // tilted-box: the large faces 4 degrees and the bevel 15 degrees off the slice planes; its 15 edges
@@ -107,10 +107,10 @@ TEST(PhantomSliceShapes, VolumesMatchNumericIntegration) {
 TEST(PhantomSliceShapes, TiltedBoxFacesAndEdges) {
   const Phantom p = make_phantom(PhantomShape::TiltedBox);
   const Eigen::Matrix3d r = (Eigen::AngleAxisd(degrees(20.0), Vec3::UnitZ()) *
-                             Eigen::AngleAxisd(degrees(4.0), Vec3(std::cos(kPi / 3.0), std::sin(kPi / 3.0), 0.0)))
+                             Eigen::AngleAxisd(degrees(4.0), Vec3(std::cos(pi / 3.0), std::sin(pi / 3.0), 0.0)))
                                 .toRotationMatrix();
   const Vec3 u = r.col(0), w = r.col(1), v = r.col(2);
-  auto tilt = [&](const Vec3& q) { return std::acos(std::abs(p.normal(q).z())) * 180.0 / kPi; };
+  auto tilt = [&](const Vec3& q) { return std::acos(std::abs(p.normal(q).z())) * 180.0 / pi; };
   const Vec3 top = crossing(p, -10.0 * u, -10.0 * u + 12.0 * v);
   const Vec3 bottom = crossing(p, -10.0 * u, -10.0 * u - 12.0 * v);
   EXPECT_NEAR((top - bottom).norm(), 20.0, 1e-9);
@@ -154,7 +154,7 @@ TEST(PhantomSliceShapes, InSliceRidgeEdgesAndAlignment) {
     const Vec3 apex = ridge.x() * across + ridge.y() * Vec3::UnitZ();
     const Vec3 left = p.normal(apex + 1.0 * across - 0.5 * Vec3::UnitZ());
     const Vec3 right = p.normal(apex - 1.0 * across - 0.5 * Vec3::UnitZ());
-    EXPECT_GT(std::acos(left.dot(right)) * 180.0 / kPi, 60.0) << ridge.transpose();
+    EXPECT_GT(std::acos(left.dot(right)) * 180.0 / pi, 60.0) << ridge.transpose();
   }
   const std::vector<double> centres = default_slice_centres(p);
   const double half = 0.5 * PhantomVolumeOptions{}.spacing.z();
@@ -169,7 +169,7 @@ TEST(PhantomSliceShapes, EndFacesAlignedAsClaimed) {
   const Phantom p = make_phantom(PhantomShape::EndFaceOnSlice);
   for (double z : {-15.0, 13.0}) {
     std::vector<Vec3> rim;
-    for (double t = 0.0; t < 2.0 * kPi; t += 0.01) rim.emplace_back(-20.0 + 14.0 * std::cos(t), 14.0 * std::sin(t), z);
+    for (double t = 0.0; t < 2.0 * pi; t += 0.01) rim.emplace_back(-20.0 + 14.0 * std::cos(t), 14.0 * std::sin(t), z);
     for (std::size_t i = 0; i + 1 < rim.size(); ++i) expect_edge_covered(p, rim[i], rim[i + 1], "cylinder rim");
   }
   const Vec2 bu(std::cos(degrees(30.0)), std::sin(degrees(30.0))), bv(-bu.y(), bu.x());

@@ -25,7 +25,7 @@ namespace {
 
 using Vec3 = Eigen::Vector3d;
 
-constexpr double kPi = std::numbers::pi;
+using std::numbers::pi;
 
 struct ShapeCase {
   PhantomShape shape;
@@ -39,8 +39,8 @@ struct ShapeCase {
 // bevel cuts the corner u > 10, v > 10 - 0.92 drop with drop > 4.6 mm.
 std::vector<Vec3> tilted_box_points(bool inside) {
   const Eigen::Matrix3d rotation =
-      (Eigen::AngleAxisd(20.0 * kPi / 180.0, Vec3::UnitZ()) *
-       Eigen::AngleAxisd(4.0 * kPi / 180.0, Vec3(std::cos(kPi / 3.0), std::sin(kPi / 3.0), 0.0)))
+      (Eigen::AngleAxisd(20.0 * pi / 180.0, Vec3::UnitZ()) *
+       Eigen::AngleAxisd(4.0 * pi / 180.0, Vec3(std::cos(pi / 3.0), std::sin(pi / 3.0), 0.0)))
           .toRotationMatrix();
   const std::vector<Vec3> frame = inside ? std::vector<Vec3>{{0, 0, 0}, {30, 20, -8}, {-34, -24, 9.5}, {12, 0, 9}}
                                          : std::vector<Vec3>{{33, 0, 9.5}, {0, 0, 10.5}, {0, 25.5, 0}, {35.5, 0, 0}};
@@ -51,7 +51,7 @@ std::vector<Vec3> tilted_box_points(bool inside) {
 
 // in-slice-ridge: points given as (x', y', z) in the prism's frame, turned by 25 degrees about z.
 std::vector<Vec3> in_slice_ridge_points(bool inside) {
-  const Eigen::Matrix3d turn = Eigen::AngleAxisd(25.0 * kPi / 180.0, Vec3::UnitZ()).toRotationMatrix();
+  const Eigen::Matrix3d turn = Eigen::AngleAxisd(25.0 * pi / 180.0, Vec3::UnitZ()).toRotationMatrix();
   const std::vector<Vec3> frame =
       inside ? std::vector<Vec3>{{0, 0, -10}, {0, 12, 9.5}, {10, -10, 14.5}, {-24, 0, -14.5}, {0, 23.5, 1.5}}
              : std::vector<Vec3>{{0, 2, 6}, {0, -10, 15.5}, {25.5, 0, 0}, {0, 20, 10}, {0, 12, 10.5}};
@@ -316,7 +316,7 @@ TEST(Phantom, CreasesBetweenPrimitivesAreSampled) {
     for (double x : {-15.5, 15.5}) {
       const Vec3 c(x, 3.0, -44.0);
       const auto sphere = [&](double u, double v) {
-        const double theta = kPi * u, phi = 2.0 * kPi * v;
+        const double theta = pi * u, phi = 2.0 * pi * v;
         return Vec3(c + 13.0 * Vec3(std::sin(theta) * std::cos(phi), std::sin(theta) * std::sin(phi), std::cos(theta)));
       };
       const std::vector<Vec3> curve = crossing_curve(p, sphere, shaft);
@@ -340,7 +340,7 @@ TEST(Phantom, CreasesBetweenPrimitivesAreSampled) {
       const Vec3 axis = (b - a).normalized();
       const Vec3 e1 = axis.cross(Vec3::UnitY()).normalized(), e2 = axis.cross(e1);
       const auto limb = [&](double u, double v) {
-        const double phi = 2.0 * kPi * v;
+        const double phi = 2.0 * pi * v;
         return Vec3(a + u * (b - a) + 8.0 * (std::cos(phi) * e1 + std::sin(phi) * e2));
       };
       const std::vector<Vec3> curve = crossing_curve(p, limb, trunk);
@@ -370,7 +370,7 @@ TEST(Phantom, KnownCreasesAreSampled) {
     const Vec3 e1 = axis.cross(Vec3::UnitY()).normalized();
     const Vec3 e2 = axis.cross(e1);
     const double along = std::sqrt(15.0 * 15.0 - 8.0 * 8.0);
-    for (double t = 0.0; t < 2.0 * kPi; t += 0.005) {
+    for (double t = 0.0; t < 2.0 * pi; t += 0.005) {
       neck_head.push_back(head + along * axis + 8.0 * (std::cos(t) * e1 + std::sin(t) * e2));
     }
     expect_covered(p, apex, "femur ridge apex");
@@ -379,9 +379,9 @@ TEST(Phantom, KnownCreasesAreSampled) {
   {
     const Phantom& p = phantom_of(PhantomShape::Pelvis);
     // The crest: vertex (41, 15) of the section revolved, tilted by 22 degrees about x.
-    const Eigen::Matrix3d rotation = Eigen::AngleAxisd(22.0 * kPi / 180.0, Vec3::UnitX()).toRotationMatrix();
+    const Eigen::Matrix3d rotation = Eigen::AngleAxisd(22.0 * pi / 180.0, Vec3::UnitX()).toRotationMatrix();
     std::vector<Vec3> crest;
-    for (double t = 0.0; t < 2.0 * kPi; t += 0.002) {
+    for (double t = 0.0; t < 2.0 * pi; t += 0.002) {
       crest.push_back(rotation * Vec3(41.0 * std::cos(t), 41.0 * std::sin(t), 15.0));
     }
     expect_covered(p, crest, "pelvis crest");
@@ -394,14 +394,14 @@ TEST(Phantom, KnownCreasesAreSampled) {
     for (double y = -7.0; y <= 7.0; y += 0.05) {
       crotch.emplace_back(0.0, y, -5.0 + std::sqrt((64.0 - y * y) / (1.0 - dz * dz)));
     }
-    for (double t = 0.0; t < 2.0 * kPi; t += 0.01) rim.emplace_back(10.0 * std::cos(t), 10.0 * std::sin(t), -45.0);
+    for (double t = 0.0; t < 2.0 * pi; t += 0.01) rim.emplace_back(10.0 * std::cos(t), 10.0 * std::sin(t), -45.0);
     expect_covered(p, crotch, "branch crotch");
     expect_covered(p, rim, "branch bottom rim");
   }
   {
     const Phantom& p = phantom_of(PhantomShape::Cavity);
     std::vector<Vec3> rim;
-    for (double t = 0.0; t < 2.0 * kPi; t += 0.005) rim.emplace_back(28.0 * std::cos(t), 28.0 * std::sin(t), 30.0);
+    for (double t = 0.0; t < 2.0 * pi; t += 0.005) rim.emplace_back(28.0 * std::cos(t), 28.0 * std::sin(t), 30.0);
     expect_covered(p, rim, "cavity top rim");
     EXPECT_GT(distance_to_features(p, Vec3(4.0, -3.0, 14.0)), 10.0);  // top of the smooth cavity
   }

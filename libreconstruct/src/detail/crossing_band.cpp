@@ -115,7 +115,7 @@ double distance_to_segment(const Eigen::Vector2d& a, const Eigen::Vector2d& b, c
 }
 
 // A corner of a face of the arrangement: a ring vertex or a crossing.
-struct Node {
+struct ArrangementNode {
   VertexRef ref;
   Eigen::Vector2d p;
   bool on_lower, on_upper;
@@ -226,13 +226,13 @@ std::optional<CrossingBand> crossing_band_ccw(const LevelContour& lower, double 
   // and backward along the upper ring's arcs (inside the lower region); where the upper one alone does,
   // the other way round. Each arc bounds exactly one such face.
   struct Face {
-    std::vector<Node> nodes;
+    std::vector<ArrangementNode> nodes;
     bool up;
   };
   std::vector<Face> faces;
   std::vector<std::uint8_t> used_a(n, 0), used_b(n, 0);
   auto crossing_node = [&](std::size_t x, bool lower_edge) {
-    return Node{crossing_ref[x], xs[x].p, true, true, lower_edge};
+    return ArrangementNode{crossing_ref[x], xs[x].p, true, true, lower_edge};
   };
   for (const bool up : {true, false}) {
     // up: start on lower arcs that leave the upper region; down: on upper arcs outside the lower one.
@@ -282,7 +282,7 @@ std::optional<CrossingBand> crossing_band_ccw(const LevelContour& lower, double 
   if (faces.size() != n) return std::nullopt;
   for (const Face& face : faces) {
     Polygon points;
-    for (const Node& v : face.nodes) points.push_back(v.p);
+    for (const ArrangementNode& v : face.nodes) points.push_back(v.p);
     if (signed_area(points) <= 0.0) return std::nullopt;
     const std::size_t m = points.size();
     const RefinedCap region = triangulate_refined(points, {}, spacing);
@@ -310,7 +310,8 @@ std::optional<CrossingBand> crossing_band_ccw(const LevelContour& lower, double 
       if (a >= static_cast<int>(m) || b >= static_cast<int>(m)) return false;
       const int d = std::abs(a - b);
       if (d == 1 || d == static_cast<int>(m) - 1) return false;
-      const Node &na_ = face.nodes[static_cast<std::size_t>(a)], &nb_ = face.nodes[static_cast<std::size_t>(b)];
+      const ArrangementNode &na_ = face.nodes[static_cast<std::size_t>(a)];
+      const ArrangementNode &nb_ = face.nodes[static_cast<std::size_t>(b)];
       return (na_.on_lower && nb_.on_lower) || (na_.on_upper && nb_.on_upper);
     };
     auto point = [&](int c) { return c < static_cast<int>(m) ? points[static_cast<std::size_t>(c)]

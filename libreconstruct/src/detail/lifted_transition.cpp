@@ -25,7 +25,7 @@ double distance_to_polygon(const Polygon& poly, const Eigen::Vector2d& p) {
   return std::sqrt(best);
 }
 
-struct Node {
+struct NestNode {
   const LevelContour* contour;
   bool upper;
   int parent = -1;  // smallest contour of either level that contains this one
@@ -34,12 +34,12 @@ struct Node {
 }  // namespace
 
 bool lifted_transition(const Level& lower, const Level& upper, SlabMesh& out) {
-  std::vector<Node> nodes;
+  std::vector<NestNode> nodes;
   std::vector<Polygon> polygons;
   for (const LevelContour& c : lower.contours) nodes.push_back({&c, false});
   for (const LevelContour& c : upper.contours) nodes.push_back({&c, true});
   if (nodes.empty()) return false;
-  for (const Node& n : nodes) polygons.push_back(n.contour->points);
+  for (const NestNode& n : nodes) polygons.push_back(n.contour->points);
   if (find_polygon_crossing(polygons)) return false;
   // Nesting: with nothing crossing, one point tells whether a contour lies inside another.
   for (std::size_t i = 0; i < nodes.size(); ++i) {
