@@ -6,6 +6,7 @@
 #include <contourmesh/smooth/errors.h>
 #include <contourmesh/smooth/topology.h>
 
+#include <algorithm>
 #include <chrono>
 #include <sstream>
 
@@ -120,10 +121,14 @@ Reconstruction reconstruct(const CtImage& image, const ReconstructionOptions& op
   tiled.mesh = std::move(placed.mesh);
   if (options.off_slice.placement == OffSlicePlacement::ImageCrossing) {
     // The heights move vertices without ids between the slices; flips mend the slivers that makes, within
-    // a quarter of the slice spacing of the surface (as the slabs' own face-quality pass).
+    // a quarter of the slice spacing of the surface (as the slabs' own face-quality pass) and within one
+    // pixel: on thick slices a quarter spacing is wider than a small object (0.01 x 0.01 x 50 mm voxels:
+    // 12.5 mm of flips on a needle 1.2 mm across cost it 4 % of its volume).
     const auto& direction = image.GetDirection();
     const Eigen::Vector3d axis(direction[0][2], direction[1][2], direction[2][2]);
-    detail::flip_moved_slivers(tiled.mesh, tiled.face_roles, axis.normalized(), 0.25 * image.GetSpacing()[2]);
+    const auto spacing = image.GetSpacing();
+    const double max_deviation = std::min(0.25 * spacing[2], std::min(spacing[0], spacing[1]));
+    detail::flip_moved_slivers(tiled.mesh, tiled.face_roles, axis.normalized(), max_deviation);
   }
   out.report.off_slice = placed.report;
   out.report.seconds_off_slice = seconds_since(t0);

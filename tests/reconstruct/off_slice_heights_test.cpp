@@ -4,6 +4,7 @@
 #include <contourmesh/reconstruct/off_slice_heights.h>
 #include <contourmesh/reconstruct/reconstruction.h>
 #include <contourmesh/smooth/errors.h>
+#include <contourmesh/smooth/metrics.h>
 
 #include <gtest/gtest.h>
 
@@ -187,6 +188,24 @@ TEST(OffSliceHeights, TiledPlacementChangesNothing) {
   const OffSliceResult same = fit_off_slice_heights(tiled, *image, 500.0, o);
   EXPECT_EQ(same.mesh.positions, tiled.positions);
   EXPECT_EQ(same.report.fitted, 0u);
+}
+
+// A needle 1 mm across on 0.01 mm pixels, slices 50 mm apart: a quarter of the slice spacing is twelve
+// times the needle's width, so the flips after the heights must be held to the pixels, or they cut
+// chords through it (before they were: 4 % of the volume).
+TEST(OffSliceHeights, FlipsOnThickSlicesKeepANeedlesVolume) {
+  const CtImage::Pointer image = partial_volume({110, 110, 3}, {0.01, 0.01, 50.0}, [](const Eigen::Vector3d& p) {
+    return std::hypot(p.x() - 0.545, p.y() - 0.545) - 0.5;
+  });
+  ReconstructionOptions tiled_options = options_with(OffSlicePlacement::Tiled);
+  tiled_options.segmentation.min_region_area = 0.01;
+  tiled_options.segmentation.min_contour_length = 0.1;
+  ReconstructionOptions image_options = tiled_options;
+  image_options.off_slice.placement = OffSlicePlacement::ImageCrossing;
+  const double tiled = enclosed_volume(reconstruct(*image, tiled_options).mesh);
+  const double placed = enclosed_volume(reconstruct(*image, image_options).mesh);
+  ASSERT_GT(tiled, 0.0);
+  EXPECT_NEAR(placed, tiled, 0.02 * tiled);
 }
 
 TEST(OffSliceHeights, NoFaceTurnsOverOnANoisyBranchingShape) {
