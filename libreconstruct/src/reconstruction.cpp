@@ -119,6 +119,7 @@ Reconstruction reconstruct(const CtImage& image, const ReconstructionOptions& op
   OffSliceResult placed = fit_off_slice_heights(std::move(tiled.mesh), seg.smoothed_image ? *seg.smoothed_image : image,
                                                 seg.threshold, options.off_slice, tiled.face_roles);
   tiled.mesh = std::move(placed.mesh);
+  const auto spacing = image.GetSpacing();
   if (options.off_slice.placement == OffSlicePlacement::ImageCrossing) {
     // The heights move vertices without ids between the slices; flips mend the slivers that makes, within
     // a quarter of the slice spacing of the surface (as the slabs' own face-quality pass) and within one
@@ -126,13 +127,11 @@ Reconstruction reconstruct(const CtImage& image, const ReconstructionOptions& op
     // 12.5 mm of flips on a needle 1.2 mm across cost it 4 % of its volume).
     const auto& direction = image.GetDirection();
     const Eigen::Vector3d axis(direction[0][2], direction[1][2], direction[2][2]);
-    const auto spacing = image.GetSpacing();
     const double max_deviation = std::min(0.25 * spacing[2], std::min(spacing[0], spacing[1]));
     detail::flip_moved_slivers(tiled.mesh, tiled.face_roles, axis.normalized(), max_deviation);
   }
   out.report.off_slice = placed.report;
   out.report.seconds_off_slice = seconds_since(t0);
-  const auto spacing = image.GetSpacing();
   const double min_volume = options.min_component_voxels * spacing[0] * spacing[1] * spacing[2];
   out.face_roles = std::move(tiled.face_roles);
   out.mesh = drop_small_components(std::move(tiled.mesh), out.face_roles, min_volume, out.report.dropped_components);
