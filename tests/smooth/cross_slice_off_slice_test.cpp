@@ -18,7 +18,7 @@
 namespace contourmesh {
 namespace {
 
-constexpr double kPi = std::numbers::pi;
+using std::numbers::pi;
 
 struct Accuracy {
   double rms = 0.0;           ///< of the distance of surface samples to the truth, mm
@@ -43,7 +43,7 @@ Accuracy measure(const Mesh& mesh, const ScalarField& sdf) {
     const double d = sdf(p);
     w += s.weights[k];
     d2 += s.weights[k] * d * d;
-    angle += s.weights[k] * std::acos(std::clamp(n.dot(g.normalized()), -1.0, 1.0)) * 180.0 / kPi;
+    angle += s.weights[k] * std::acos(std::clamp(n.dot(g.normalized()), -1.0, 1.0)) * 180.0 / pi;
   }
   return {std::sqrt(d2 / w), angle / w};
 }
@@ -211,7 +211,7 @@ double cone_wall_normal_error(const Mesh& mesh) {
     const Eigen::Vector3d truth = (radial - 1.5 * Eigen::Vector3d::UnitZ()).normalized();
     const double area = 0.5 * cross.norm();
     w += area;
-    angle += area * std::acos(std::clamp(cross.normalized().dot(truth), -1.0, 1.0)) * 180.0 / kPi;
+    angle += area * std::acos(std::clamp(cross.normalized().dot(truth), -1.0, 1.0)) * 180.0 / pi;
   }
   return angle / w;
 }

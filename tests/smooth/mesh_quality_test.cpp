@@ -12,7 +12,7 @@
 namespace contourmesh {
 namespace {
 
-constexpr double kPi = std::numbers::pi;
+using std::numbers::pi;
 
 TEST(MeshQuality, MinimumAngleOfKnownTriangles) {
   const Eigen::Vector3d o(1, 2, 3);
@@ -21,7 +21,7 @@ TEST(MeshQuality, MinimumAngleOfKnownTriangles) {
   EXPECT_NEAR(minimum_angle_degrees(o, o + Eigen::Vector3d(1, 0, 0), o + Eigen::Vector3d(0, 1, 0)), 45.0, 1e-9);
   // A right triangle with legs 1 and tan(5 degrees): its smallest angle is 5 degrees.
   EXPECT_NEAR(
-      minimum_angle_degrees(o, o + Eigen::Vector3d(0, 0, 1), o + Eigen::Vector3d(std::tan(5 * kPi / 180), 0, 1)), 5.0,
+      minimum_angle_degrees(o, o + Eigen::Vector3d(0, 0, 1), o + Eigen::Vector3d(std::tan(5 * pi / 180), 0, 1)), 5.0,
       1e-9);
   EXPECT_EQ(minimum_angle_degrees(o, o, o + Eigen::Vector3d(1, 0, 0)), 0.0);
   EXPECT_EQ(minimum_angle_degrees(o, o + Eigen::Vector3d(1, 0, 0), o + Eigen::Vector3d(2, 0, 0)), 0.0);
@@ -70,7 +70,7 @@ TEST(MeshQuality, AreaFacingTheAxisCountsFacesParallelToTheSlices) {
   }
   EXPECT_NEAR(area_facing_axis(cube.positions, cube.triangles, z, 10.0, skip), 4.0, 1e-9);
   // Tilted by 7 degrees about x, top and bottom are still within 10 degrees, not within 5.
-  const Eigen::Vector3d tilted(0.0, std::sin(7 * kPi / 180), std::cos(7 * kPi / 180));
+  const Eigen::Vector3d tilted(0.0, std::sin(7 * pi / 180), std::cos(7 * pi / 180));
   EXPECT_NEAR(area_facing_axis(cube.positions, cube.triangles, tilted, 10.0), 8.0, 1e-9);
   EXPECT_NEAR(area_facing_axis(cube.positions, cube.triangles, tilted, 5.0), 0.0, 1e-9);
   EXPECT_THROW((void)area_facing_axis(cube.positions, cube.triangles, Eigen::Vector3d::Zero(), 10.0),
@@ -83,7 +83,7 @@ TEST(MeshQuality, AreaFacingTheAxisOfASphereIsItsPolarCaps) {
   // Faces within a degrees of z on a unit sphere: two caps of area 2 pi (1 - cos a).
   const Mesh s = make_icosphere(6);
   const double a = 20.0;
-  const double expected = 2.0 * 2.0 * kPi * (1.0 - std::cos(a * kPi / 180));
+  const double expected = 2.0 * 2.0 * pi * (1.0 - std::cos(a * pi / 180));
   EXPECT_NEAR(area_facing_axis(s.positions, s.triangles, Eigen::Vector3d::UnitZ(), a) / expected, 1.0, 0.03);
 }
 
@@ -104,7 +104,7 @@ TEST(MeshQuality, SummaryAgreesWithTheSingleMeasures) {
   const MeshQuality q = mesh_quality(m, {}, skip);
   EXPECT_NEAR(q.area, 2.0, 1e-12);
   EXPECT_NEAR(q.sliver_area_share, sliver_area_share(m), 1e-12);
-  EXPECT_NEAR(q.min_angle_degrees, std::atan(0.1 / 15) * 180 / kPi, 1e-9);
+  EXPECT_NEAR(q.min_angle_degrees, std::atan(0.1 / 15) * 180 / pi, 1e-9);
   EXPECT_NEAR(q.shelf_area, 0.5, 1e-12);  // both faces lie in z = 0; the thin one is skipped
   EXPECT_NEAR(q.shelf_area_share, 0.25, 1e-12);
   EXPECT_NEAR(q.share_without_ids, 0.5, 1e-12);

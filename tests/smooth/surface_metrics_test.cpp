@@ -15,7 +15,7 @@
 namespace contourmesh {
 namespace {
 
-constexpr double kPi = std::numbers::pi;
+using std::numbers::pi;
 
 ScalarField sphere_sdf(double r) {
   return [r](const Eigen::Vector3d& p) { return p.norm() - r; };
@@ -70,7 +70,7 @@ TEST(SurfaceSampling, MeshSamplesAreReproducible) {
 
 TEST(SurfaceSampling, ImplicitSamplesWeighTheSphereArea) {
   const SurfaceTruth t = sphere_truth(10.0);
-  EXPECT_NEAR(t.samples.area(), 4.0 * kPi * 100.0, 4.0 * kPi * 100.0 * 0.01);
+  EXPECT_NEAR(t.samples.area(), 4.0 * pi * 100.0, 4.0 * pi * 100.0 * 0.01);
   for (Index k = 0; k < t.samples.size(); ++k) EXPECT_NEAR(t.samples.points.col(k).norm(), 10.0, 1e-6);
 }
 
@@ -166,10 +166,10 @@ TEST(SurfaceAccuracy, NormalErrorIsAreaWeightedAngle) {
   // the x axis turns by about 5 sin(theta) degrees, whose mean over the sphere is 5 pi / 4.
   const Mesh mesh = make_icosphere(5, 10.0);
   SurfaceTruth t = sphere_truth(10.0);
-  const Eigen::Matrix3d turn = Eigen::AngleAxisd(5.0 * kPi / 180.0, Eigen::Vector3d::UnitX()).toRotationMatrix();
+  const Eigen::Matrix3d turn = Eigen::AngleAxisd(5.0 * pi / 180.0, Eigen::Vector3d::UnitX()).toRotationMatrix();
   t.normal = [turn](const Eigen::Vector3d& p) { return Eigen::Vector3d(turn * p.normalized()); };
   const SurfaceAccuracy a = surface_accuracy(mesh, t);
-  EXPECT_NEAR(a.all.normal_error_degrees, 5.0 * kPi / 4.0, 0.1);
+  EXPECT_NEAR(a.all.normal_error_degrees, 5.0 * pi / 4.0, 0.1);
 }
 
 TEST(SurfaceAccuracy, TruthWithoutSamplesIsRefused) {
