@@ -62,8 +62,9 @@ TEST_F(BadInput, ExtremeSpacingRatiosStillGiveClosedMeshes) {
   const fs::path needle = write_volume_file("needle.mha", {150, 150, 3}, {0.01, 0.01, 50}, [](int i, int j, int) {
     return (i - 75) * (i - 75) + (j - 75) * (j - 75) < 60 * 60 ? 1000.0f : -1000.0f;
   });
-  // 50 x 50 x 0.01 mm: a pancake.
-  const fs::path pancake = write_volume_file("pancake.mha", {12, 12, 8}, {50, 50, 0.01}, [](int i, int j, int k) {
+  // 5 x 5 x 0.001 mm: a pancake 40 mm across, its pixels 5000 times wider than its slices are apart. (At 50 x
+  // 50 x 0.01 mm the same ratio gave a disk 400 mm across, 317k vertices at the 1 mm contour sampling.)
+  const fs::path pancake = write_volume_file("pancake.mha", {12, 12, 8}, {5, 5, 0.001}, [](int i, int j, int k) {
     return k > 1 && k < 6 && (i - 6) * (i - 6) + (j - 6) * (j - 6) < 16 ? 1000.0f : -1000.0f;
   });
   for (const fs::path& volume : {needle, pancake}) {
