@@ -83,7 +83,7 @@ detail::BucketGrid make_grid(const Eigen::Vector3d& origin, double cell, const s
   return g;
 }
 
-// Visits shells around p until `best` (a distance) cannot improve; `visit_cell` updates best.
+// Visits shells around p until `best` (a distance) cannot improve; `visit_cell(x, y, z)` updates best.
 template <typename VisitCell>
 void search(const detail::BucketGrid& grid, const Eigen::Vector3d& p, const double& best, VisitCell&& visit_cell) {
   const auto c = grid.cell_of(p);
@@ -101,6 +101,7 @@ void search(const detail::BucketGrid& grid, const Eigen::Vector3d& p, const doub
 TriangleLocator::TriangleLocator(const Eigen::Matrix3Xd& positions, const std::vector<Triangle>& triangles) {
   const Index n = static_cast<Index>(positions.cols());
   corners_.resize(triangles.size() * 9);
+  boxes_.resize(triangles.size() * 6);
   Eigen::Vector3d lo = Eigen::Vector3d::Constant(std::numeric_limits<double>::infinity());
   Eigen::Vector3d hi = -lo;
   double area = 0.0;
@@ -121,6 +122,9 @@ TriangleLocator::TriangleLocator(const Eigen::Matrix3Xd& positions, const std::v
     }
     const Eigen::Map<const Eigen::Vector3d> a(&corners_[f * 9]), b(&corners_[f * 9 + 3]), c(&corners_[f * 9 + 6]);
     area += 0.5 * (b - a).cross(c - a).norm();
+    Eigen::Map<Eigen::Vector3d> box_lo(&boxes_[f * 6]), box_hi(&boxes_[f * 6 + 3]);
+    box_lo = a.cwiseMin(b).cwiseMin(c);
+    box_hi = a.cwiseMax(b).cwiseMax(c);
   }
   if (triangles.empty()) return;
   // Cells about twice the typical edge: a face touches few cells, a cell holds few faces.
@@ -151,9 +155,21 @@ ClosestPoint TriangleLocator::closest(const Eigen::Vector3d& p) const {
   if (corners_.empty()) return best;
   const detail::BucketGrid grid = make_grid(origin_, cell_, dims_);
   double best2 = std::numeric_limits<double>::infinity();
-  search(grid, p, best.distance, [&](std::int64_t cell) {
+  search(grid, p, best.distance, [&](std::int64_t x, std::int64_t y, std::int64_t z) {
+    // A cell no nearer than the best so far holds nothing nearer (a cell holds a dozen faces or more).
+    if (grid.distance2_to_cell(p, x, y, z) >= best2) return;
+    const std::int64_t cell = grid.index(x, y, z);
     for (std::int64_t k = start_[static_cast<std::size_t>(cell)]; k < start_[static_cast<std::size_t>(cell) + 1]; ++k) {
       const Index f = faces_[static_cast<std::size_t>(k)];
+      // The face's box first: most faces of a bucket are farther than the best so far (and a face that
+      // spans several buckets is met again in each).
+      const double* box = &boxes_[static_cast<std::size_t>(f) * 6];
+      double box2 = 0.0;
+      for (int a = 0; a < 3; ++a) {
+        const double out = std::max({box[a] - p[a], p[a] - box[a + 3], 0.0});
+        box2 += out * out;
+      }
+      if (box2 >= best2) continue;
       const std::size_t o = static_cast<std::size_t>(f) * 9;
       const Eigen::Map<const Eigen::Vector3d> a(&corners_[o]), b(&corners_[o + 3]), c(&corners_[o + 6]);
       const Eigen::Vector3d q = closest_point_on_triangle(p, a, b, c);
@@ -193,7 +209,8 @@ double PointLocator::distance(const Eigen::Vector3d& p) const {
   if (points_.cols() == 0) return best;
   const detail::BucketGrid grid = make_grid(origin_, cell_, dims_);
   double best2 = best;
-  search(grid, p, best, [&](std::int64_t cell) {
+  search(grid, p, best, [&](std::int64_t x, std::int64_t y, std::int64_t z) {
+    const std::int64_t cell = grid.index(x, y, z);
     for (std::int64_t k = start_[static_cast<std::size_t>(cell)]; k < start_[static_cast<std::size_t>(cell) + 1]; ++k) {
       const double d2 = (points_.col(static_cast<Index>(k)) - p).squaredNorm();
       if (d2 < best2) {

@@ -55,10 +55,22 @@ struct BucketGrid {
     for (int a = 0; a < 3; ++a) hi[a] += cell * static_cast<double>(dims[static_cast<std::size_t>(a)]);
     return (p - p.cwiseMax(origin).cwiseMin(hi)).norm();
   }
+  /// Squared distance from p to cell (x, y, z) (0 inside it).
+  [[nodiscard]] double distance2_to_cell(const Eigen::Vector3d& p, std::int64_t x, std::int64_t y,
+                                         std::int64_t z) const {
+    const std::int64_t c[3] = {x, y, z};
+    double d2 = 0.0;
+    for (int a = 0; a < 3; ++a) {
+      const double lo = origin[a] + cell * static_cast<double>(c[a]);
+      const double out = std::max({lo - p[a], p[a] - (lo + cell), 0.0});
+      d2 += out * out;
+    }
+    return d2;
+  }
   /// The largest shell radius that can hold a cell.
   [[nodiscard]] std::int64_t max_shell() const { return std::max({dims[0], dims[1], dims[2]}); }
 
-  /// Calls visit(cell index) for every cell at Chebyshev distance exactly r from `c`.
+  /// Calls visit(x, y, z) for every cell (x, y, z) at Chebyshev distance exactly r from `c`.
   template <typename Visit>
   void shell(const std::array<std::int64_t, 3>& c, std::int64_t r, Visit&& visit) const {
     const std::int64_t z0 = std::max<std::int64_t>(0, c[2] - r), z1 = std::min(dims[2] - 1, c[2] + r);
@@ -69,10 +81,10 @@ struct BucketGrid {
       for (std::int64_t y = y0; y <= y1; ++y) {
         const bool yz_face = z_face || std::abs(y - c[1]) == r;
         if (yz_face) {
-          for (std::int64_t x = x0; x <= x1; ++x) visit(index(x, y, z));
+          for (std::int64_t x = x0; x <= x1; ++x) visit(x, y, z);
         } else {
-          if (c[0] - r >= 0) visit(index(c[0] - r, y, z));
-          if (r > 0 && c[0] + r < dims[0]) visit(index(c[0] + r, y, z));
+          if (c[0] - r >= 0) visit(c[0] - r, y, z);
+          if (r > 0 && c[0] + r < dims[0]) visit(c[0] + r, y, z);
         }
       }
     }

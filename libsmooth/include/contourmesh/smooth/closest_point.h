@@ -26,7 +26,8 @@ struct ClosestPoint {
 
 /// A bucket grid over a triangle mesh's faces (copied: the locator owns its data). Building is
 /// linear in the number of faces; a query visits the buckets around the query point in growing
-/// shells until no closer face can exist, so queries near the surface cost a few dozen triangle tests.
+/// shells until no closer face can exist, and skips a bucket, or a face, whose box is no nearer than
+/// the best face so far, so queries near the surface cost a few exact triangle tests.
 /// Queries are const and may run concurrently.
 class TriangleLocator {
  public:
@@ -40,6 +41,7 @@ class TriangleLocator {
 
  private:
   std::vector<double> corners_;  // 9 per face: a, b, c
+  std::vector<double> boxes_;    // 6 per face: the corners' min, then their max
   Eigen::Vector3d origin_ = Eigen::Vector3d::Zero();
   double cell_ = 1.0;
   std::array<std::int64_t, 3> dims_{1, 1, 1};
