@@ -31,6 +31,7 @@ void check_options(const CrossSliceOptions& o) {
   for (const auto& noise : {o.noise_across, o.noise_along}) {
     if (noise && !(*noise >= 0.0 && std::isfinite(*noise))) fail("a noise level must be a finite number >= 0 mm");
   }
+  if (!(o.min_profile_share >= 0.0 && o.min_profile_share <= 1.0)) fail("the min profile share must be in [0, 1]");
   if (o.extension_iterations < 0) fail("extension iterations must be >= 0");
   if (o.across_model != ProfileModel::Parabola && o.across_model != ProfileModel::Circle) {
     fail("unknown profile model " + std::to_string(static_cast<int>(o.across_model)));
@@ -48,6 +49,23 @@ void check_options(const CrossSliceOptions& o) {
     fail("off-slice filter angle must be in (0, 90] degrees");
   }
   if (!(f.max_move >= 0.0 && std::isfinite(f.max_move))) fail("off-slice filter max move must be a finite number >= 0");
+}
+
+// The noise level across the slices: given, estimated from the profiles across the slices, or, where too
+// few contour vertices have one (CrossSliceOptions::min_profile_share), from those along the contours.
+double noise_across(const detail::ContourFrame& frame, const Eigen::Matrix3Xd& positions,
+                    const Eigen::Matrix3Xd& normals, const CrossSliceOptions& options, NoiseSource& source) {
+  if (options.noise_across) {
+    source = NoiseSource::Given;
+    return *options.noise_across;
+  }
+  const detail::NoiseEstimate across = detail::profile_noise(frame, positions, normals, true);
+  if (across.share() >= options.min_profile_share && across.profiles > 0) {
+    source = NoiseSource::AcrossProfiles;
+    return across.sigma;
+  }
+  source = NoiseSource::AlongProfiles;
+  return detail::profile_noise(frame, positions, normals, false).sigma;
 }
 
 // How a stage reads a profile.
@@ -162,6 +180,15 @@ void extend_displacements(const detail::ContourFrame& frame, int iterations, Eig
 
 }  // namespace
 
+std::string_view to_string(NoiseSource source) {
+  switch (source) {
+    case NoiseSource::Given: return "given";
+    case NoiseSource::AcrossProfiles: return "across";
+    case NoiseSource::AlongProfiles: return "along";
+  }
+  return "unknown";
+}
+
 CrossSliceResult cross_slice_smooth(const Mesh& mesh, const CrossSliceOptions& options) {
   check_options(options);
   const auto start = std::chrono::steady_clock::now();
@@ -175,7 +202,7 @@ CrossSliceResult cross_slice_smooth(const Mesh& mesh, const CrossSliceOptions& o
 
   // 1. Across the slices.
   const Eigen::Matrix3Xd normals = vertex_normals(mesh.positions, mesh.triangles, frame.adjacency);
-  result.noise_across = options.noise_across.value_or(detail::profile_noise(frame, mesh.positions, normals, true));
+  result.noise_across = noise_across(frame, mesh.positions, normals, options, result.noise_across_source);
   // The reach: short where the contours are precise, long where they are noisy (precise_noise).
   result.reach = options.reach.value_or(result.noise_across < options.precise_noise ? 4 : 8);
   lpa.gamma = options.gamma;
@@ -203,7 +230,8 @@ CrossSliceResult cross_slice_smooth(const Mesh& mesh, const CrossSliceOptions& o
       for (auto i = static_cast<Index>(begin); i < static_cast<Index>(end); ++i) across.col(i) += displacement.col(i);
     });
     const Eigen::Matrix3Xd across_normals = vertex_normals(across, mesh.triangles, frame.adjacency);
-    result.noise_along = options.noise_along.value_or(detail::profile_noise(frame, across, across_normals, false));
+    result.noise_along =
+        options.noise_along.value_or(detail::profile_noise(frame, across, across_normals, false).sigma);
     lpa.sigma = result.noise_along;
     lpa.max_half_width = options.along_reach;
     lpa.circle = false;

@@ -65,6 +65,7 @@ SmoothResult run_cross_slice(const Mesh& mesh, const SmoothOptions& options) {
   r.profiles = c.profiles;
   r.noise_across = c.noise_across;
   r.noise_along = c.noise_along;
+  r.noise_across_source = c.noise_across_source;
   return r;
 }
 

@@ -73,8 +73,11 @@ std::string describe_stages(const SmoothResult& r, const std::string& id_source,
     j["profiles"] = r.profiles;
     j["noise_across_mm"] = r.noise_across;
     j["noise_along_mm"] = r.noise_along;
+    j["noise_across_from"] = std::string(to_string(r.noise_across_source));
     s << "  profiles  " << r.profiles << " contour vertices corrected across slices (noise " << r.noise_across
-      << " mm across, " << r.noise_along << " mm along the contours)\n";
+      << " mm across";
+    if (r.noise_across_source == NoiseSource::AlongProfiles) s << ", from the contours: too few profiles across";
+    s << ", " << r.noise_along << " mm along the contours)\n";
   }
   if (!r.labels.empty()) {
     s << "  seconds   detect " << r.seconds.detect;

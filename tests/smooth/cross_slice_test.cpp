@@ -175,6 +175,28 @@ TEST(CrossSlice, ReachFromTheNoiseLevelUnlessGiven) {
   EXPECT_THROW((void)cross_slice_smooth(noisy, o), InvalidInputError);
 }
 
+// The noise across the slices is estimated from five-slice profiles; on a stack too short to give them
+// (thick slices through a small object) the noise along the contours stands in for it.
+TEST(CrossSlice, TooFewProfilesAcrossTakeTheNoiseAlongTheContours) {
+  Mesh tall = make_contour_stack(test::cylinder_spec(10.0, 20));
+  Mesh short_stack = make_contour_stack(test::cylinder_spec(10.0, 4));
+  add_noise(tall, {.sigma = 0.1, .seed = 3, .direction = NoiseDirection::InPlane});
+  add_noise(short_stack, {.sigma = 0.1, .seed = 3, .direction = NoiseDirection::InPlane});
+  const CrossSliceResult a = cross_slice_smooth(tall), b = cross_slice_smooth(short_stack);
+  EXPECT_EQ(a.noise_across_source, NoiseSource::AcrossProfiles);
+  EXPECT_NEAR(a.noise_across, 0.1, 0.04);
+  EXPECT_EQ(b.noise_across_source, NoiseSource::AlongProfiles);
+  EXPECT_NEAR(b.noise_across, 0.1, 0.04);
+  CrossSliceOptions o;
+  o.noise_across = 0.3;
+  const CrossSliceResult given = cross_slice_smooth(short_stack, o);
+  EXPECT_EQ(given.noise_across_source, NoiseSource::Given);
+  EXPECT_EQ(given.noise_across, 0.3);
+  o.noise_across.reset();
+  o.min_profile_share = 1.5;
+  EXPECT_THROW((void)cross_slice_smooth(short_stack, o), InvalidInputError);
+}
+
 TEST(CrossSlice, NeedsContourIds) {
   EXPECT_THROW((void)cross_slice_smooth(make_icosphere(2)), InvalidInputError);
 }

@@ -435,21 +435,24 @@ void along_contour_profile(const ContourFrame& f, const Eigen::Matrix3Xd& x, Ind
   }
 }
 
-double profile_noise(const ContourFrame& f, const Eigen::Matrix3Xd& x, const Eigen::Matrix3Xd& normals, bool across,
-                     Index stride) {
+NoiseEstimate profile_noise(const ContourFrame& f, const Eigen::Matrix3Xd& x, const Eigen::Matrix3Xd& normals,
+                            bool across, Index stride) {
   // The sampled vertices in fixed chunks on every core; each chunk's differences are joined in chunk
   // order, so the list (and its median) is the one a single thread makes.
   stride = std::max<Index>(stride, 1);
   const auto samples = static_cast<std::size_t>((x.cols() + stride - 1) / stride);
   constexpr std::size_t kChunk = 2048;
   std::vector<std::vector<double>> parts((samples + kChunk - 1) / kChunk);
+  std::vector<std::size_t> sampled(parts.size(), 0);
   parallel_chunks(samples, kChunk, [&](std::size_t chunk, std::size_t begin, std::size_t end) {
     std::vector<double>& d4 = parts[chunk];
     Profile p;
     Eigen::Vector3d m;
     for (std::size_t s = begin; s < end; ++s) {
       const Index i = static_cast<Index>(s) * stride;
-      if (!f.is_contour_vertex(i) || !in_slice_normal(f, normals.col(i), m)) continue;
+      if (!f.is_contour_vertex(i)) continue;
+      ++sampled[chunk];
+      if (!in_slice_normal(f, normals.col(i), m)) continue;
       if (across) {
         cross_slice_profile(f, x, normals, i, m, 2, p);
       } else {
@@ -463,14 +466,16 @@ double profile_noise(const ContourFrame& f, const Eigen::Matrix3Xd& x, const Eig
       d4.push_back(std::abs(p.y[0] - 4.0 * p.y[1] + 6.0 * p.y[2] - 4.0 * p.y[3] + p.y[4]));
     }
   });
+  NoiseEstimate estimate;
+  for (const std::size_t c : sampled) estimate.sampled += c;
   std::vector<double> d4;
-  std::size_t total = 0;
-  for (const auto& part : parts) total += part.size();
-  d4.reserve(total);
+  for (const auto& part : parts) estimate.profiles += part.size();
+  d4.reserve(estimate.profiles);
   for (const auto& part : parts) d4.insert(d4.end(), part.begin(), part.end());
-  if (d4.empty()) return 0.0;
+  if (d4.empty()) return estimate;
   std::nth_element(d4.begin(), d4.begin() + static_cast<std::ptrdiff_t>(d4.size() / 2), d4.end());
-  return 1.4826 * d4[d4.size() / 2] / std::sqrt(70.0);
+  estimate.sigma = 1.4826 * d4[d4.size() / 2] / std::sqrt(70.0);
+  return estimate;
 }
 
 }  // namespace contourmesh::detail

@@ -83,10 +83,21 @@ void chained_profile(const ContourFrame& frame, const Eigen::Matrix3Xd& position
 void along_contour_profile(const ContourFrame& frame, const Eigen::Matrix3Xd& positions, Index i,
                            const Eigen::Vector3d& m, int reach, Profile& out);
 
+/// A noise estimate and the data behind it.
+struct NoiseEstimate {
+  double sigma = 0.0;         ///< mm; 0 when no profile qualifies
+  std::size_t profiles = 0;   ///< regular five-sample profiles the estimate is the median over
+  std::size_t sampled = 0;    ///< contour vertices looked at (every `stride`-th)
+  /// profiles / sampled (0 when nothing was sampled).
+  [[nodiscard]] double share() const {
+    return sampled > 0 ? static_cast<double>(profiles) / static_cast<double>(sampled) : 0.0;
+  }
+};
+
 /// Noise standard deviation of profile offsets, from the fourth differences of five-sample profiles
 /// (blind to quadratic shape): 1.4826 median |d4| / sqrt(70). `across` picks cross-slice or
-/// along-contour profiles; every `stride`-th contour vertex is used. 0 when no profile qualifies.
-[[nodiscard]] double profile_noise(const ContourFrame& frame, const Eigen::Matrix3Xd& positions,
-                                   const Eigen::Matrix3Xd& normals, bool across, Index stride = 2);
+/// along-contour profiles; every `stride`-th contour vertex is sampled.
+[[nodiscard]] NoiseEstimate profile_noise(const ContourFrame& frame, const Eigen::Matrix3Xd& positions,
+                                          const Eigen::Matrix3Xd& normals, bool across, Index stride = 2);
 
 }  // namespace contourmesh::detail

@@ -101,6 +101,8 @@ const std::vector<Key>& keys() {
        [](SmoothOptions& o, const Value& v) { o.cross_slice.precise_noise = v.number(); }},
       {"noise-across", kCrossSlice, [](SmoothOptions& o, const Value& v) { o.cross_slice.noise_across = v.number(); }},
       {"noise-along", kCrossSlice, [](SmoothOptions& o, const Value& v) { o.cross_slice.noise_along = v.number(); }},
+      {"min-profile-share", kCrossSlice,
+       [](SmoothOptions& o, const Value& v) { o.cross_slice.min_profile_share = v.number(); }},
       {"profile-model", kCrossSlice,
        [](SmoothOptions& o, const Value& v) {
          o.cross_slice.across_model =

@@ -184,6 +184,7 @@ MethodConfig method_config(const py::object& method_arg, Options& o, Mesh& mesh)
     o.take_double("precise_noise", co.precise_noise);
     o.take_double("noise_across", co.noise_across);
     o.take_double("noise_along", co.noise_along);
+    o.take_double("min_profile_share", co.min_profile_share);
     o.take_int("extension_iterations", co.extension_iterations);
     o.take("profile_model", [&](const py::object& v) {
       const std::string s = as_string(v, "profile_model");
@@ -275,6 +276,7 @@ py::dict smooth_report(const SmoothResult& r, const MethodConfig& c) {
   if (r.method == SmoothingMethod::CrossSlice) {
     d["noise_across"] = r.noise_across;
     d["noise_along"] = r.noise_along;
+    d["noise_across_from"] = std::string(to_string(r.noise_across_source));
     d["profiles"] = r.profiles;
   }
   d["seconds"] = r.seconds.total;

@@ -63,9 +63,10 @@ struct SmoothResult {
   std::size_t subdivided_vertices = 0;
   Index adaptive_vertices = 0;
   /// Cross-slice smoothing: contour vertices corrected from their cross-slice profile, and the noise
-  /// levels (mm) it used across the slices and along the contours.
+  /// levels (mm) it used across the slices and along the contours, and where the first came from.
   std::size_t profiles = 0;
   double noise_across = 0.0, noise_along = 0.0;
+  NoiseSource noise_across_source = NoiseSource::AcrossProfiles;
 };
 
 /// The iteration count a method runs by default, from its family's default options: 20 for the
