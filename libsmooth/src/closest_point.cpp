@@ -164,12 +164,8 @@ ClosestPoint TriangleLocator::closest(const Eigen::Vector3d& p) const {
       // The face's box first: most faces of a bucket are farther than the best so far (and a face that
       // spans several buckets is met again in each).
       const double* box = &boxes_[static_cast<std::size_t>(f) * 6];
-      double box2 = 0.0;
-      for (int a = 0; a < 3; ++a) {
-        const double out = std::max({box[a] - p[a], p[a] - box[a + 3], 0.0});
-        box2 += out * out;
-      }
-      if (box2 >= best2) continue;
+      const Eigen::Map<const Eigen::Vector3d> box_lo(box), box_hi(box + 3);
+      if (detail::squared_distance_to_box(p, box_lo, box_hi) >= best2) continue;
       const std::size_t o = static_cast<std::size_t>(f) * 9;
       const Eigen::Map<const Eigen::Vector3d> a(&corners_[o]), b(&corners_[o + 3]), c(&corners_[o + 6]);
       const Eigen::Vector3d q = closest_point_on_triangle(p, a, b, c);

@@ -12,6 +12,17 @@
 
 namespace contourmesh::detail {
 
+/// Squared distance from p to the axis-aligned box [lo, hi] (0 inside it).
+[[nodiscard]] inline double squared_distance_to_box(const Eigen::Vector3d& p, const Eigen::Vector3d& lo,
+                                                    const Eigen::Vector3d& hi) {
+  double d2 = 0.0;
+  for (int a = 0; a < 3; ++a) {
+    const double out = std::max({lo[a] - p[a], p[a] - hi[a], 0.0});
+    d2 += out * out;
+  }
+  return d2;
+}
+
 struct BucketGrid {
   Eigen::Vector3d origin = Eigen::Vector3d::Zero();
   double cell = 1.0;
@@ -58,14 +69,9 @@ struct BucketGrid {
   /// Squared distance from p to cell (x, y, z) (0 inside it).
   [[nodiscard]] double distance2_to_cell(const Eigen::Vector3d& p, std::int64_t x, std::int64_t y,
                                          std::int64_t z) const {
-    const std::int64_t c[3] = {x, y, z};
-    double d2 = 0.0;
-    for (int a = 0; a < 3; ++a) {
-      const double lo = origin[a] + cell * static_cast<double>(c[a]);
-      const double out = std::max({lo - p[a], p[a] - (lo + cell), 0.0});
-      d2 += out * out;
-    }
-    return d2;
+    const Eigen::Vector3d lo = origin + cell * Eigen::Vector3d(static_cast<double>(x), static_cast<double>(y),
+                                                               static_cast<double>(z));
+    return squared_distance_to_box(p, lo, lo + Eigen::Vector3d::Constant(cell));
   }
   /// The largest shell radius that can hold a cell.
   [[nodiscard]] std::int64_t max_shell() const { return std::max({dims[0], dims[1], dims[2]}); }
