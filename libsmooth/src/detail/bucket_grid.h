@@ -64,7 +64,7 @@ struct BucketGrid {
   [[nodiscard]] double distance_to_box(const Eigen::Vector3d& p) const {
     Eigen::Vector3d hi = origin;
     for (int a = 0; a < 3; ++a) hi[a] += cell * static_cast<double>(dims[static_cast<std::size_t>(a)]);
-    return (p - p.cwiseMax(origin).cwiseMin(hi)).norm();
+    return std::sqrt(squared_distance_to_box(p, origin, hi));
   }
   /// Squared distance from p to cell (x, y, z) (0 inside it).
   [[nodiscard]] double distance2_to_cell(const Eigen::Vector3d& p, std::int64_t x, std::int64_t y,
