@@ -7,6 +7,7 @@
 #include <cmath>
 #include <cstdint>
 #include <cstring>
+#include <initializer_list>
 #include <limits>
 #include <utility>
 
@@ -140,6 +141,68 @@ std::vector<double> signed_distance(const Grid& g, const std::vector<Polygon>& p
   return dist;
 }
 
+// The value of f = (1 - t) lower + t upper - level at one node, as zero_level sees it: a growing level
+// stays within the union of the two regions, a shrinking one around their intersection, and exact
+// zeros move a hair (`nudge`) outside so that no crossing sits on a node.
+double node_value(double lo, double up, double t, double level, double nudge) {
+  double v = (1.0 - t) * lo + t * up - level;
+  if (level > 0.0) v = std::max(v, std::min(lo, up));
+  if (level < 0.0) v = std::min(v, std::max(lo, up));
+  return v < 0.0 ? v : std::max(v, nudge);
+}
+
+// Twice the area, in cells, of the part of the unit cell with corner values f[0..3] (counter-clockwise
+// from (0, 0): (0, 0), (1, 0), (1, 1), (0, 1)) where the bilinear-free marching-squares reading of
+// zero_level puts the inside (f < 0): corners and the linear crossings on the edges, a saddle resolved by
+// the mean of the corners. Summed over the cells, this is the area zero_level's polygons enclose (outer
+// minus holes), without building them.
+double cell_inside_area2(const double f[4]) {
+  static constexpr double kCorner[4][2] = {{0, 0}, {1, 0}, {1, 1}, {0, 1}};
+  const bool neg[4] = {f[0] < 0.0, f[1] < 0.0, f[2] < 0.0, f[3] < 0.0};
+  const int inside = neg[0] + neg[1] + neg[2] + neg[3];
+  if (inside == 0) return 0.0;
+  if (inside == 4) return 2.0;
+  // The boundary walk: inside corners and crossings, in counter-clockwise order.
+  double x[8], y[8];
+  int n = 0;
+  for (int k = 0; k < 4; ++k) {
+    const int m = (k + 1) % 4;
+    if (neg[k]) {
+      x[n] = kCorner[k][0];
+      y[n++] = kCorner[k][1];
+    }
+    if (neg[k] != neg[m]) {
+      const double s = f[k] / (f[k] - f[m]);
+      x[n] = kCorner[k][0] + s * (kCorner[m][0] - kCorner[k][0]);
+      y[n++] = kCorner[k][1] + s * (kCorner[m][1] - kCorner[k][1]);
+    }
+  }
+  auto shoelace = [&](std::initializer_list<int> idx) {
+    double a = 0.0;
+    const int* v = idx.begin();
+    const int count = static_cast<int>(idx.size());
+    for (int i = 0; i < count; ++i) {
+      const int p = v[i], q = v[(i + 1) % count];
+      a += x[p] * y[q] - x[q] * y[p];
+    }
+    return a;
+  };
+  const bool saddle = inside == 2 && neg[0] == neg[2];
+  if (!saddle || (f[0] + f[1] + f[2] + f[3]) < 0.0) {
+    // One inside piece (a saddle whose centre is inside joins both corners through it): the walk is its
+    // boundary.
+    double a = 0.0;
+    for (int i = 0; i < n; ++i) {
+      const int j = (i + 1) % n;
+      a += x[i] * y[j] - x[j] * y[i];
+    }
+    return a;
+  }
+  // A saddle whose centre is outside: two corner triangles. The walk is corner, crossing, crossing,
+  // corner, crossing, crossing (starting at corner 0 when it is inside, else at corner 1's crossing).
+  return neg[0] ? shoelace({0, 1, 5}) + shoelace({2, 3, 4}) : shoelace({0, 1, 2}) + shoelace({3, 4, 5});
+}
+
 }  // namespace
 
 DistancePair signed_distance_pair(const std::vector<Polygon>& lower, const std::vector<Polygon>& upper, double h,
@@ -177,13 +240,7 @@ std::vector<Polygon> zero_level(const DistancePair& fields, double t, double lev
   // loops would touch there).
   const double nudge = 1e-7 * fields.h;
   std::vector<double> f(count);
-  for (std::size_t k = 0; k < count; ++k) {
-    const double lo = fields.lower[k], up = fields.upper[k];
-    double v = (1.0 - t) * lo + t * up - level;
-    if (level > 0.0) v = std::max(v, std::min(lo, up));  // within the union of the two regions
-    if (level < 0.0) v = std::min(v, std::max(lo, up));  // around their intersection
-    f[k] = v < 0.0 ? v : std::max(v, nudge);
-  }
+  for (std::size_t k = 0; k < count; ++k) f[k] = node_value(fields.lower[k], fields.upper[k], t, level, nudge);
   // Which nodes are inside, one byte each: runs of eight cells whose nine nodes on both rows are all
   // inside or all outside hold no crossing and are passed over in one step (most of the grid).
   std::vector<std::uint8_t> inside(count);
@@ -261,16 +318,40 @@ std::vector<Polygon> zero_level(const DistancePair& fields, double t, double lev
   return loops;
 }
 
+double level_area(const DistancePair& fields, double t, double level) {
+  const int nx = fields.nx, ny = fields.ny;
+  if (nx < 2 || ny < 2) return 0.0;
+  const double nudge = 1e-7 * fields.h;
+  const double* lo = fields.lower.data();
+  const double* up = fields.upper.data();
+  double full = 0.0;     // cells wholly inside
+  double partial = 0.0;  // twice the inside area of the others, in cells
+  std::vector<double> row0(static_cast<std::size_t>(nx)), row1(static_cast<std::size_t>(nx));
+  for (int i = 0; i < nx; ++i) row0[static_cast<std::size_t>(i)] = node_value(lo[i], up[i], t, level, nudge);
+  for (int j = 0; j + 1 < ny; ++j) {
+    const std::size_t base = static_cast<std::size_t>(j + 1) * static_cast<std::size_t>(nx);
+    for (int i = 0; i < nx; ++i) {
+      row1[static_cast<std::size_t>(i)] = node_value(lo[base + i], up[base + i], t, level, nudge);
+    }
+    for (int i = 0; i + 1 < nx; ++i) {
+      const std::size_t a = static_cast<std::size_t>(i);
+      const double f[4] = {row0[a], row0[a + 1], row1[a + 1], row1[a]};
+      const bool all_in = f[0] < 0.0 && f[1] < 0.0 && f[2] < 0.0 && f[3] < 0.0;
+      const bool all_out = f[0] >= 0.0 && f[1] >= 0.0 && f[2] >= 0.0 && f[3] >= 0.0;
+      if (all_in) full += 1.0;
+      else if (!all_out) partial += cell_inside_area2(f);
+    }
+    std::swap(row0, row1);
+  }
+  return (full + 0.5 * partial) * fields.h * fields.h;
+}
+
 double level_for_area(const DistancePair& fields, double t, double target_area) {
   const std::size_t count =
       static_cast<std::size_t>(std::max(fields.nx, 0)) * static_cast<std::size_t>(std::max(fields.ny, 0));
   if (count < 4) return 0.0;
   const double cell = fields.h * fields.h;
-  auto area_at = [&](double iso) {
-    double a = 0.0;
-    for (const Polygon& p : zero_level(fields, t, iso)) a += signed_area(p);
-    return a;
-  };
+  auto area_at = [&](double iso) { return level_area(fields, t, iso); };
   double iso = 0.0;
   double area = area_at(iso);
   if (std::abs(area - target_area) <= cell) return 0.0;

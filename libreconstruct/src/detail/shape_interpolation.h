@@ -42,6 +42,12 @@ struct DistancePair {
 /// corners. The polygons are simple and disjoint. Nodes exactly on the level count as outside.
 [[nodiscard]] std::vector<Polygon> zero_level(const DistancePair& fields, double t, double level = 0.0);
 
+/// The area (mm^2) that zero_level(fields, t, level) encloses, outer areas minus hole areas, up to
+/// rounding, in one pass over the grid's cells without building the polygons: each cell adds the part of
+/// it that the marching squares put inside (corners and edge crossings, saddles as zero_level resolves
+/// them). 0 for an empty grid.
+[[nodiscard]] double level_area(const DistancePair& fields, double t, double level = 0.0);
+
 /// The level (see zero_level) whose region encloses `target_area` (mm^2, outer areas minus hole areas),
 /// within 0.1 % of it or a cell of the grid, or as near as the union or intersection of the regions
 /// allows (a few marching-squares passes). The zero level of averaged distances loses area wherever the two regions

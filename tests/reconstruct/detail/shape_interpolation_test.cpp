@@ -7,6 +7,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <cstdint>
 
 #include "reconstruct/detail/level_helpers.h"
 
@@ -142,6 +143,46 @@ TEST(ShapeInterpolation, TheLevelForAnAreaRestoresTheAreaBetweenDifferentShapes)
   EXPECT_LT(inside, 0.0);
   EXPECT_NEAR(area_of(zero_level(c, 0.5, inside)), small, 1e-3 * small);
   EXPECT_EQ(level_for_area(DistancePair{}, 0.5, 1.0), 0.0);
+}
+
+// level_area reads the area of zero_level's polygons off the cells without building them. Random fields
+// on a small grid make many saddle cells (both ways) and loops with holes; every level must agree with the
+// polygons' own area, whatever its sign.
+TEST(ShapeInterpolation, TheLevelAreaIsTheAreaOfTheLevelsPolygons) {
+  DistancePair g;
+  g.origin = Eigen::Vector2d(-3.0, 2.0);
+  g.h = 0.7;
+  g.nx = 23;
+  g.ny = 17;
+  std::uint64_t state = 12345;
+  auto uniform = [&] {  // splitmix64, in [-1, 1)
+    state += 0x9E3779B97F4A7C15ULL;
+    std::uint64_t z = state;
+    z = (z ^ (z >> 30)) * 0xBF58476D1CE4E5B9ULL;
+    z = (z ^ (z >> 27)) * 0x94D049BB133111EBULL;
+    return static_cast<double>((z ^ (z >> 31)) >> 11) / 4503599627370496.0 - 1.0;
+  };
+  const std::size_t count = static_cast<std::size_t>(g.nx) * static_cast<std::size_t>(g.ny);
+  for (std::size_t k = 0; k < count; ++k) {
+    const int i = static_cast<int>(k % static_cast<std::size_t>(g.nx)), j = static_cast<int>(k / g.nx);
+    const bool border = i < 2 || j < 2 || i >= g.nx - 2 || j >= g.ny - 2;  // outside, as a real grid's margin
+    g.lower.push_back(border ? 5.0 : uniform());
+    g.upper.push_back(border ? 5.0 : uniform() + 0.2);
+  }
+  int saddles = 0;
+  for (std::size_t k = 0; k + g.nx + 1 < count; ++k) {
+    const double a = g.lower[k], b = g.lower[k + 1], c = g.lower[k + g.nx + 1], d = g.lower[k + g.nx];
+    saddles += ((a < 0) == (c < 0)) && ((b < 0) == (d < 0)) && ((a < 0) != (b < 0));
+  }
+  ASSERT_GT(saddles, 20) << "the field must hold saddle cells";
+  for (const double t : {0.0, 0.3, 0.5, 1.0}) {
+    for (const double level : {-0.4, -0.1, 0.0, 0.15, 0.5}) {
+      double polygons = 0.0;
+      for (const Polygon& p : zero_level(g, t, level)) polygons += signed_area(p);
+      EXPECT_NEAR(level_area(g, t, level), polygons, 1e-9 * (1.0 + std::abs(polygons))) << t << " " << level;
+    }
+  }
+  EXPECT_EQ(level_area(DistancePair{}, 0.5), 0.0);
 }
 
 }  // namespace
