@@ -4,6 +4,8 @@
 #include <contourmesh/smooth/limits.h>
 #include <contourmesh/smooth/mesh_quality.h>
 
+#include <Eigen/Core>
+
 #include <algorithm>
 #include <cmath>
 #include <cstdint>
@@ -48,20 +50,32 @@ std::vector<std::uint8_t> least_cost_path(const std::vector<Eigen::Vector3d>& P,
   std::vector<std::uint8_t> from_lower(row_start[m + 1], 0);
   auto at = [&](int i, int j) { return row_start[i] + static_cast<std::size_t>(j - lo[i]); };
   cost[at(0, 0)] = 0.0;
-  // Row by row through pointers, the two triangle areas written out with what the rings' planes make
-  // constant hoisted out of the loops. P lies on one plane and Q on another (all P[i].z equal, all Q[j].z
-  // equal, h = Q.z - P.z), so P[i] - P[i-1] = (ax, ay, 0) and every edge across has z component h:
+  // Row by row, the two triangle areas written out with what the rings' planes make constant hoisted out
+  // of the loops. P lies on one plane and Q on another (all P[i].z equal, all Q[j].z equal, h = Q.z -
+  // P.z), so P[i] - P[i-1] = (ax, ay, 0) and every edge across has z component h:
   //   |(ax, ay, 0) x (gx, gy, h)|^2 = ((ay h)^2 + (ax h)^2) + (ax gy - ay gx)^2,
   //   |(dx, dy, h) x (ex, ey, h)|^2 = ((dy h - ey h)^2 + (ex h - dx h)^2) + (dx ey - dy ex)^2.
   // These are the very operations, in the same order, that Eigen's cross() and squaredNorm() perform
   // on those vectors (a product with an exact zero drops out exactly), so the costs, and the path, are
-  // the same as with triangle_area, at a third of the instructions per cell.
+  // the same as with triangle_area. Neither area depends on the costs: a row's areas are computed first,
+  // over whole arrays (two lanes at a time, sqrt correctly rounded in each), and the recurrence then only
+  // adds and compares.
   // Row 0 holds only the start; (m, 0) and (i < m, n) stay unreachable.
   const double h = Q[0].z() - P[0].z();
+  const Eigen::Index nq = static_cast<Eigen::Index>(Q.size());
+  Eigen::ArrayXd qx(nq), qy(nq), qx_before(nq), qy_before(nq);  // Q[j] and Q[j - 1] (Q[0] for j = 0)
+  for (Eigen::Index j = 0; j < nq; ++j) {
+    qx[j] = Q[static_cast<std::size_t>(j)].x();
+    qy[j] = Q[static_cast<std::size_t>(j)].y();
+    qx_before[j] = Q[static_cast<std::size_t>(std::max<Eigen::Index>(j - 1, 0))].x();
+    qy_before[j] = Q[static_cast<std::size_t>(std::max<Eigen::Index>(j - 1, 0))].y();
+  }
+  Eigen::ArrayXd dx(nq), dy(nq), ex(nq), ey(nq), along_area(nq), across_area(nq), span(nq);
   for (int i = 1; i <= m; ++i) {
     const int l = lo[i], pl = lo[i - 1], ph = hi[i - 1];
     const int jb = i == m ? std::max(l, 1) : l;
     const int je = i < m ? std::min(hi[i], n - 1) : hi[i];
+    if (je < jb) continue;
     double* row = cost.data() + row_start[i];
     std::uint8_t* row_from = from_lower.data() + row_start[i];
     const double* prev = cost.data() + row_start[i - 1];
@@ -69,34 +83,39 @@ std::vector<std::uint8_t> least_cost_path(const std::vector<Eigen::Vector3d>& P,
     const double ax = p1x - p0x, ay = p1y - p0y;
     const double ayh = ay * h, axh = ax * h;
     const double along = ayh * ayh + axh * axh;
-    // Q[j - 1] - P[i] of the previous cell, and its products with h.
-    const Eigen::Vector3d& q_start = Q[std::max(jb - 1, 0)];
-    double ex = q_start.x() - p1x, ey = q_start.y() - p1y, exh = ex * h, eyh = ey * h;
+    const Eigen::Index b = jb, len = je - jb + 1;
+    // Triangle P[i-1] P[i] Q[j] (g = Q[j] - P[i-1]), and triangle P[i] Q[j] Q[j-1] (d = Q[j] - P[i], e =
+    // Q[j-1] - P[i]).
+    along_area.segment(b, len) =
+        0.5 * (along + (ax * (qy.segment(b, len) - p0y) - ay * (qx.segment(b, len) - p0x)).square()).sqrt();
+    dx.segment(b, len) = qx.segment(b, len) - p1x;
+    dy.segment(b, len) = qy.segment(b, len) - p1y;
+    ex.segment(b, len) = qx_before.segment(b, len) - p1x;
+    ey.segment(b, len) = qy_before.segment(b, len) - p1y;
+    across_area.segment(b, len) =
+        0.5 * (((dy.segment(b, len) * h - ey.segment(b, len) * h).square() +
+                (ex.segment(b, len) * h - dx.segment(b, len) * h).square()) +
+               (dx.segment(b, len) * ey.segment(b, len) - dy.segment(b, len) * ex.segment(b, len)).square())
+                  .sqrt();
+    if (span_weight > 0.0) {
+      span.segment(b, len) = span_weight * ((dx.segment(b, len).square() + dy.segment(b, len).square()) + h * h);
+    }
     for (int j = jb; j <= je; ++j) {
-      const double qx = Q[j].x(), qy = Q[j].y();
-      const double dx = qx - p1x, dy = qy - p1y, dxh = dx * h, dyh = dy * h;
       double c = inf;
       std::uint8_t fl = 0;
       if (j >= pl && j <= ph && prev[j - pl] < inf) {
-        const double gx = qx - p0x, gy = qy - p0y;
-        const double z = ax * gy - ay * gx;
-        c = prev[j - pl] + 0.5 * std::sqrt(along + z * z);  // triangle P[i-1] P[i] Q[j]
+        c = prev[j - pl] + along_area[j];
         fl = 1;
       }
       if (j > l && row[j - 1 - l] < inf) {
-        const double x = dyh - eyh, y = exh - dxh, z = dx * ey - dy * ex;
-        const double c2 = row[j - 1 - l] + 0.5 * std::sqrt((x * x + y * y) + z * z);  // triangle P[i] Q[j] Q[j-1]
+        const double c2 = row[j - 1 - l] + across_area[j];
         if (c2 < c) {
           c = c2;
           fl = 0;
         }
       }
-      row[j - l] = c + (span_weight > 0.0 && c < inf ? span_weight * ((dx * dx + dy * dy) + h * h) : 0.0);
+      row[j - l] = c + (span_weight > 0.0 && c < inf ? span[j] : 0.0);
       row_from[j - l] = fl;
-      ex = dx;
-      ey = dy;
-      exh = dxh;
-      eyh = dyh;
     }
   }
   std::vector<std::uint8_t> moves;
