@@ -6,13 +6,15 @@
 #include <contourmesh/smooth/normals.h>
 
 #include <Eigen/Core>
+#include <tbb/blocked_range.h>
+#include <tbb/parallel_for.h>
 
 #include <algorithm>
 #include <array>
 #include <cmath>
-#include <map>
 #include <utility>
 #include <string>
+#include <tuple>
 #include <vector>
 
 namespace contourmesh {
@@ -105,6 +107,15 @@ bool crossing(const SliceSampler& s, double x, double y, long k, double threshol
   return true;
 }
 
+// Calls fn(v) for every vertex v < n, in blocks on every core (as many as TBB's global limit allows); fn
+// must write only what belongs to v.
+template <class Fn>
+void for_each_vertex(Index n, const Fn& fn) {
+  tbb::parallel_for(tbb::blocked_range<Index>(0, n, 1024), [&](const tbb::blocked_range<Index>& range) {
+    for (Index v = range.begin(); v < range.end(); ++v) fn(v);
+  });
+}
+
 Eigen::Vector3d face_normal(const Eigen::Matrix3Xd& x, const Triangle& t) {
   return (x.col(t[1]) - x.col(t[0])).cross(x.col(t[2]) - x.col(t[0]));
 }
@@ -143,16 +154,16 @@ OffSliceResult fit_off_slice_heights(Mesh mesh, const CtImage& image, double thr
 
   // Data term and bounds per vertex, all as displacements along w in mm.
   std::vector<double> target(n, 0.0), weight(n, 0.0), low(n, 0.0), high(n, 0.0);
-  std::vector<std::uint8_t> free_vertex(n, 0);
-  for (Index v = 0; v < n; ++v) {
-    if (mesh.slice_ids[v] >= 0) continue;
+  std::vector<std::uint8_t> free_vertex(n, 0), fitted(n, 0);
+  // Each vertex reads the image and writes its own entries: in blocks on every core.
+  auto data_term = [&](Index v) {
+    if (mesh.slice_ids[v] >= 0) return;
     const Eigen::Vector3d index = sampler.index_of(mesh.positions.col(v));
     const double kz = index.z();
     const long k = static_cast<long>(std::floor(kz));
     const double frac = kz - static_cast<double>(k);
-    if (k < 0 || k + 1 >= sampler.slices() || frac < 1e-6 || frac > 1.0 - 1e-6) continue;
+    if (k < 0 || k + 1 >= sampler.slices() || frac < 1e-6 || frac > 1.0 - 1e-6) return;
     free_vertex[v] = 1;
-    ++result.report.candidates;
     low[v] = (options.min_fraction - frac) * h;
     high[v] = (1.0 - options.min_fraction - frac) * h;
     const Eigen::Vector3d nv = normals.col(v);
@@ -163,26 +174,29 @@ OffSliceResult fit_off_slice_heights(Mesh mesh, const CtImage& image, double thr
                               : options.inward_pixels * std::sqrt(std::max(0.0, 1.0 - tilt));
     const double x = index.x() - inward * nu, y = index.y() - inward * nvv;
     double t = 0.0;
-    if (!crossing(sampler, x, y, k, threshold, t)) continue;
+    if (!crossing(sampler, x, y, k, threshold, t)) return;
     t = std::clamp(t, options.min_fraction, 1.0 - options.min_fraction);
     target[v] = (t - frac) * h;
     weight[v] = std::abs(nw);
-    ++result.report.fitted;
-  }
+    fitted[v] = 1;
+  };
+  for_each_vertex(n, data_term);
+  result.report.candidates = static_cast<std::size_t>(std::count(free_vertex.begin(), free_vertex.end(), 1));
+  result.report.fitted = static_cast<std::size_t>(std::count(fitted.begin(), fitted.end(), 1));
 
   // Membrane fit (Jacobi): vertices with ids hold still at 0.
   std::vector<double> d(n, 0.0), next(n, 0.0);
   const double lambda = options.smoothness;
   for (int it = 0; it < options.iterations; ++it) {
-    for (Index v = 0; v < n; ++v) {
-      if (!free_vertex[v]) continue;
+    for_each_vertex(n, [&](Index v) {
+      if (!free_vertex[v]) return;
       double sum = weight[v] * target[v], den = weight[v];
       for (Index u : adjacency.ring(v)) {
         sum += lambda * d[u];
         den += lambda;
       }
       next[v] = den > 0.0 ? std::clamp(sum / den, low[v], high[v]) : 0.0;
-    }
+    });
     d.swap(next);
   }
 
@@ -190,29 +204,40 @@ OffSliceResult fit_off_slice_heights(Mesh mesh, const CtImage& image, double thr
   // the tiler put on a face below it, in a strip that stands straight between them) have the same data
   // term: where the fit would make two of them meet or pass each other, the column keeps the tiler's
   // heights.
-  std::map<std::array<long long, 3>, std::vector<std::pair<double, Index>>> columns;
+  // Entries (column, height, vertex) sorted: each column is a run, its vertices by height.
+  struct ColumnEntry {
+    std::array<long long, 3> key;
+    double z;
+    Index v;
+    bool operator<(const ColumnEntry& o) const { return std::tie(key, z, v) < std::tie(o.key, o.z, o.v); }
+  };
+  std::vector<ColumnEntry> columns;
+  columns.reserve(result.report.candidates);
   for (Index v = 0; v < n; ++v) {
     if (!free_vertex[v]) continue;
     const Eigen::Vector3d index = sampler.index_of(mesh.positions.col(v));
-    columns[{std::llround(index.x() * 1e6), std::llround(index.y() * 1e6),
-             static_cast<long long>(std::floor(index.z()))}]
-        .emplace_back(index.z() * h, v);
+    columns.push_back({{std::llround(index.x() * 1e6), std::llround(index.y() * 1e6),
+                        static_cast<long long>(std::floor(index.z()))},
+                       index.z() * h,
+                       v});
   }
+  std::sort(columns.begin(), columns.end());
   // Two vertices of one column must keep at least this share of the gap the tiler left between them:
   // nearer, their faces are all but degenerate (a zero-area face on the headsq scan once the vertices
   // off the caps read their own columns, which gives the two the same data term).
   constexpr double kMinGapShare = 0.3;
-  for (auto& [key, column] : columns) {
-    if (column.size() < 2) continue;
-    std::sort(column.begin(), column.end());
+  for (std::size_t begin = 0, end = 0; begin < columns.size(); begin = end) {
+    end = begin + 1;
+    while (end < columns.size() && columns[end].key == columns[begin].key) ++end;
+    if (end - begin < 2) continue;
     bool apart = true;
-    for (std::size_t k = 0; k + 1 < column.size(); ++k) {
-      const auto& [z0, v0] = column[k];
-      const auto& [z1, v1] = column[k + 1];
-      apart = apart && (z1 + d[v1]) - (z0 + d[v0]) > kMinGapShare * (z1 - z0);
+    for (std::size_t k = begin; k + 1 < end; ++k) {
+      const ColumnEntry& a = columns[k];
+      const ColumnEntry& b = columns[k + 1];
+      apart = apart && (b.z + d[b.v]) - (a.z + d[a.v]) > kMinGapShare * (b.z - a.z);
     }
     if (!apart) {
-      for (const auto& entry : column) d[entry.second] = 0.0;
+      for (std::size_t k = begin; k < end; ++k) d[columns[k].v] = 0.0;
     }
   }
 
@@ -222,18 +247,34 @@ OffSliceResult fit_off_slice_heights(Mesh mesh, const CtImage& image, double thr
   auto place = [&](Index v) { mesh.positions.col(v) = before.col(v) + d[v] * w; };
   for (Index v = 0; v < n; ++v)
     if (d[v] != 0.0) place(v);
+  // A face is checked again only when it may have turned since its last check: it turned then (its moves
+  // were halved), or one of its corners moved after that check (faces are checked in order, round after
+  // round, so "after" is a later round, or the same round and a later face). The rest keep their state,
+  // bit for bit, so the outcome is that of checking every face every round.
   std::vector<std::uint8_t> damped(n, 0);
+  const auto num_faces = static_cast<long long>(mesh.triangles.size());
+  std::vector<long long> moved_at(n, -1);  // round * faces + face of the last move, -1: none since the start
+  std::vector<std::uint8_t> turned(mesh.triangles.size(), 1);  // round 0 checks every moved face
   for (int round = 0; round < 8; ++round) {
     bool any = false;
-    for (const Triangle& t : mesh.triangles) {
+    for (std::size_t f = 0; f < mesh.triangles.size(); ++f) {
+      const Triangle& t = mesh.triangles[f];
       if (d[t[0]] == 0.0 && d[t[1]] == 0.0 && d[t[2]] == 0.0) continue;  // unmoved: it cannot have turned
+      const long long last_check = (round - 1) * num_faces + static_cast<long long>(f);
+      if (round > 0 && !turned[f] && moved_at[t[0]] <= last_check && moved_at[t[1]] <= last_check &&
+          moved_at[t[2]] <= last_check) {
+        continue;
+      }
       const Eigen::Vector3d n0 = face_normal(before, t), n1 = face_normal(mesh.positions, t);
+      turned[f] = 0;
       if (n0.squaredNorm() < 1e-24 || n0.dot(n1) > 0.17 * n0.norm() * n1.norm()) continue;
+      turned[f] = 1;
       for (Index v : t) {
         if (d[v] == 0.0) continue;
         d[v] = round == 7 ? 0.0 : 0.5 * d[v];
         damped[v] = 1;
         place(v);
+        moved_at[v] = round * num_faces + static_cast<long long>(f);
         any = true;
       }
     }

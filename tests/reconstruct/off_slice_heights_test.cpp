@@ -3,6 +3,7 @@
 // slices, what it must not touch, and bad options.
 #include <contourmesh/reconstruct/off_slice_heights.h>
 #include <contourmesh/reconstruct/reconstruction.h>
+#include <contourmesh/reconstruct/threads.h>
 #include <contourmesh/smooth/errors.h>
 #include <contourmesh/smooth/metrics.h>
 
@@ -227,6 +228,31 @@ TEST(OffSliceHeights, NoFaceTurnsOverOnANoisyBranchingShape) {
     if (before.norm() < 1e-12) continue;
     EXPECT_GT(before.dot(after), 0.0);
   }
+}
+
+// The data term and the membrane fit run in blocks of vertices on every core; each vertex writes only
+// its own entries, so the heights are the same, bit for bit, on one thread and on several. The mesh
+// (two merging spheres, a few blocks of vertices) has intermediate contours, caps and damped faces.
+TEST(OffSliceHeights, TheSameHeightsOnOneThreadAndOnSeveral) {
+  auto shape = [](const Eigen::Vector3d& p) {
+    const double a = (p - Eigen::Vector3d(22.0, 30.0, 17.0)).norm() - 13.0;
+    const double b = (p - Eigen::Vector3d(40.0, 30.0, 23.0)).norm() - 13.0;
+    return std::min(a, b) + 0.3 * std::sin(1.7 * p.x()) * std::sin(2.3 * p.y());
+  };
+  const CtImage::Pointer image = partial_volume({60, 60, 20}, {1.0, 1.0, 2.0}, shape);
+  const Mesh tiled = reconstruct(*image, options_with(OffSlicePlacement::Tiled)).mesh;
+  ASSERT_GT(tiled.num_vertices(), 2 * 1024) << "several blocks of vertices";
+  auto fit = [&](int threads) {
+    const ThreadLimit limit(threads);
+    return fit_off_slice_heights(tiled, *image, 500.0);
+  };
+  const OffSliceResult one = fit(1), several = fit(3);
+  EXPECT_GT(one.report.fitted, 1000u);
+  EXPECT_EQ(one.report.candidates, several.report.candidates);
+  EXPECT_EQ(one.report.fitted, several.report.fitted);
+  EXPECT_EQ(one.report.damped, several.report.damped);
+  EXPECT_TRUE(one.mesh.positions == several.mesh.positions);
+  EXPECT_FALSE(one.mesh.positions == tiled.positions) << "the heights must move something";
 }
 
 TEST(OffSliceHeights, OptionsOutOfRangeAndMeshesWithoutIdsAreRefused) {
