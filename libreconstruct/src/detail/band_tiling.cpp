@@ -100,23 +100,30 @@ std::vector<std::uint8_t> least_cost_path(const std::vector<Eigen::Vector3d>& P,
     if (span_weight > 0.0) {
       span.segment(b, len) = span_weight * ((dx.segment(b, len).square() + dy.segment(b, len).square()) + h * h);
     }
-    for (int j = jb; j <= je; ++j) {
-      double c = inf;
-      std::uint8_t fl = 0;
-      if (j >= pl && j <= ph && prev[j - pl] < inf) {
-        c = prev[j - pl] + along_area[j];
-        fl = 1;
-      }
-      if (j > l && row[j - 1 - l] < inf) {
-        const double c2 = row[j - 1 - l] + across_area[j];
-        if (c2 < c) {
-          c = c2;
-          fl = 0;
-        }
-      }
-      row[j - l] = c + (span_weight > 0.0 && c < inf ? span[j] : 0.0);
+    // The recurrence, in three runs of j: before the previous row's range (from the left only), within it
+    // (from below or from the left; below wins ties), after it (from the left only). An unreachable cell
+    // is inf and stays so through the additions; only reachable cells are ever traced back, so the move
+    // stored at an unreachable one does not matter.
+    const bool spans = span_weight > 0.0;
+    auto store = [&](int j, double c, std::uint8_t fl) {
+      row[j - l] = spans && c < inf ? c + span[j] : c;
       row_from[j - l] = fl;
+    };
+    auto from_left = [&](int j) { return j > l ? row[j - 1 - l] + across_area[j] : inf; };
+    const int mid_begin = std::max(jb, pl), mid_end = std::min(je, ph);
+    int j = jb;
+    for (; j <= je && j < mid_begin; ++j) store(j, from_left(j), 0);
+    if (j == l && j <= mid_end) {  // the row's first cell: from below only
+      store(j, prev[j - pl] + along_area[j], 1);
+      ++j;
     }
+    for (; j <= mid_end; ++j) {
+      const double below = prev[j - pl] + along_area[j];
+      const double left = row[j - 1 - l] + across_area[j];
+      const bool up = !(left < below);
+      store(j, up ? below : left, up ? 1 : 0);
+    }
+    for (; j <= je; ++j) store(j, from_left(j), 0);
   }
   std::vector<std::uint8_t> moves;
   if (!(cost[at(m, n)] < inf)) return moves;
