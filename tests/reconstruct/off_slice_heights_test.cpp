@@ -209,14 +209,18 @@ TEST(OffSliceHeights, FlipsOnThickSlicesKeepANeedlesVolume) {
   EXPECT_NEAR(placed, tiled, 0.02 * tiled);
 }
 
-TEST(OffSliceHeights, NoFaceTurnsOverOnANoisyBranchingShape) {
-  // Two spheres that merge between slices: intermediate contours, caps and steep faces together.
-  auto shape = [](const Eigen::Vector3d& p) {
-    const double a = (p - Eigen::Vector3d(11.0, 16.0, 13.0)).norm() - 6.5;
-    const double b = (p - Eigen::Vector3d(21.0, 16.0, 17.0)).norm() - 6.5;
-    return std::min(a, b) + 0.3 * std::sin(1.7 * p.x()) * std::sin(2.3 * p.y());
+// Two spheres of radius r about a and b that merge between slices, with a ripple of 0.3 mm: intermediate
+// contours, caps and steep faces together.
+std::function<double(const Eigen::Vector3d&)> merging_spheres(const Eigen::Vector3d& a, const Eigen::Vector3d& b,
+                                                              double r) {
+  return [a, b, r](const Eigen::Vector3d& p) {
+    return std::min((p - a).norm(), (p - b).norm()) - r + 0.3 * std::sin(1.7 * p.x()) * std::sin(2.3 * p.y());
   };
-  const CtImage::Pointer image = partial_volume({32, 32, 16}, {1.0, 1.0, 2.0}, shape);
+}
+
+TEST(OffSliceHeights, NoFaceTurnsOverOnANoisyBranchingShape) {
+  const CtImage::Pointer image =
+      partial_volume({32, 32, 16}, {1.0, 1.0, 2.0}, merging_spheres({11.0, 16.0, 13.0}, {21.0, 16.0, 17.0}, 6.5));
   const Mesh tiled = reconstruct(*image, options_with(OffSlicePlacement::Tiled)).mesh;
   const OffSliceResult fitted = fit_off_slice_heights(tiled, *image, 500.0);
   for (const Triangle& t : tiled.triangles) {
@@ -232,14 +236,10 @@ TEST(OffSliceHeights, NoFaceTurnsOverOnANoisyBranchingShape) {
 
 // The data term and the membrane fit run in blocks of vertices on every core; each vertex writes only
 // its own entries, so the heights are the same, bit for bit, on one thread and on several. The mesh
-// (two merging spheres, a few blocks of vertices) has intermediate contours, caps and damped faces.
+// (merging spheres, a few blocks of vertices) has intermediate contours, caps and damped faces.
 TEST(OffSliceHeights, TheSameHeightsOnOneThreadAndOnSeveral) {
-  auto shape = [](const Eigen::Vector3d& p) {
-    const double a = (p - Eigen::Vector3d(22.0, 30.0, 17.0)).norm() - 13.0;
-    const double b = (p - Eigen::Vector3d(40.0, 30.0, 23.0)).norm() - 13.0;
-    return std::min(a, b) + 0.3 * std::sin(1.7 * p.x()) * std::sin(2.3 * p.y());
-  };
-  const CtImage::Pointer image = partial_volume({60, 60, 20}, {1.0, 1.0, 2.0}, shape);
+  const CtImage::Pointer image =
+      partial_volume({60, 60, 20}, {1.0, 1.0, 2.0}, merging_spheres({22.0, 30.0, 17.0}, {40.0, 30.0, 23.0}, 13.0));
   const Mesh tiled = reconstruct(*image, options_with(OffSlicePlacement::Tiled)).mesh;
   ASSERT_GT(tiled.num_vertices(), 2 * 1024) << "several blocks of vertices";
   auto fit = [&](int threads) {
