@@ -100,28 +100,38 @@ std::vector<std::uint8_t> least_cost_path(const std::vector<Eigen::Vector3d>& P,
     if (span_weight > 0.0) {
       span.segment(b, len) = span_weight * ((dx.segment(b, len).square() + dy.segment(b, len).square()) + h * h);
     }
-    // The recurrence, in three runs of j: before the previous row's range (from the left only), within it
-    // (from below or from the left; below wins ties), after it (from the left only). An unreachable cell
-    // is inf and stays so through the additions; only reachable cells are ever traced back, so the move
-    // stored at an unreachable one does not matter.
+    // The recurrence, in three stretches of j: before the previous row's range (from the left only),
+    // within it (from below or from the left; below wins ties), after it (from the left only), so that
+    // the cells within need no range tests. A cell is reached when its cost is < inf; a cost that is not
+    // (inf, or NaN where coordinates overflow) is never extended, and the costs stored are those of the
+    // textbook recurrence in every case.
     const bool spans = span_weight > 0.0;
     auto store = [&](int j, double c, std::uint8_t fl) {
       row[j - l] = spans && c < inf ? c + span[j] : c;
       row_from[j - l] = fl;
     };
-    auto from_left = [&](int j) { return j > l ? row[j - 1 - l] + across_area[j] : inf; };
+    auto from_left = [&](int j) {
+      if (j > l && row[j - 1 - l] < inf) {
+        const double c = row[j - 1 - l] + across_area[j];
+        if (c < inf) return c;
+      }
+      return inf;
+    };
     const int mid_begin = std::max(jb, pl), mid_end = std::min(je, ph);
     int j = jb;
     for (; j <= je && j < mid_begin; ++j) store(j, from_left(j), 0);
     if (j == l && j <= mid_end) {  // the row's first cell: from below only
-      store(j, prev[j - pl] + along_area[j], 1);
+      const bool below = prev[j - pl] < inf;
+      store(j, below ? prev[j - pl] + along_area[j] : inf, below ? 1 : 0);
       ++j;
     }
     for (; j <= mid_end; ++j) {
-      const double below = prev[j - pl] + along_area[j];
-      const double left = row[j - 1 - l] + across_area[j];
-      const bool up = !(left < below);
-      store(j, up ? below : left, up ? 1 : 0);
+      const double p = prev[j - pl], r = row[j - 1 - l];
+      const bool below = p < inf;
+      const double c = below ? p + along_area[j] : inf;
+      const double c2 = r + across_area[j];
+      const bool left = r < inf && c2 < c;
+      store(j, left ? c2 : c, left ? 0 : (below ? 1 : 0));
     }
     for (; j <= je; ++j) store(j, from_left(j), 0);
   }
