@@ -51,10 +51,10 @@ struct DistancePair {
 /// The level (see zero_level) whose region encloses `target_area` (mm^2, outer areas minus hole areas),
 /// within 0.1 % of it or a cell of the grid, or as near as the union or intersection of the regions
 /// allows (a few passes of level_area over the grid). The zero level of averaged distances loses area
-/// wherever the two regions differ in shape (a blob below an elongated contour: the elongated one's ends are far from the blob, so the average
-/// is positive there and the level is short), which shrinks every refined band and branching. Shifting the level
-/// restores the area asked (see docs/reconstruction.md, "Tiling"). 0 when the zero level's area is already within a
-/// cell of the target or the grid is empty.
+/// wherever the two regions differ in shape (a blob below an elongated contour: the elongated one's ends
+/// are far from the blob, so the average is positive there and the level is short), which shrinks every
+/// refined band and branching. Shifting the level restores the area asked (see docs/reconstruction.md,
+/// "Tiling"). 0 when the zero level's area is already within a cell of the target or the grid is empty.
 [[nodiscard]] double level_for_area(const DistancePair& fields, double t, double target_area);
 
 /// One contour of an interpolated level.
