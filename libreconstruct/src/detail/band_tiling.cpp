@@ -62,15 +62,17 @@ std::vector<std::uint8_t> least_cost_path(const std::vector<Eigen::Vector3d>& P,
   // adds and compares.
   // Row 0 holds only the start; (m, 0) and (i < m, n) stay unreachable.
   const double h = Q[0].z() - P[0].z();
+  // Q shifted by one: qx[j + 1] = Q[j].x(), and qx[0] = Q[0].x(), so that the segment from j holds Q[j - 1]
+  // (Q[0] for j = 0) and the segment from j + 1 holds Q[j]. Likewise dx[j + 1] = Q[j].x() - P[i].x().
   const Eigen::Index nq = static_cast<Eigen::Index>(Q.size());
-  Eigen::ArrayXd qx(nq), qy(nq), qx_before(nq), qy_before(nq);  // Q[j] and Q[j - 1] (Q[0] for j = 0)
+  Eigen::ArrayXd qx(nq + 1), qy(nq + 1);
   for (Eigen::Index j = 0; j < nq; ++j) {
-    qx[j] = Q[static_cast<std::size_t>(j)].x();
-    qy[j] = Q[static_cast<std::size_t>(j)].y();
-    qx_before[j] = Q[static_cast<std::size_t>(std::max<Eigen::Index>(j - 1, 0))].x();
-    qy_before[j] = Q[static_cast<std::size_t>(std::max<Eigen::Index>(j - 1, 0))].y();
+    qx[j + 1] = Q[static_cast<std::size_t>(j)].x();
+    qy[j + 1] = Q[static_cast<std::size_t>(j)].y();
   }
-  Eigen::ArrayXd dx(nq), dy(nq), ex(nq), ey(nq), along_area(nq), across_area(nq), span(nq);
+  qx[0] = qx[1];
+  qy[0] = qy[1];
+  Eigen::ArrayXd dx(nq + 1), dy(nq + 1), along_area(nq), across_area(nq), span(nq);
   for (int i = 1; i <= m; ++i) {
     const int l = lo[i], pl = lo[i - 1], ph = hi[i - 1];
     const int jb = i == m ? std::max(l, 1) : l;
@@ -85,20 +87,17 @@ std::vector<std::uint8_t> least_cost_path(const std::vector<Eigen::Vector3d>& P,
     const double along = ayh * ayh + axh * axh;
     const Eigen::Index b = jb, len = je - jb + 1;
     // Triangle P[i-1] P[i] Q[j] (g = Q[j] - P[i-1]), and triangle P[i] Q[j] Q[j-1] (d = Q[j] - P[i], e =
-    // Q[j-1] - P[i]).
+    // Q[j-1] - P[i]: the segments of dx and dy from j + 1 and from j).
     along_area.segment(b, len) =
-        0.5 * (along + (ax * (qy.segment(b, len) - p0y) - ay * (qx.segment(b, len) - p0x)).square()).sqrt();
-    dx.segment(b, len) = qx.segment(b, len) - p1x;
-    dy.segment(b, len) = qy.segment(b, len) - p1y;
-    ex.segment(b, len) = qx_before.segment(b, len) - p1x;
-    ey.segment(b, len) = qy_before.segment(b, len) - p1y;
+        0.5 * (along + (ax * (qy.segment(b + 1, len) - p0y) - ay * (qx.segment(b + 1, len) - p0x)).square()).sqrt();
+    dx.segment(b, len + 1) = qx.segment(b, len + 1) - p1x;
+    dy.segment(b, len + 1) = qy.segment(b, len + 1) - p1y;
+    const auto d_x = dx.segment(b + 1, len), d_y = dy.segment(b + 1, len);
+    const auto e_x = dx.segment(b, len), e_y = dy.segment(b, len);
     across_area.segment(b, len) =
-        0.5 * (((dy.segment(b, len) * h - ey.segment(b, len) * h).square() +
-                (ex.segment(b, len) * h - dx.segment(b, len) * h).square()) +
-               (dx.segment(b, len) * ey.segment(b, len) - dy.segment(b, len) * ex.segment(b, len)).square())
-                  .sqrt();
+        0.5 * (((d_y * h - e_y * h).square() + (e_x * h - d_x * h).square()) + (d_x * e_y - d_y * e_x).square()).sqrt();
     if (span_weight > 0.0) {
-      span.segment(b, len) = span_weight * ((dx.segment(b, len).square() + dy.segment(b, len).square()) + h * h);
+      span.segment(b, len) = span_weight * ((d_x.square() + d_y.square()) + h * h);
     }
     // The recurrence, in three stretches of j: before the previous row's range (from the left only),
     // within it (from below or from the left; below wins ties), after it (from the left only), so that
