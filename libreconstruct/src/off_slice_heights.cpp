@@ -261,7 +261,7 @@ OffSliceResult fit_off_slice_heights(Mesh mesh, const CtImage& image, double thr
       const Triangle& t = mesh.triangles[f];
       if (d[t[0]] == 0.0 && d[t[1]] == 0.0 && d[t[2]] == 0.0) continue;  // unmoved: it cannot have turned
       const long long last_check = (round - 1) * num_faces + static_cast<long long>(f);
-      if (round > 0 && !turned[f] && moved_at[t[0]] <= last_check && moved_at[t[1]] <= last_check &&
+      if (!turned[f] && moved_at[t[0]] <= last_check && moved_at[t[1]] <= last_check &&
           moved_at[t[2]] <= last_check) {
         continue;
       }

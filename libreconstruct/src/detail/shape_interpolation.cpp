@@ -7,7 +7,6 @@
 #include <cmath>
 #include <cstdint>
 #include <cstring>
-#include <initializer_list>
 #include <limits>
 #include <utility>
 
@@ -159,9 +158,6 @@ double node_value(double lo, double up, double t, double level, double nudge) {
 double cell_inside_area2(const double f[4]) {
   static constexpr double kCorner[4][2] = {{0, 0}, {1, 0}, {1, 1}, {0, 1}};
   const bool neg[4] = {f[0] < 0.0, f[1] < 0.0, f[2] < 0.0, f[3] < 0.0};
-  const int inside = neg[0] + neg[1] + neg[2] + neg[3];
-  if (inside == 0) return 0.0;
-  if (inside == 4) return 2.0;
   // The boundary walk: inside corners and crossings, in counter-clockwise order.
   double x[8], y[8];
   int n = 0;
@@ -177,30 +173,27 @@ double cell_inside_area2(const double f[4]) {
       y[n++] = kCorner[k][1] + s * (kCorner[m][1] - kCorner[k][1]);
     }
   }
-  auto shoelace = [&](std::initializer_list<int> idx) {
+  // Twice the signed area of the polygon through the walk's points idx[0 .. count).
+  auto shoelace = [&](const int* idx, int count) {
     double a = 0.0;
-    const int* v = idx.begin();
-    const int count = static_cast<int>(idx.size());
     for (int i = 0; i < count; ++i) {
-      const int p = v[i], q = v[(i + 1) % count];
+      const int p = idx[i], q = idx[(i + 1) % count];
       a += x[p] * y[q] - x[q] * y[p];
     }
     return a;
   };
-  const bool saddle = inside == 2 && neg[0] == neg[2];
+  const bool saddle = neg[0] == neg[2] && neg[1] == neg[3] && neg[0] != neg[1];
   if (!saddle || (f[0] + f[1] + f[2] + f[3]) < 0.0) {
-    // One inside piece (a saddle whose centre is inside joins both corners through it): the walk is its
-    // boundary.
-    double a = 0.0;
-    for (int i = 0; i < n; ++i) {
-      const int j = (i + 1) % n;
-      a += x[i] * y[j] - x[j] * y[i];
-    }
-    return a;
+    // One inside piece, or none (a saddle whose centre is inside joins both corners through it): the walk
+    // is its boundary.
+    static constexpr int kWalk[8] = {0, 1, 2, 3, 4, 5, 6, 7};
+    return shoelace(kWalk, n);
   }
   // A saddle whose centre is outside: two corner triangles. The walk is corner, crossing, crossing,
   // corner, crossing, crossing (starting at corner 0 when it is inside, else at corner 1's crossing).
-  return neg[0] ? shoelace({0, 1, 5}) + shoelace({2, 3, 4}) : shoelace({0, 1, 2}) + shoelace({3, 4, 5});
+  static constexpr int kCorner0[2][3] = {{0, 1, 5}, {2, 3, 4}}, kCrossing0[2][3] = {{0, 1, 2}, {3, 4, 5}};
+  const auto& triangles = neg[0] ? kCorner0 : kCrossing0;
+  return shoelace(triangles[0], 3) + shoelace(triangles[1], 3);
 }
 
 }  // namespace
