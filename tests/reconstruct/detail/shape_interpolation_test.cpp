@@ -7,7 +7,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
-#include <cstdint>
+#include <random>
 
 #include "reconstruct/detail/level_helpers.h"
 
@@ -154,20 +154,14 @@ TEST(ShapeInterpolation, TheLevelAreaIsTheAreaOfTheLevelsPolygons) {
   g.h = 0.7;
   g.nx = 23;
   g.ny = 17;
-  std::uint64_t state = 12345;
-  auto uniform = [&] {  // splitmix64, in [-1, 1)
-    state += 0x9E3779B97F4A7C15ULL;
-    std::uint64_t z = state;
-    z = (z ^ (z >> 30)) * 0xBF58476D1CE4E5B9ULL;
-    z = (z ^ (z >> 27)) * 0x94D049BB133111EBULL;
-    return static_cast<double>((z ^ (z >> 31)) >> 11) / 4503599627370496.0 - 1.0;
-  };
+  std::mt19937 rng(7);
+  std::uniform_real_distribution<double> value(-1.0, 1.0);
   const std::size_t count = static_cast<std::size_t>(g.nx) * static_cast<std::size_t>(g.ny);
   for (std::size_t k = 0; k < count; ++k) {
     const int i = static_cast<int>(k % static_cast<std::size_t>(g.nx)), j = static_cast<int>(k / g.nx);
     const bool border = i < 2 || j < 2 || i >= g.nx - 2 || j >= g.ny - 2;  // outside, as a real grid's margin
-    g.lower.push_back(border ? 5.0 : uniform());
-    g.upper.push_back(border ? 5.0 : uniform() + 0.2);
+    g.lower.push_back(border ? 5.0 : value(rng));
+    g.upper.push_back(border ? 5.0 : value(rng) + 0.2);
   }
   int saddles = 0;
   for (std::size_t k = 0; k + g.nx + 1 < count; ++k) {
