@@ -7,6 +7,7 @@
 #include <cmath>
 #include <cstring>
 #include <map>
+#include <memory>
 
 namespace contourmesh::detail {
 
@@ -117,34 +118,51 @@ void select_region(const ContourFrame& frame, std::size_t num_faces, const OffSl
 // two faces share a vertex or not).
 void assign_pair_slots(const std::vector<Index>& filtered_of, Workspace& w) {
   w.ring_slot.resize(w.ring.size());
-  // First, on every core, each entry's mirror (the entry of an earlier filtered face that it pairs with),
-  // or -1 where the entry opens a slot of its own (a mirror always does); then the new slots are
-  // numbered in ring order, and the mirrors' slots copied.
+  // In fixed chunks of filtered faces on every core: first each entry's mirror (the entry of an earlier
+  // filtered face that it pairs with), or -1 where the entry opens a slot of its own (a mirror always does),
+  // and each chunk's count of new slots; then the new slots are numbered in ring order (each chunk from
+  // the count of the chunks before it), and the mirrors' slots copied.
+  constexpr std::size_t kChunk = 4096;
+  const std::size_t nk = w.filtered.size();
   std::vector<Index> mirror_of(w.ring.size(), -1);
-  parallel_chunks(w.filtered.size(), 4096, [&](std::size_t, std::size_t begin, std::size_t end) {
+  std::vector<Index> first_slot((nk + kChunk - 1) / kChunk + 1, 0);  // per chunk, then its prefix sums
+  parallel_chunks(nk, kChunk, [&](std::size_t chunk, std::size_t begin, std::size_t end) {
+    Index opened = 0;
     for (std::size_t k = begin; k < end; ++k) {
       const Index f = w.filtered[k];
       for (Index r = w.ring_offsets[k]; r < w.ring_offsets[k + 1]; ++r) {
         const Index g = w.ring[static_cast<std::size_t>(r)];
         const Index kg = filtered_of[static_cast<std::size_t>(g)];
-        if (kg < 0 || static_cast<std::size_t>(kg) >= k) continue;
-        const auto first = w.ring.begin() + w.ring_offsets[static_cast<std::size_t>(kg)];
-        const auto last = w.ring.begin() + w.ring_offsets[static_cast<std::size_t>(kg) + 1];
-        const auto mirror = std::lower_bound(first, last, f);
-        if (mirror != last && *mirror == f)
-          mirror_of[static_cast<std::size_t>(r)] = static_cast<Index>(mirror - w.ring.begin());
+        if (kg >= 0 && static_cast<std::size_t>(kg) < k) {
+          const auto first = w.ring.begin() + w.ring_offsets[static_cast<std::size_t>(kg)];
+          const auto last = w.ring.begin() + w.ring_offsets[static_cast<std::size_t>(kg) + 1];
+          const auto mirror = std::lower_bound(first, last, f);
+          if (mirror != last && *mirror == f) {
+            mirror_of[static_cast<std::size_t>(r)] = static_cast<Index>(mirror - w.ring.begin());
+            continue;
+          }
+        }
+        ++opened;
+      }
+    }
+    first_slot[chunk + 1] = opened;
+  });
+  for (std::size_t c = 1; c < first_slot.size(); ++c) first_slot[c] += first_slot[c - 1];
+  w.slot_a.resize(static_cast<std::size_t>(first_slot.back()));
+  w.slot_b.resize(w.slot_a.size());
+  parallel_chunks(nk, kChunk, [&](std::size_t chunk, std::size_t begin, std::size_t end) {
+    Index slot = first_slot[chunk];
+    for (std::size_t k = begin; k < end; ++k) {
+      const Index f = w.filtered[k];
+      for (Index r = w.ring_offsets[k]; r < w.ring_offsets[k + 1]; ++r) {
+        if (mirror_of[static_cast<std::size_t>(r)] >= 0) continue;
+        w.ring_slot[static_cast<std::size_t>(r)] = slot;
+        w.slot_a[static_cast<std::size_t>(slot)] = f;
+        w.slot_b[static_cast<std::size_t>(slot)] = w.ring[static_cast<std::size_t>(r)];
+        ++slot;
       }
     }
   });
-  for (std::size_t k = 0; k < w.filtered.size(); ++k) {
-    const Index f = w.filtered[k];
-    for (Index r = w.ring_offsets[k]; r < w.ring_offsets[k + 1]; ++r) {
-      if (mirror_of[static_cast<std::size_t>(r)] >= 0) continue;
-      w.ring_slot[static_cast<std::size_t>(r)] = static_cast<Index>(w.slot_a.size());
-      w.slot_a.push_back(f);
-      w.slot_b.push_back(w.ring[static_cast<std::size_t>(r)]);
-    }
-  }
   parallel_chunks(w.ring.size(), 16384, [&](std::size_t, std::size_t begin, std::size_t end) {
     for (std::size_t r = begin; r < end; ++r) {
       const Index m = mirror_of[r];
@@ -225,18 +243,25 @@ Workspace make_workspace(const ContourFrame& frame, const std::vector<Triangle>&
   w.moves.assign(w.vertices.size(), 0);
   w.incident_offsets.assign(moving.size() + 1, 0);
   w.on_contour.resize(moving.size());
+  w.moving.resize(moving.size());
   for (std::size_t m = 0; m < moving.size(); ++m) {
     const Index i = moving[m];
     const Index li = vertex_map[static_cast<std::size_t>(i)];
-    w.moving.push_back(li);
+    w.moving[m] = li;
     w.moves[static_cast<std::size_t>(li)] = 1;
     w.on_contour[m] = frame.is_contour_vertex(i) ? 1 : 0;
-    for (Index f : adj.incident_faces(i)) {
-      const Index local_f = w.face_map[static_cast<std::size_t>(f)];
-      w.incident.push_back(w.filtered_of[static_cast<std::size_t>(local_f)]);
-    }
-    w.incident_offsets[m + 1] = static_cast<Index>(w.incident.size());
+    w.incident_offsets[m + 1] = w.incident_offsets[m] + static_cast<Index>(adj.incident_faces(i).size());
   }
+  w.incident.resize(static_cast<std::size_t>(w.incident_offsets.back()));
+  parallel_chunks(moving.size(), 4096, [&](std::size_t, std::size_t begin, std::size_t end) {
+    for (std::size_t m = begin; m < end; ++m) {
+      auto e = static_cast<std::size_t>(w.incident_offsets[m]);
+      for (Index f : adj.incident_faces(moving[m])) {
+        const Index local_f = w.face_map[static_cast<std::size_t>(f)];
+        w.incident[e++] = w.filtered_of[static_cast<std::size_t>(local_f)];
+      }
+    }
+  });
   return w;
 }
 
@@ -247,7 +272,9 @@ void spatial_weights(const Eigen::Matrix3Xd& centroids, const Eigen::VectorXd& a
   // Per pair of faces (slot), once: the distance between the centroids and its Gaussian are symmetric bit
   // for bit (the difference only changes sign), as the range kernel is.
   const std::size_t ns = w.slot_a.size();
-  std::vector<double> squared(ns), distance(ns);
+  // Left uninitialised: the loop below writes every element, its threads touching the pages first.
+  const auto squared = std::make_unique_for_overwrite<double[]>(ns);
+  const auto distance = std::make_unique_for_overwrite<double[]>(ns);
   parallel_chunks(ns, 4096, [&](std::size_t, std::size_t begin, std::size_t end) {
     for (std::size_t s = begin; s < end; ++s) {
       squared[s] = (centroids.col(w.slot_b[s]) - centroids.col(w.slot_a[s])).squaredNorm();
@@ -258,7 +285,7 @@ void spatial_weights(const Eigen::Matrix3Xd& centroids, const Eigen::VectorXd& a
   for (Index slot : w.ring_slot) sum += distance[static_cast<std::size_t>(slot)];
   w.sigma_s = sum > 0.0 ? sum / static_cast<double>(w.ring.size()) : 1.0;
   const double inv_s = 1.0 / (2.0 * w.sigma_s * w.sigma_s);
-  std::vector<double>& kernel = distance;  // reused
+  double* const kernel = distance.get();  // reused
   parallel_chunks(ns, 4096, [&](std::size_t, std::size_t begin, std::size_t end) {
     for (std::size_t s = begin; s < end; ++s) kernel[s] = std::exp(-squared[s] * inv_s);
   });
@@ -280,35 +307,108 @@ struct GuidancePatches {
   Eigen::Matrix3Xd outer_normals;       ///< per outer face
 };
 
+constexpr std::size_t kPatchChunk = 2048;  // local faces per chunk of the patches' loops
+
+// The patches' sizes into `offsets` (per local face, to be summed), and per chunk of kPatchChunk local faces
+// the faces of the patches of those not filtered: the faces around their corners, mesh ids, ascending (a
+// filtered face's patch is its neighbourhood).
+std::vector<std::vector<Index>> faces_around(const MeshAdjacency& adj, const std::vector<Triangle>& triangles,
+                                             const Workspace& w, std::vector<Index>& offsets) {
+  const std::size_t nl = w.faces.size();
+  std::vector<std::vector<Index>> around((nl + kPatchChunk - 1) / kPatchChunk);
+  parallel_chunks(nl, kPatchChunk, [&](std::size_t chunk, std::size_t begin, std::size_t end) {
+    std::vector<Index>& part = around[chunk];
+    std::vector<Index> local;
+    for (std::size_t l = begin; l < end; ++l) {
+      const Index k = w.filtered_of[l];
+      if (k >= 0) {
+        const auto ku = static_cast<std::size_t>(k);
+        offsets[l + 1] = w.ring_offsets[ku + 1] - w.ring_offsets[ku];
+        continue;
+      }
+      local.clear();
+      for (Index v : triangles[static_cast<std::size_t>(w.faces[l])]) {
+        for (Index g : adj.incident_faces(v)) local.push_back(g);
+      }
+      std::sort(local.begin(), local.end());
+      local.erase(std::unique(local.begin(), local.end()), local.end());
+      part.insert(part.end(), local.begin(), local.end());
+      offsets[l + 1] = static_cast<Index>(local.size());
+    }
+  });
+  return around;
+}
+
+// The faces of the patches outside the workspace, numbered in ascending mesh order (any order gives the
+// same patches: an entry only names where its normal is read), with their areas, centroids and normals.
+struct OuterFaces {
+  std::vector<Index> of;  ///< mesh face -> outer face, or -1
+  Eigen::Matrix3Xd centroids;
+  Eigen::VectorXd areas;
+};
+
+OuterFaces outer_faces(const std::vector<Triangle>& triangles, const Eigen::Matrix3Xd& positions, const Workspace& w,
+                       const std::vector<std::vector<Index>>& around, Eigen::Matrix3Xd& normals) {
+  OuterFaces outer;
+  outer.of.assign(triangles.size(), -1);
+  for (const std::vector<Index>& part : around) {
+    for (Index g : part) {
+      if (w.face_map[static_cast<std::size_t>(g)] < 0) outer.of[static_cast<std::size_t>(g)] = 0;
+    }
+  }
+  std::vector<Index> faces;  // outer face -> mesh face
+  for (std::size_t g = 0; g < outer.of.size(); ++g) {
+    if (outer.of[g] < 0) continue;
+    outer.of[g] = static_cast<Index>(faces.size());
+    faces.push_back(static_cast<Index>(g));
+  }
+  const auto no = static_cast<Index>(faces.size());
+  outer.centroids.resize(3, no);
+  outer.areas.resize(no);
+  normals.resize(3, no);
+  parallel_chunks(faces.size(), 4096, [&](std::size_t, std::size_t begin, std::size_t end) {
+    for (std::size_t o = begin; o < end; ++o) {
+      const Triangle& t = triangles[static_cast<std::size_t>(faces[o])];
+      const auto oo = static_cast<Index>(o);
+      double a = 0.0;
+      normals.col(oo) = face_normal(positions, t, &a);
+      outer.areas[oo] = a;
+      outer.centroids.col(oo) = (positions.col(t[0]) + positions.col(t[1]) + positions.col(t[2])) / 3.0;
+    }
+  });
+  return outer;
+}
+
 GuidancePatches make_patches(const ContourFrame& frame, const std::vector<Triangle>& triangles,
                              const Eigen::Matrix3Xd& positions, const Workspace& w, const Eigen::Matrix3Xd& centroids,
                              const Eigen::VectorXd& areas) {
-  const MeshAdjacency& adj = frame.adjacency;
   const std::size_t nl = w.faces.size();
   const double inv_s = 1.0 / (2.0 * w.sigma_s * w.sigma_s);
   GuidancePatches p;
   p.offsets.assign(nl + 1, 0);
-  std::vector<Index> outer_of(triangles.size(), -1), outer_faces;  // mesh face -> outer face; outer -> mesh
-  std::vector<Eigen::Vector3d> outer_centroids;
-  std::vector<double> outer_areas;
-  std::vector<Index> around;
-  for (std::size_t l = 0; l < nl; ++l) {
-    const Index k = w.filtered_of[l];
-    if (k >= 0) {
-      for (Index r = w.ring_offsets[static_cast<std::size_t>(k)]; r < w.ring_offsets[static_cast<std::size_t>(k) + 1];
-           ++r) {
-        p.entries.push_back(w.ring[static_cast<std::size_t>(r)]);
-        p.weights.push_back(w.ring_weights[static_cast<std::size_t>(r)]);
+  const std::vector<std::vector<Index>> around = faces_around(frame.adjacency, triangles, w, p.offsets);
+  for (std::size_t l = 0; l < nl; ++l) p.offsets[l + 1] += p.offsets[l];
+  const OuterFaces outer = outer_faces(triangles, positions, w, around, p.outer_normals);
+  // The entries and their weights (area x spatial kernel), on every core, in the chunks of faces_around.
+  p.entries.resize(static_cast<std::size_t>(p.offsets.back()));
+  p.weights.resize(p.entries.size());
+  parallel_chunks(nl, kPatchChunk, [&](std::size_t chunk, std::size_t begin, std::size_t end) {
+    const std::vector<Index>& part = around[chunk];
+    std::size_t next = 0;  // in part
+    for (std::size_t l = begin; l < end; ++l) {
+      auto e = static_cast<std::size_t>(p.offsets[l]);
+      const Index k = w.filtered_of[l];
+      if (k >= 0) {
+        for (Index r = w.ring_offsets[static_cast<std::size_t>(k)]; r < w.ring_offsets[static_cast<std::size_t>(k) + 1];
+             ++r, ++e) {
+          p.entries[e] = w.ring[static_cast<std::size_t>(r)];
+          p.weights[e] = w.ring_weights[static_cast<std::size_t>(r)];
+        }
+        continue;
       }
-    } else {
-      around.clear();
-      for (Index v : triangles[static_cast<std::size_t>(w.faces[l])]) {
-        for (Index g : adj.incident_faces(v)) around.push_back(g);
-      }
-      std::sort(around.begin(), around.end());
-      around.erase(std::unique(around.begin(), around.end()), around.end());
       const Eigen::Vector3d c = centroids.col(static_cast<Index>(l));
-      for (Index g : around) {
+      for (; e < static_cast<std::size_t>(p.offsets[l + 1]); ++e) {
+        const Index g = part[next++];
         const Index local = w.face_map[static_cast<std::size_t>(g)];
         Eigen::Vector3d cg;
         double area = 0.0;
@@ -317,31 +417,16 @@ GuidancePatches make_patches(const ContourFrame& frame, const std::vector<Triang
           cg = centroids.col(local);
           area = areas[local];
         } else {
-          Index& o = outer_of[static_cast<std::size_t>(g)];
-          if (o < 0) {
-            const Triangle& t = triangles[static_cast<std::size_t>(g)];
-            o = static_cast<Index>(outer_faces.size());
-            outer_faces.push_back(g);
-            double a = 0.0;
-            (void)face_normal(positions, t, &a);
-            outer_areas.push_back(a);
-            outer_centroids.emplace_back((positions.col(t[0]) + positions.col(t[1]) + positions.col(t[2])) / 3.0);
-          }
-          cg = outer_centroids[static_cast<std::size_t>(o)];
-          area = outer_areas[static_cast<std::size_t>(o)];
+          const Index o = outer.of[static_cast<std::size_t>(g)];
+          cg = outer.centroids.col(o);
+          area = outer.areas[o];
           entry = static_cast<Index>(nl) + o;
         }
-        p.entries.push_back(entry);
-        p.weights.push_back(area * std::exp(-(cg - c).squaredNorm() * inv_s));
+        p.entries[e] = entry;
+        p.weights[e] = area * std::exp(-(cg - c).squaredNorm() * inv_s);
       }
     }
-    p.offsets[l + 1] = static_cast<Index>(p.entries.size());
-  }
-  p.outer_normals.resize(3, static_cast<Index>(outer_faces.size()));
-  for (std::size_t o = 0; o < outer_faces.size(); ++o) {
-    const Triangle& t = triangles[static_cast<std::size_t>(outer_faces[o])];
-    p.outer_normals.col(static_cast<Index>(o)) = face_normal(positions, t);
-  }
+  });
   return p;
 }
 
