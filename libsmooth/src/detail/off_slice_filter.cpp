@@ -69,12 +69,13 @@ struct Workspace {
   // Per filtered face: the corners (local vertices), and its neighbourhood in CSR (local faces, the face
   // itself included, ascending) with area x spatial kernel per entry.
   std::vector<Triangle> corners;
-  std::vector<Index> ring_offsets, ring;
-  std::vector<double> ring_weights;
+  std::vector<Index> ring_offsets;
+  FillVector<Index> ring;
+  FillVector<double> ring_weights;
   // The range kernel is symmetric: each pair of faces (a, b) that meet in a neighbourhood has one slot,
   // computed once per iteration however many of the two neighbourhoods it is in.
-  std::vector<Index> ring_slot;      ///< per neighbourhood entry
-  std::vector<Index> slot_a, slot_b;  ///< per slot: the faces (local), as first met: face a, entry b
+  FillVector<Index> ring_slot;       ///< per neighbourhood entry
+  FillVector<Index> slot_a, slot_b;  ///< per slot: the faces (local), as first met: face a, entry b
   std::vector<Index> filtered_of;     ///< local face -> filtered face, or -1
   std::vector<Index> face_map;        ///< mesh face -> local face, or -1
   double sigma_s = 1.0;               ///< width of the spatial kernel, mm
@@ -124,7 +125,7 @@ void assign_pair_slots(const std::vector<Index>& filtered_of, Workspace& w) {
   // the count of the chunks before it), and the mirrors' slots copied.
   constexpr std::size_t kChunk = 4096;
   const std::size_t nk = w.filtered.size();
-  std::vector<Index> mirror_of(w.ring.size(), -1);
+  FillVector<Index> mirror_of(w.ring.size());
   std::vector<Index> first_slot((nk + kChunk - 1) / kChunk + 1, 0);  // per chunk, then its prefix sums
   parallel_chunks(nk, kChunk, [&](std::size_t chunk, std::size_t begin, std::size_t end) {
     Index opened = 0;
@@ -133,6 +134,7 @@ void assign_pair_slots(const std::vector<Index>& filtered_of, Workspace& w) {
       for (Index r = w.ring_offsets[k]; r < w.ring_offsets[k + 1]; ++r) {
         const Index g = w.ring[static_cast<std::size_t>(r)];
         const Index kg = filtered_of[static_cast<std::size_t>(g)];
+        mirror_of[static_cast<std::size_t>(r)] = -1;
         if (kg >= 0 && static_cast<std::size_t>(kg) < k) {
           const auto first = w.ring.begin() + w.ring_offsets[static_cast<std::size_t>(kg)];
           const auto last = w.ring.begin() + w.ring_offsets[static_cast<std::size_t>(kg) + 1];
@@ -302,8 +304,9 @@ void spatial_weights(const Eigen::Matrix3Xd& centroids, const Eigen::VectorXd& a
 // is its neighbourhood; the other local faces' patches reach one ring further, to faces outside the
 // workspace ("outer" faces: no moving corner, so their normals are fixed, as the other local faces' are).
 struct GuidancePatches {
-  std::vector<Index> offsets, entries;  ///< per local face, CSR; an entry >= the local faces' count is outer
-  std::vector<double> weights;          ///< per entry
+  std::vector<Index> offsets;           ///< per local face, CSR into entries
+  FillVector<Index> entries;            ///< local faces; an entry >= the local faces' count is outer
+  FillVector<double> weights;           ///< per entry
   Eigen::Matrix3Xd outer_normals;       ///< per outer face
 };
 
@@ -489,7 +492,7 @@ void filter_normals(const Workspace& w, const OffSliceFilterOptions& options, co
   const double inv_r = 1.0 / (2.0 * sigma_r * sigma_r);
   // Where a sum vanishes, a face keeps the normal of two iterations before (that of `next`).
   Eigen::Matrix3Xd next = normals;
-  std::vector<float> range(w.slot_a.size());
+  FillVector<float> range(w.slot_a.size());  // every slot is computed in the first iteration
   // Only what changed is recomputed. A face's sum reads the normals of its neighbourhood only (the face's
   // own included) and each pair's range kernel, which reads the pair's two compared normals: where none of
   // them changed bit for bit in the last iteration, the sum and its normal are those of the last iteration,

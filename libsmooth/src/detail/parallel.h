@@ -8,8 +8,11 @@
 #include <atomic>
 #include <cstddef>
 #include <exception>
+#include <memory>
 #include <mutex>
 #include <thread>
+#include <type_traits>
+#include <utility>
 #include <vector>
 
 namespace contourmesh::detail {
@@ -48,6 +51,26 @@ class ScopedWorkerCount {
  private:
   unsigned previous_;
 };
+
+/// An allocator whose value-less construction leaves a scalar uninitialised: a vector resized with it
+/// touches no memory, so that the parallel loop that then writes every element faults its pages in on
+/// every core instead of the calling thread zeroing them first.
+template <typename T>
+struct DefaultInitAllocator : std::allocator<T> {
+  using std::allocator<T>::allocator;
+  template <typename U>
+  void construct(U* p) noexcept(std::is_nothrow_default_constructible_v<U>) {
+    ::new (static_cast<void*>(p)) U;
+  }
+  template <typename U, typename... Args>
+  void construct(U* p, Args&&... args) {
+    ::new (static_cast<void*>(p)) U(std::forward<Args>(args)...);
+  }
+};
+
+/// A vector for buffers that a parallel loop fills completely after resize().
+template <typename T>
+using FillVector = std::vector<T, DefaultInitAllocator<T>>;
 
 /// Calls body(chunk, begin, end) for the chunks [k * chunk_size, min(n, (k + 1) * chunk_size)), on all
 /// cores. The first exception thrown by a body is rethrown after every thread has stopped.
