@@ -194,6 +194,45 @@ BallTensor ball_tensor(const Mesh& mesh, const MeshAdjacency& adjacency, const s
 
 }  // namespace
 
+// Links of the crease lines (step 2 of detect_creases): per core vertex on a slice, in CSR, the core
+// vertices on an adjacent contour's slice within `radius` of it (through vertices within it: gather_ball,
+// in the order it meets them) such that the segment between them passes `along_crease` at both ends. They
+// do not depend on the grouping, so they are found in fixed chunks on every core.
+template <typename AlongCrease>
+void link_partners(const Mesh& mesh, const MeshAdjacency& adjacency, const std::vector<std::uint8_t>& core,
+                   double radius, const AlongCrease& along_crease, ScratchPool& pool, std::vector<Index>& offsets,
+                   std::vector<Index>& partners) {
+  const auto n = static_cast<std::size_t>(mesh.num_vertices());
+  constexpr std::size_t kChunk = 4096;
+  std::vector<std::vector<Index>> parts((n + kChunk - 1) / kChunk);
+  offsets.assign(n + 1, 0);
+  detail::parallel_chunks(n, kChunk, [&](std::size_t chunk, std::size_t begin, std::size_t end) {
+    std::unique_ptr<BallScratch> scratch;  // taken at the chunk's first core vertex
+    for (std::size_t v = begin; v < end; ++v) {
+      const std::int32_t sv = mesh.slice_ids[v];
+      if (!core[v] || sv < 0) continue;
+      if (!scratch) scratch = pool.take();
+      const auto vi = static_cast<Index>(v);
+      gather_ball(mesh, adjacency, vi, radius, *scratch);
+      for (Index j : scratch->ball) {
+        const std::int32_t sj = mesh.slice_ids[static_cast<std::size_t>(j)];
+        if (!core[static_cast<std::size_t>(j)] || sj < 0 || (sv - sj != 1 && sj - sv != 1)) continue;
+        const Eigen::Vector3d d = mesh.positions.col(j) - mesh.positions.col(vi);
+        const double len = d.norm();
+        if (len > 0.0 && along_crease(vi, d / len) && along_crease(j, d / len)) {
+          parts[chunk].push_back(j);
+          ++offsets[v + 1];
+        }
+      }
+    }
+    if (scratch) pool.give_back(std::move(scratch));
+  });
+  for (std::size_t v = 0; v < n; ++v) offsets[v + 1] += offsets[v];
+  partners.clear();
+  partners.reserve(static_cast<std::size_t>(offsets.back()));
+  for (const std::vector<Index>& part : parts) partners.insert(partners.end(), part.begin(), part.end());
+}
+
 CreaseDetection detect_creases(const Mesh& mesh, const MeshAdjacency& adjacency, const CreaseOptions& options) {
   check(mesh, adjacency, options);
   const Index n = mesh.num_vertices();
@@ -317,16 +356,14 @@ CreaseDetection detect_creases(const Mesh& mesh, const MeshAdjacency& adjacency,
   // that share no edge. Only across one slice, so that folds and noise within a slice or on a cap,
   // whose directions are random, are not strung together.
   const bool linking = options.link_radius > 0.0 && mesh.has_contour_ids();
-  const auto adjacent_slices = [&](Index a, Index b) {
-    const std::int32_t sa = mesh.slice_ids[static_cast<std::size_t>(a)];
-    const std::int32_t sb = mesh.slice_ids[static_cast<std::size_t>(b)];
-    return sa >= 0 && sb >= 0 && (sa - sb == 1 || sb - sa == 1);
-  };
   const double link_cos = std::cos(options.link_angle_degrees * std::numbers::pi / 180.0);
   const auto along_crease = [&](Index v, const Eigen::Vector3d& unit) {
     return is_corner(v) || std::abs(unit.dot(along.col(v))) >= link_cos;
   };
-  BallScratch link_scratch(linking ? n : 0);
+  std::vector<Index> link_offsets, links;
+  if (linking) {
+    link_partners(mesh, adjacency, core, options.link_radius, along_crease, scratch_pool, link_offsets, links);
+  }
   std::vector<Index> group(static_cast<std::size_t>(n), -1);
   std::vector<Index> kept, kept_corners, members, stack;
   const auto join = [&](Index j, Index seed) {
@@ -347,15 +384,9 @@ CreaseDetection detect_creases(const Mesh& mesh, const MeshAdjacency& adjacency,
       members.push_back(v);
       box.extend(mesh.positions.col(v));
       for (Index j : adjacency.ring(v)) join(j, seed);
-      if (!linking || mesh.slice_ids[static_cast<std::size_t>(v)] < 0) continue;
-      gather_ball(mesh, adjacency, v, options.link_radius, link_scratch);
-      for (Index j : link_scratch.ball) {
-        if (!core[static_cast<std::size_t>(j)] || group[static_cast<std::size_t>(j)] >= 0) continue;
-        if (!adjacent_slices(v, j)) continue;
-        const Eigen::Vector3d d = mesh.positions.col(j) - mesh.positions.col(v);
-        const double len = d.norm();
-        if (len > 0.0 && along_crease(v, d / len) && along_crease(j, d / len)) join(j, seed);
-      }
+      if (!linking) continue;
+      const auto vu = static_cast<std::size_t>(v);
+      for (Index r = link_offsets[vu]; r < link_offsets[vu + 1]; ++r) join(links[static_cast<std::size_t>(r)], seed);
     }
     const bool line = box.diagonal().norm() >= options.min_extent;
     for (Index v : members) {
@@ -370,8 +401,10 @@ CreaseDetection detect_creases(const Mesh& mesh, const MeshAdjacency& adjacency,
   result.core_vertices = kept.size();
 
   // 3. The band around the kept core vertices.
-  const std::vector<double> to_core = distances_from(mesh, adjacency, kept, options.band);
-  const std::vector<double> to_corner = distances_from(mesh, adjacency, kept_corners, options.band);
+  std::vector<double> to_core, to_corner;  // the two searches side by side
+  detail::parallel_chunks(2, 1, [&](std::size_t k, std::size_t, std::size_t) {
+    (k == 0 ? to_core : to_corner) = distances_from(mesh, adjacency, k == 0 ? kept : kept_corners, options.band);
+  });
   for (Index i = 0; i < n; ++i) {
     auto& label = result.labels[static_cast<std::size_t>(i)];
     if (to_corner[static_cast<std::size_t>(i)] <= options.band) {
