@@ -520,7 +520,9 @@ void filter_normals(const Workspace& w, const OffSliceFilterOptions& options, co
     const bool all = it == 0 || full;
     if (patches) {
       last_guidance.swap(guidance);
-      guidance = normals;
+      // From the second iteration on, the buffer of two iterations before: its columns of the faces not
+      // filtered hold their normals, which never change, and guidance_normals writes every filtered one.
+      if (it == 0) guidance = normals;
       guidance_normals(w, *patches, normals, changed, all, min_cos, mean, consistency, guidance);
       parallel_chunks(nl, 8192, [&](std::size_t, std::size_t begin, std::size_t end) {
         for (std::size_t l = begin; l < end; ++l) {
@@ -691,22 +693,28 @@ std::size_t filter_off_slice_normals(const ContourFrame& frame, const std::vecto
   });
   const auto nk = static_cast<Index>(w.filtered.size());
   Eigen::Matrix3Xd initial_normals(3, nk);
-  for (Index k = 0; k < nk; ++k) initial_normals.col(k) = normals.col(w.filtered[static_cast<std::size_t>(k)]);
+  parallel_chunks(w.filtered.size(), 8192, [&](std::size_t, std::size_t begin, std::size_t end) {
+    for (std::size_t k = begin; k < end; ++k) initial_normals.col(static_cast<Index>(k)) = normals.col(w.filtered[k]);
+  });
 
   // The local vertices where they start, and the heights each moving vertex off the contours may take.
   const auto nv = static_cast<Index>(w.vertices.size());
   Eigen::Matrix3Xd start(3, nv);
-  for (Index v = 0; v < nv; ++v) start.col(v) = positions.col(w.vertices[static_cast<std::size_t>(v)]);
+  parallel_chunks(w.vertices.size(), 8192, [&](std::size_t, std::size_t begin, std::size_t end) {
+    for (std::size_t v = begin; v < end; ++v) start.col(static_cast<Index>(v)) = positions.col(w.vertices[v]);
+  });
   {
     const std::vector<double> levels = slice_levels(frame, positions);
     const double reach = options.max_move * frame.slice_spacing;
     w.low.assign(w.moving.size(), 0.0);
     w.high.assign(w.moving.size(), 0.0);
-    for (std::size_t m = 0; m < w.moving.size(); ++m) {
-      if (w.on_contour[m]) continue;
-      const double h0 = frame.axis.dot(start.col(w.moving[m]));
-      std::tie(w.low[m], w.high[m]) = height_bounds(levels, h0, frame.slice_spacing, reach);
-    }
+    parallel_chunks(w.moving.size(), 8192, [&](std::size_t, std::size_t begin, std::size_t end) {
+      for (std::size_t m = begin; m < end; ++m) {
+        if (w.on_contour[m]) continue;
+        const double h0 = frame.axis.dot(start.col(w.moving[m]));
+        std::tie(w.low[m], w.high[m]) = height_bounds(levels, h0, frame.slice_spacing, reach);
+      }
+    });
   }
 
   spatial_weights(centroids, areas, w);
