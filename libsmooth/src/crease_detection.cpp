@@ -192,8 +192,6 @@ BallTensor ball_tensor(const Mesh& mesh, const MeshAdjacency& adjacency, const s
   return result;
 }
 
-}  // namespace
-
 // Links of the crease lines (step 2 of detect_creases): per core vertex on a slice, in CSR, the core
 // vertices on an adjacent contour's slice within `radius` of it (through vertices within it: gather_ball,
 // in the order it meets them) such that the segment between them passes `along_crease` at both ends. They
@@ -232,6 +230,8 @@ void link_partners(const Mesh& mesh, const MeshAdjacency& adjacency, const std::
   partners.reserve(static_cast<std::size_t>(offsets.back()));
   for (const std::vector<Index>& part : parts) partners.insert(partners.end(), part.begin(), part.end());
 }
+
+}  // namespace
 
 CreaseDetection detect_creases(const Mesh& mesh, const MeshAdjacency& adjacency, const CreaseOptions& options) {
   check(mesh, adjacency, options);

@@ -59,6 +59,10 @@ template <typename T>
 struct DefaultInitAllocator : std::allocator<T> {
   using std::allocator<T>::allocator;
   template <typename U>
+  struct rebind {
+    using other = DefaultInitAllocator<U>;
+  };
+  template <typename U>
   void construct(U* p) noexcept(std::is_nothrow_default_constructible_v<U>) {
     ::new (static_cast<void*>(p)) U;
   }
