@@ -44,7 +44,11 @@ void check_options(const CrossSliceOptions& o) {
   }
   if (!(o.kink_false_rate > 0.0 && o.kink_false_rate < 1.0)) fail("the kink false rate must be in (0, 1)");
   const OffSliceFilterOptions& f = o.off_slice;
-  if (f.normal_iterations < 0 || f.vertex_iterations < 0) fail("off-slice filter iterations must be >= 0");
+  if (f.normal_iterations < 0 || f.vertex_iterations < 0 || f.rim_iterations < 0) {
+    fail("off-slice filter iterations must be >= 0");
+  }
+  if (!(f.rim_angle_degrees > 0.0 && f.rim_angle_degrees < 180.0)) fail("the rim angle must be in (0, 180) degrees");
+  if (f.rim_rings < 0) fail("the rim rings must be >= 0");
   if (!(f.sigma_angle_degrees > 0.0 && f.sigma_angle_degrees <= 90.0)) {
     fail("off-slice filter angle must be in (0, 90] degrees");
   }

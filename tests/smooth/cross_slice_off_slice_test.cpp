@@ -318,6 +318,34 @@ TEST(CrossSliceOffSlice, SkippingUnchangedWorkGivesTheFullRecomputation) {
   }
 }
 
+// The rim iterations update the rim faces only: with no two faces sharp enough apart to make a rim they
+// change nothing; at the caps' rims (90 degrees) they move vertices, the same whether the filter skips
+// unchanged work or not; with every face a rim they are more normal iterations.
+TEST(CrossSliceOffSlice, RimIterationsWithoutRimsChangeNothing) {
+  const Mesh mesh = noisy_off_slice_cylinder(test::cylinder_spec(10.0, 21));
+  CrossSliceOptions o;
+  const CrossSliceResult plain = cross_slice_smooth(mesh, o);
+  o.off_slice.rim_iterations = 30;
+  o.off_slice.rim_angle_degrees = 179.9;
+  EXPECT_TRUE(cross_slice_smooth(mesh, o).mesh.positions == plain.mesh.positions);
+  o.off_slice.rim_angle_degrees = 70.0;
+  const CrossSliceResult rims = cross_slice_smooth(mesh, o);
+  EXPECT_FALSE(rims.mesh.positions == plain.mesh.positions);
+  const detail::ScopedFullRecompute everything;
+  EXPECT_TRUE(cross_slice_smooth(mesh, o).mesh.positions == rims.mesh.positions);
+}
+
+TEST(CrossSliceOffSlice, RimIterationsOnEveryFaceAreMoreNormalIterations) {
+  const Mesh mesh = noisy_off_slice_cylinder(test::cylinder_spec(10.0, 21));
+  CrossSliceOptions rims;
+  rims.off_slice.rim_iterations = 15;
+  rims.off_slice.rim_angle_degrees = 1e-3;  // a seed wherever two neighbouring normals differ at all
+  rims.off_slice.rim_rings = 100;           // and every face connected to one
+  CrossSliceOptions more;
+  more.off_slice.normal_iterations = rims.off_slice.normal_iterations + 15;
+  EXPECT_TRUE(cross_slice_smooth(mesh, rims).mesh.positions == cross_slice_smooth(mesh, more).mesh.positions);
+}
+
 TEST(CrossSliceOffSlice, RejectsOptionsOutOfRange) {
   const Mesh mesh = make_contour_stack(test::cylinder_spec(10.0, 6));
   CrossSliceOptions o;
@@ -328,6 +356,15 @@ TEST(CrossSliceOffSlice, RejectsOptionsOutOfRange) {
   EXPECT_THROW((void)cross_slice_smooth(mesh, o), InvalidInputError);
   o = {};
   o.off_slice.max_move = -0.1;
+  EXPECT_THROW((void)cross_slice_smooth(mesh, o), InvalidInputError);
+  o = {};
+  o.off_slice.rim_iterations = -1;
+  EXPECT_THROW((void)cross_slice_smooth(mesh, o), InvalidInputError);
+  o = {};
+  o.off_slice.rim_angle_degrees = 180.0;
+  EXPECT_THROW((void)cross_slice_smooth(mesh, o), InvalidInputError);
+  o = {};
+  o.off_slice.rim_rings = -1;
   EXPECT_THROW((void)cross_slice_smooth(mesh, o), InvalidInputError);
 }
 

@@ -483,6 +483,38 @@ void guidance_normals(const Workspace& w, const GuidancePatches& p, const Eigen:
   });
 }
 
+// The filtered faces that take the rim iterations (OffSliceFilterOptions::rim_iterations): those whose
+// neighbourhood holds two faces whose `normals` are more than the rim angle apart, and `rim_rings` rings of
+// filtered faces around them.
+std::vector<std::uint8_t> rim_faces(const Workspace& w, const OffSliceFilterOptions& options,
+                                    const Eigen::Matrix3Xd& normals) {
+  const std::size_t nk = w.filtered.size();
+  const double rim_cos = std::cos(options.rim_angle_degrees * M_PI / 180.0);
+  std::vector<std::uint8_t> rim(nk, 0);
+  parallel_chunks(nk, 4096, [&](std::size_t, std::size_t begin, std::size_t end) {
+    for (std::size_t k = begin; k < end; ++k) {
+      const Index f = w.filtered[k];
+      for (Index r = w.ring_offsets[k]; r < w.ring_offsets[k + 1] && !rim[k]; ++r) {
+        rim[k] = normals.col(f).dot(normals.col(w.ring[static_cast<std::size_t>(r)])) < rim_cos ? 1 : 0;
+      }
+    }
+  });
+  std::vector<std::uint8_t> grown(nk, 0);
+  for (int round = 0; round < options.rim_rings; ++round) {
+    parallel_chunks(nk, 4096, [&](std::size_t, std::size_t begin, std::size_t end) {
+      for (std::size_t k = begin; k < end; ++k) {
+        grown[k] = rim[k];
+        for (Index r = w.ring_offsets[k]; r < w.ring_offsets[k + 1] && !grown[k]; ++r) {
+          const Index kg = w.filtered_of[static_cast<std::size_t>(w.ring[static_cast<std::size_t>(r)])];
+          grown[k] = kg >= 0 && rim[static_cast<std::size_t>(kg)] ? 1 : 0;
+        }
+      }
+    });
+    rim.swap(grown);
+  }
+  return rim;
+}
+
 // Bilateral filtering of the normals of the filtered faces (Zheng et al. 2011, eq. 4), Jacobi style; the
 // other local faces' normals are read as they are. `normals` holds every local face's normal. The range
 // kernel compares the normals themselves or, with `patches`, guidance normals.
@@ -516,8 +548,13 @@ void filter_normals(const Workspace& w, const OffSliceFilterOptions& options, co
     mean.resize(3, static_cast<Index>(nl));
     consistency.assign(nl, 0.0);
   }
-  for (int it = 0; it < options.normal_iterations; ++it) {
+  // After the normal iterations, the rim iterations update the rim faces only (the others' normals stay).
+  const bool rims = options.normal_iterations > 0 && options.rim_iterations > 0;
+  const std::vector<std::uint8_t> rim = rims ? rim_faces(w, options, normals) : std::vector<std::uint8_t>{};
+  const int iterations = options.normal_iterations + (rims ? options.rim_iterations : 0);
+  for (int it = 0; it < iterations; ++it) {
     const bool all = it == 0 || full;
+    const bool rim_only = it >= options.normal_iterations;
     if (patches) {
       last_guidance.swap(guidance);
       // From the second iteration on, the buffer of two iterations before: its columns of the faces not
@@ -546,6 +583,11 @@ void filter_normals(const Workspace& w, const OffSliceFilterOptions& options, co
     parallel_chunks(nk, 1024, [&](std::size_t, std::size_t begin, std::size_t end) {
       for (std::size_t k = begin; k < end; ++k) {
         const Index f = w.filtered[k];
+        if (rim_only && !rim[k]) {  // not a rim face: its normal stays
+          next.col(f) = normals.col(f);
+          changes[static_cast<std::size_t>(f)] = 0;
+          continue;
+        }
         bool stale = all || summed[k] == 0;  // a face whose last sum vanished is summed again
         for (Index r = w.ring_offsets[k]; r < w.ring_offsets[k + 1] && !stale; ++r) {
           const auto g = static_cast<std::size_t>(w.ring[static_cast<std::size_t>(r)]);
