@@ -7,7 +7,6 @@
 #include <cmath>
 #include <cstring>
 #include <map>
-#include <memory>
 
 namespace contourmesh::detail {
 
@@ -274,9 +273,7 @@ void spatial_weights(const Eigen::Matrix3Xd& centroids, const Eigen::VectorXd& a
   // Per pair of faces (slot), once: the distance between the centroids and its Gaussian are symmetric bit
   // for bit (the difference only changes sign), as the range kernel is.
   const std::size_t ns = w.slot_a.size();
-  // Left uninitialised: the loop below writes every element, its threads touching the pages first.
-  const auto squared = std::make_unique_for_overwrite<double[]>(ns);
-  const auto distance = std::make_unique_for_overwrite<double[]>(ns);
+  FillVector<double> squared(ns), distance(ns);  // every element written by the loop below
   parallel_chunks(ns, 4096, [&](std::size_t, std::size_t begin, std::size_t end) {
     for (std::size_t s = begin; s < end; ++s) {
       squared[s] = (centroids.col(w.slot_b[s]) - centroids.col(w.slot_a[s])).squaredNorm();
@@ -287,7 +284,7 @@ void spatial_weights(const Eigen::Matrix3Xd& centroids, const Eigen::VectorXd& a
   for (Index slot : w.ring_slot) sum += distance[static_cast<std::size_t>(slot)];
   w.sigma_s = sum > 0.0 ? sum / static_cast<double>(w.ring.size()) : 1.0;
   const double inv_s = 1.0 / (2.0 * w.sigma_s * w.sigma_s);
-  double* const kernel = distance.get();  // reused
+  FillVector<double>& kernel = distance;  // reused
   parallel_chunks(ns, 4096, [&](std::size_t, std::size_t begin, std::size_t end) {
     for (std::size_t s = begin; s < end; ++s) kernel[s] = std::exp(-squared[s] * inv_s);
   });
