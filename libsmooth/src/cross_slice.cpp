@@ -49,6 +49,7 @@ void check_options(const CrossSliceOptions& o) {
   }
   if (!(f.rim_angle_degrees > 0.0 && f.rim_angle_degrees < 180.0)) fail("the rim angle must be in (0, 180) degrees");
   if (f.rim_rings < 0) fail("the rim rings must be >= 0");
+  if (f.guidance_interval < 1) fail("the guidance interval must be >= 1");
   if (!(f.sigma_angle_degrees > 0.0 && f.sigma_angle_degrees <= 90.0)) {
     fail("off-slice filter angle must be in (0, 90] degrees");
   }

@@ -11,6 +11,7 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <numbers>
 #include <random>
@@ -230,6 +231,30 @@ TEST(CrossSliceOffSlice, PatchGuidanceFlattensTerracesBetweenTheSlices) {
   EXPECT_LT(by_patches, 0.7 * by_faces) << by_faces << " against " << by_patches;
 }
 
+// Guidance computed once, from the unfiltered normals, with the range kernels kept from then on: the
+// terraces still average out within the patches.
+TEST(CrossSliceOffSlice, PatchGuidanceComputedOnceFlattensTerraces) {
+  const Mesh mesh = terraced_cone(0.7, 0.1);
+  CrossSliceOptions once, none;
+  once.off_slice.guidance_interval = once.off_slice.normal_iterations;
+  none.off_slice.filter = OffSliceFilter::None;
+  const double before = cone_wall_normal_error(cross_slice_smooth(mesh, none).mesh);
+  const double after = cone_wall_normal_error(cross_slice_smooth(mesh, once).mesh);
+  EXPECT_LT(after, 0.1 * before) << before << " -> " << after;
+}
+
+// The first iteration always computes the guidance: with one iteration any interval gives the same
+// result; with more, a longer interval keeps an older guidance and changes the result.
+TEST(CrossSliceOffSlice, GuidanceIntervalStartsWithTheFirstIteration) {
+  const Mesh mesh = noisy_off_slice_cylinder(test::cylinder_spec(10.0, 21));
+  CrossSliceOptions every, sparse;
+  sparse.off_slice.guidance_interval = 7;
+  every.off_slice.normal_iterations = sparse.off_slice.normal_iterations = 1;
+  EXPECT_TRUE(cross_slice_smooth(mesh, every).mesh.positions == cross_slice_smooth(mesh, sparse).mesh.positions);
+  every.off_slice.normal_iterations = sparse.off_slice.normal_iterations = 20;
+  EXPECT_FALSE(cross_slice_smooth(mesh, every).mesh.positions == cross_slice_smooth(mesh, sparse).mesh.positions);
+}
+
 TEST(CrossSliceOffSlice, PatchGuidanceLeavesContourVertices) {
   const Mesh mesh = terraced_cone(0.7, 0.1);
   CrossSliceOptions patches, none;
@@ -303,9 +328,14 @@ TEST(CrossSliceOffSlice, SkippingUnchangedWorkGivesTheFullRecomputation) {
   ASSERT_GE(pushed, 0);
   bump.positions.col(pushed).head<2>() *= 10.4 / 10.0;
   for (const Mesh& mesh : {terraced_cone(0.7, 0.1), bump}) {
-    for (const OffSliceRange range : {OffSliceRange::FaceNormals, OffSliceRange::PatchGuidance}) {
+    // Face normals; guidance in every iteration; guidance in every third, with rim iterations after the
+    // 20 normal ones: the guidance of iteration 21 must see the changes of iteration 19, made by faces
+    // that the rim iterations then leave.
+    for (const int interval : {0, 1, 3}) {
       CrossSliceOptions o;
-      o.off_slice.range = range;
+      o.off_slice.range = interval == 0 ? OffSliceRange::FaceNormals : OffSliceRange::PatchGuidance;
+      o.off_slice.guidance_interval = std::max(interval, 1);
+      if (interval == 3) o.off_slice.rim_iterations = 6;
       const CrossSliceResult skipping = cross_slice_smooth(mesh, o);
       CrossSliceResult full;
       {
@@ -313,7 +343,7 @@ TEST(CrossSliceOffSlice, SkippingUnchangedWorkGivesTheFullRecomputation) {
         full = cross_slice_smooth(mesh, o);
       }
       EXPECT_GT(skipping.off_slice_moved, 10u);
-      EXPECT_TRUE(skipping.mesh.positions == full.mesh.positions) << static_cast<int>(range);
+      EXPECT_TRUE(skipping.mesh.positions == full.mesh.positions) << interval;
     }
   }
 }
@@ -365,6 +395,9 @@ TEST(CrossSliceOffSlice, RejectsOptionsOutOfRange) {
   EXPECT_THROW((void)cross_slice_smooth(mesh, o), InvalidInputError);
   o = {};
   o.off_slice.rim_rings = -1;
+  EXPECT_THROW((void)cross_slice_smooth(mesh, o), InvalidInputError);
+  o = {};
+  o.off_slice.guidance_interval = 0;
   EXPECT_THROW((void)cross_slice_smooth(mesh, o), InvalidInputError);
 }
 

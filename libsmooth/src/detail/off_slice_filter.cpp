@@ -435,19 +435,32 @@ GuidancePatches make_patches(const ContourFrame& frame, const std::vector<Triang
 // its normals agree). Each filtered face takes the mean normal of the most consistent patch that holds it,
 // among its own and the patches of the faces sharing a vertex with it whose mean normal lies within
 // `min_cos` of its own normal (next to a crease, not a patch of the other side); the other local faces keep
-// their own normals. `normals` holds the local faces' normals. A patch none of whose normals changed in the
-// last iteration (`changed`; `all`: recompute every patch) keeps its mean and consistency.
+// their own normals (in `guidance` already). `normals` holds the local faces' normals.
+struct GuidanceState {
+  Eigen::Matrix3Xd mean;                 ///< per local face: its patch's mean normal
+  std::vector<double> consistency;       ///< per local face
+  std::vector<std::uint8_t> recomputed;  ///< per local face: its patch was recomputed this time
+};
+
+// Only what changed is recomputed. `every_patch`: every patch is (otherwise one none of whose normals
+// changed in the last iteration, `changed`, keeps its mean and consistency); `first`: every guidance normal
+// is, and counts as changed. Otherwise a filtered face whose own normal and candidate patches all stayed
+// keeps its guidance, copied from `last_guidance` (that of the last computation); `guided_changed` gets, per
+// filtered face, whether its guidance differs from the last, bit for bit.
 void guidance_normals(const Workspace& w, const GuidancePatches& p, const Eigen::Matrix3Xd& normals,
-                      const std::vector<std::uint8_t>& changed, bool all, double min_cos, Eigen::Matrix3Xd& mean,
-                      std::vector<double>& consistency, Eigen::Matrix3Xd& guidance) {
+                      const std::vector<std::uint8_t>& changed, bool every_patch, bool first, double min_cos,
+                      GuidanceState& state, const Eigen::Matrix3Xd& last_guidance, Eigen::Matrix3Xd& guidance,
+                      std::vector<std::uint8_t>& guided_changed) {
   const std::size_t nl = w.faces.size(), nk = w.filtered.size();
+  std::vector<std::uint8_t>& recomputed = state.recomputed;
   parallel_chunks(nl, 1024, [&](std::size_t, std::size_t begin, std::size_t end) {
     for (std::size_t l = begin; l < end; ++l) {
-      bool stale = all;
+      bool stale = every_patch || first;
       for (Index e = p.offsets[l]; e < p.offsets[l + 1] && !stale; ++e) {
         const Index g = p.entries[static_cast<std::size_t>(e)];
         stale = g < static_cast<Index>(nl) && changed[static_cast<std::size_t>(g)] != 0;
       }
+      recomputed[l] = stale ? 1 : 0;
       if (!stale) continue;
       Eigen::Vector3d acc = Eigen::Vector3d::Zero();
       double weight = 0.0;
@@ -459,23 +472,35 @@ void guidance_normals(const Workspace& w, const GuidancePatches& p, const Eigen:
         weight += p.weights[eu];
       }
       const double len = acc.norm();
-      mean.col(static_cast<Index>(l)) = len > 0.0 ? Eigen::Vector3d(acc / len) : Eigen::Vector3d::Zero();
-      consistency[l] = weight > 0.0 ? len / weight : 0.0;
+      state.mean.col(static_cast<Index>(l)) = len > 0.0 ? Eigen::Vector3d(acc / len) : Eigen::Vector3d::Zero();
+      state.consistency[l] = weight > 0.0 ? len / weight : 0.0;
     }
   });
   parallel_chunks(nk, 1024, [&](std::size_t, std::size_t begin, std::size_t end) {
     for (std::size_t k = begin; k < end; ++k) {
       const Index f = w.filtered[k];
+      const auto fu = static_cast<std::size_t>(f);
+      bool stale = first || changed[fu] != 0;  // the neighbourhood holds the face itself
+      for (Index r = w.ring_offsets[k]; r < w.ring_offsets[k + 1] && !stale; ++r) {
+        stale = recomputed[static_cast<std::size_t>(w.ring[static_cast<std::size_t>(r)])] != 0;
+      }
+      if (!stale) {
+        guidance.col(f) = last_guidance.col(f);
+        guided_changed[fu] = 0;
+        continue;
+      }
       const Eigen::Vector3d own = normals.col(f);
       Index best = f;
       for (Index r = w.ring_offsets[k]; r < w.ring_offsets[k + 1]; ++r) {
         const Index g = w.ring[static_cast<std::size_t>(r)];
-        if (consistency[static_cast<std::size_t>(g)] > consistency[static_cast<std::size_t>(best)] &&
-            mean.col(g).dot(own) >= min_cos) {
+        if (state.consistency[static_cast<std::size_t>(g)] > state.consistency[static_cast<std::size_t>(best)] &&
+            state.mean.col(g).dot(own) >= min_cos) {
           best = g;
         }
       }
-      guidance.col(f) = consistency[static_cast<std::size_t>(best)] > 0.0 ? Eigen::Vector3d(mean.col(best)) : own;
+      guidance.col(f) =
+          state.consistency[static_cast<std::size_t>(best)] > 0.0 ? Eigen::Vector3d(state.mean.col(best)) : own;
+      guided_changed[fu] = first || !same_bits(guidance.col(f), last_guidance.col(f)) ? 1 : 0;
     }
   });
 }
@@ -527,24 +552,27 @@ void filter_normals(const Workspace& w, const OffSliceFilterOptions& options, co
   // them changed bit for bit in the last iteration, the sum and its normal are those of the last iteration,
   // and so is a kernel whose two faces kept their compared normals. The filtered normals start moving near
   // the region's features and spread a ring per iteration; flat caps keep theirs. Guidance normals read
-  // two rings of normals: they are computed for every face each iteration and compared bit for bit with
-  // the last ones, which widens the set of faces recomputed to what they reach.
+  // two rings of normals: where they are computed, they are compared bit for bit with the last ones, which
+  // widens the set of faces recomputed to what they reach.
   const std::size_t nl = w.faces.size(), nk = w.filtered.size();
   const bool full = full_recompute();
   // Per local face: its normal changed in the last iteration (never, for the faces not filtered); the first
   // iteration computes everything.
   std::vector<std::uint8_t> changed(nl, 0), changes(nl, 0);
   std::vector<std::uint8_t> summed(nk, 0);  // per filtered face: its last sum was not zero (its normal set)
-  // Guidance: per local face, the compared normal and whether it changed in this iteration.
+  // Guidance: per local face, the compared normal and whether it changed since it was last computed. It
+  // is computed every `guidance_interval` iterations; in between, it and the range kernels stay.
   const double min_cos = std::cos(options.sigma_angle_degrees * M_PI / 180.0);
-  Eigen::Matrix3Xd guidance, last_guidance, mean;
-  std::vector<double> consistency;
+  Eigen::Matrix3Xd guidance, last_guidance;
+  GuidanceState state;
   std::vector<std::uint8_t> guided_changed(nl, 0);
   if (patches) {
     guidance = normals;
-    mean.resize(3, static_cast<Index>(nl));
-    consistency.assign(nl, 0.0);
+    state.mean.resize(3, static_cast<Index>(nl));
+    state.consistency.assign(nl, 0.0);
+    state.recomputed.assign(nl, 0);
   }
+  const int interval = std::max(options.guidance_interval, 1);
   // After the normal iterations, the rim iterations update the rim faces only (the others' normals stay).
   const bool rims = options.normal_iterations > 0 && options.rim_iterations > 0;
   const std::vector<std::uint8_t> rim = rims ? rim_faces(w, options, normals) : std::vector<std::uint8_t>{};
@@ -552,24 +580,25 @@ void filter_normals(const Workspace& w, const OffSliceFilterOptions& options, co
   for (int it = 0; it < iterations; ++it) {
     const bool all = it == 0 || full;
     const bool rim_only = it >= options.normal_iterations;
-    if (patches) {
+    const bool refresh = !patches || it % interval == 0;
+    if (patches && !refresh) {
+      std::fill(guided_changed.begin(), guided_changed.end(), 0);
+    } else if (patches) {
       last_guidance.swap(guidance);
-      // From the second iteration on, the buffer of two iterations before: its columns of the faces not
-      // filtered hold their normals, which never change, and guidance_normals writes every filtered one.
+      // From the second computation on, the buffer of two computations before: its columns of the faces
+      // not filtered hold their normals, which never change, and guidance_normals writes every filtered one.
       if (it == 0) guidance = normals;
-      guidance_normals(w, *patches, normals, changed, all, min_cos, mean, consistency, guidance);
-      parallel_chunks(nl, 8192, [&](std::size_t, std::size_t begin, std::size_t end) {
-        for (std::size_t l = begin; l < end; ++l) {
-          const auto ll = static_cast<Index>(l);
-          guided_changed[l] = all || !same_bits(guidance.col(ll), last_guidance.col(ll));
-        }
-      });
+      // The faces not filtered: their guidance is their normal, new in the first iteration only.
+      if (all || it == interval) std::fill(guided_changed.begin(), guided_changed.end(), all ? 1 : 0);
+      // After iterations without guidance, any patch may have changed since it was last computed.
+      guidance_normals(w, *patches, normals, changed, interval > 1, all, min_cos, state, last_guidance, guidance,
+                       guided_changed);
     }
     const Eigen::Matrix3Xd& compared = patches ? guidance : normals;
     const std::vector<std::uint8_t>& compared_changed = patches ? guided_changed : changed;
     // The range kernel of every pair, from |n_b - n_a|^2 of unit normals, in single precision (the hot
     // spot). The dot product is symmetric, bit for bit.
-    parallel_chunks(range.size(), 4096, [&](std::size_t, std::size_t begin, std::size_t end) {
+    parallel_chunks(refresh ? range.size() : 0, 4096, [&](std::size_t, std::size_t begin, std::size_t end) {
       for (std::size_t s = begin; s < end; ++s) {
         const auto a = static_cast<std::size_t>(w.slot_a[s]), b = static_cast<std::size_t>(w.slot_b[s]);
         if (!all && !compared_changed[a] && !compared_changed[b]) continue;

@@ -144,6 +144,8 @@ const std::vector<Key>& keys() {
        [](SmoothOptions& o, const Value& v) { o.cross_slice.off_slice.normal_iterations = v.integer(); }},
       {"normal-sigma", kCrossSlice,
        [](SmoothOptions& o, const Value& v) { o.cross_slice.off_slice.sigma_angle_degrees = v.number(); }},
+      {"guidance-interval", kCrossSlice,
+       [](SmoothOptions& o, const Value& v) { o.cross_slice.off_slice.guidance_interval = v.integer(); }},
       {"rim-iterations", kCrossSlice,
        [](SmoothOptions& o, const Value& v) { o.cross_slice.off_slice.rim_iterations = v.integer(); }},
       {"rim-angle", kCrossSlice,

@@ -232,6 +232,7 @@ MethodConfig method_config(const py::object& method_arg, Options& o, Mesh& mesh)
     });
     o.take_int("normal_iterations", fo.normal_iterations);
     o.take_double("normal_sigma", fo.sigma_angle_degrees);
+    o.take_int("guidance_interval", fo.guidance_interval);
     o.take_int("rim_iterations", fo.rim_iterations);
     o.take_double("rim_angle", fo.rim_angle_degrees);
     o.take_int("rim_rings", fo.rim_rings);

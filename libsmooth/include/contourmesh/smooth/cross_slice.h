@@ -112,6 +112,10 @@ struct OffSliceFilterOptions {
   /// Width of the range kernel as an angle between two normals, degrees, in (0, 90]: normals further
   /// apart than this (a crease) barely mix.
   double sigma_angle_degrees = 12.0;
+  /// With OffSliceRange::PatchGuidance: the guidance normals are computed in every this many normal-filter
+  /// iterations, >= 1, starting with the first (from the unfiltered normals); in between, they and the range
+  /// kernels stay, and an iteration is one weighted sum per face. 1: every iteration, as Zhang et al.
+  int guidance_interval = 1;
   /// Extra iterations of the normal filter, after `normal_iterations`, for the faces at rims only, >= 0; 0
   /// (default): none. A rim face has, among the faces sharing a vertex with it, two whose unfiltered normals
   /// are more than `rim_angle_degrees` apart; `rim_rings` rings of filtered faces around them take the
