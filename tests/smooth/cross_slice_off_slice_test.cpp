@@ -237,6 +237,7 @@ TEST(CrossSliceOffSlice, PatchGuidanceComputedOnceFlattensTerraces) {
   const Mesh mesh = terraced_cone(0.7, 0.1);
   CrossSliceOptions once, none;
   once.off_slice.guidance_interval = once.off_slice.normal_iterations;
+  once.off_slice.rim_iterations = 0;
   none.off_slice.filter = OffSliceFilter::None;
   const double before = cone_wall_normal_error(cross_slice_smooth(mesh, none).mesh);
   const double after = cone_wall_normal_error(cross_slice_smooth(mesh, once).mesh);
@@ -248,7 +249,9 @@ TEST(CrossSliceOffSlice, PatchGuidanceComputedOnceFlattensTerraces) {
 TEST(CrossSliceOffSlice, GuidanceIntervalStartsWithTheFirstIteration) {
   const Mesh mesh = noisy_off_slice_cylinder(test::cylinder_spec(10.0, 21));
   CrossSliceOptions every, sparse;
+  every.off_slice.guidance_interval = 1;
   sparse.off_slice.guidance_interval = 7;
+  every.off_slice.rim_iterations = sparse.off_slice.rim_iterations = 0;
   every.off_slice.normal_iterations = sparse.off_slice.normal_iterations = 1;
   EXPECT_TRUE(cross_slice_smooth(mesh, every).mesh.positions == cross_slice_smooth(mesh, sparse).mesh.positions);
   every.off_slice.normal_iterations = sparse.off_slice.normal_iterations = 20;
@@ -354,6 +357,7 @@ TEST(CrossSliceOffSlice, SkippingUnchangedWorkGivesTheFullRecomputation) {
 TEST(CrossSliceOffSlice, RimIterationsWithoutRimsChangeNothing) {
   const Mesh mesh = noisy_off_slice_cylinder(test::cylinder_spec(10.0, 21));
   CrossSliceOptions o;
+  o.off_slice.rim_iterations = 0;
   const CrossSliceResult plain = cross_slice_smooth(mesh, o);
   o.off_slice.rim_iterations = 30;
   o.off_slice.rim_angle_degrees = 179.9;
@@ -373,6 +377,7 @@ TEST(CrossSliceOffSlice, RimIterationsOnEveryFaceAreMoreNormalIterations) {
   rims.off_slice.rim_rings = 100;           // and every face connected to one
   CrossSliceOptions more;
   more.off_slice.normal_iterations = rims.off_slice.normal_iterations + 15;
+  more.off_slice.rim_iterations = 0;
   EXPECT_TRUE(cross_slice_smooth(mesh, rims).mesh.positions == cross_slice_smooth(mesh, more).mesh.positions);
 }
 
