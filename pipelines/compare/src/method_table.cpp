@@ -203,7 +203,17 @@ std::string cross_slice_settings(const SmoothOptions& o) {
             ? "; vertices between the slices fitted to bilaterally filtered normals (" +
                   std::to_string(c.off_slice.normal_iterations) + " iterations, " +
                   number(c.off_slice.sigma_angle_degrees) + " degrees" +
-                  (c.off_slice.range == OffSliceRange::PatchGuidance ? ", range on guidance normals)" : ")")
+                  (c.off_slice.range == OffSliceRange::PatchGuidance
+                       ? ", range on guidance normals" +
+                             (c.off_slice.guidance_interval > 1
+                                  ? " computed every " + std::to_string(c.off_slice.guidance_interval) + " iterations"
+                                  : std::string())
+                       : std::string()) +
+                  (c.off_slice.rim_iterations > 0
+                       ? ", " + std::to_string(c.off_slice.rim_iterations) + " more at rims of " +
+                             number(c.off_slice.rim_angle_degrees) + " degrees"
+                       : std::string()) +
+                  ")"
             : std::string())
     << "; labels: creases of the result (radius " << c.features.radius << " mm"
     << (c.features.confirm == CreaseConfirmation::Ball
