@@ -580,8 +580,8 @@ void filter_normals(const Workspace& w, const OffSliceFilterOptions& options, co
   for (int it = 0; it < iterations; ++it) {
     const bool all = it == 0 || full;
     const bool rim_only = it >= options.normal_iterations;
-    const bool refresh = !patches || it % interval == 0;
-    if (patches && !refresh) {
+    const bool refresh = !patches || it % interval == 0;  // the guidance (and so the range kernels) recomputed
+    if (!refresh) {
       std::fill(guided_changed.begin(), guided_changed.end(), 0);
     } else if (patches) {
       last_guidance.swap(guidance);

@@ -183,6 +183,21 @@ std::string paper_settings(const SmoothOptions& o) {
   return s.str();
 }
 
+// The off-slice stage's part of the cross-slice description (empty when it is off).
+std::string off_slice_settings(const OffSliceFilterOptions& f) {
+  if (f.filter != OffSliceFilter::BilateralNormals) return {};
+  std::string s = "; vertices between the slices fitted to bilaterally filtered normals (" +
+                  std::to_string(f.normal_iterations) + " iterations, " + number(f.sigma_angle_degrees) + " degrees";
+  if (f.range == OffSliceRange::PatchGuidance) {
+    s += ", range on guidance normals";
+    if (f.guidance_interval > 1) s += " computed every " + std::to_string(f.guidance_interval) + " iterations";
+  }
+  if (f.rim_iterations > 0) {
+    s += ", " + std::to_string(f.rim_iterations) + " more at rims of " + number(f.rim_angle_degrees) + " degrees";
+  }
+  return s + ")";
+}
+
 std::string cross_slice_settings(const SmoothOptions& o) {
   const CrossSliceOptions& c = o.cross_slice;
   std::ostringstream s;
@@ -199,22 +214,7 @@ std::string cross_slice_settings(const SmoothOptions& o) {
             : std::string())
     << ") for a noise level "
     << (c.noise_across ? number(*c.noise_across) + " mm" : std::string("estimated from the mesh"))
-    << (c.off_slice.filter == OffSliceFilter::BilateralNormals
-            ? "; vertices between the slices fitted to bilaterally filtered normals (" +
-                  std::to_string(c.off_slice.normal_iterations) + " iterations, " +
-                  number(c.off_slice.sigma_angle_degrees) + " degrees" +
-                  (c.off_slice.range == OffSliceRange::PatchGuidance
-                       ? ", range on guidance normals" +
-                             (c.off_slice.guidance_interval > 1
-                                  ? " computed every " + std::to_string(c.off_slice.guidance_interval) + " iterations"
-                                  : std::string())
-                       : std::string()) +
-                  (c.off_slice.rim_iterations > 0
-                       ? ", " + std::to_string(c.off_slice.rim_iterations) + " more at rims of " +
-                             number(c.off_slice.rim_angle_degrees) + " degrees"
-                       : std::string()) +
-                  ")"
-            : std::string())
+    << off_slice_settings(c.off_slice)
     << "; labels: creases of the result (radius " << c.features.radius << " mm"
     << (c.features.confirm == CreaseConfirmation::Ball
             ? ", confirmed over " + number(c.features.confirm_radius) + " mm"
