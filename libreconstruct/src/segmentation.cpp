@@ -4,6 +4,7 @@
 #include <contourmesh/smooth/errors.h>
 #include <contourmesh/smooth/limits.h>
 
+#include "detail/flat_crossings.h"
 #include "detail/region_boundaries.h"
 #include "detail/slice_components.h"
 
@@ -214,6 +215,7 @@ struct SliceRegions {
   std::vector<int> enclosing;      // per bg label: the region around it (0: touches the border)
   std::vector<std::uint8_t> visited;
   std::vector<detail::RegionLoop> loops;
+  std::vector<float> values;       // the slice's values with the flat crossings' sides set, when any are
 };
 
 // Labels the slice's regions and holes from s.mask, drops regions smaller than the minimum area and
@@ -362,8 +364,14 @@ struct SliceOutput {
 // One slice's regions and holes and their contours as traced, not yet resampled. `mask` = the slice's
 // part of the 3-D component selection, or null to threshold `values` here.
 std::vector<PendingContour> trace_slice(const SliceSetup& setup, const float* values, const std::uint8_t* mask,
-                                        SliceRegions& s, SliceOutput& out) {
+                                        const std::vector<detail::PixelValue>& flat, SliceRegions& s,
+                                        SliceOutput& out) {
   const std::size_t pixels = static_cast<std::size_t>(setup.nx) * static_cast<std::size_t>(setup.ny);
+  if (!flat.empty()) {
+    s.values.assign(values, values + pixels);
+    for (const detail::PixelValue& f : flat) s.values[f.pixel] = f.value;
+    values = s.values.data();
+  }
   s.mask.resize(pixels);
   if (mask) std::copy_n(mask, pixels, s.mask.begin());
   else threshold_pixels(values, s.mask.data(), pixels, setup.iso.threshold);
@@ -425,11 +433,29 @@ SegmentationResult segment_contours(const CtImage& input, const SegmentationOpti
   const float* values = dense_values(*image);
   result.voxels = slice_pixels * size[2];
 
+  // The sides of the flat crossings, slice by slice (they read the slices on either side).
+  std::vector<std::vector<detail::PixelValue>> flat(size[2]);
+  if (options.flat_crossings == FlatCrossings::Patches && size[2] >= 3) {
+    tbb::parallel_for(tbb::blocked_range<std::size_t>(1, size[2] - 1, 1),
+                      [&](const tbb::blocked_range<std::size_t>& range) {
+                        for (std::size_t z = range.begin(); z != range.end(); ++z) {
+                          flat[z] = detail::flat_crossing_values(values, nx, ny, static_cast<int>(size[2]),
+                                                                 static_cast<int>(z), setup.iso.threshold,
+                                                                 setup.iso.above, setup.iso.below);
+                        }
+                      });
+  }
+
   // 3-D component selection needs the whole mask first; otherwise each slice makes its own.
   std::vector<std::uint8_t> volume_mask;
   if (options.components == ComponentSelection::KeepLargest) {
     volume_mask.resize(result.voxels);
     threshold_pixels(values, volume_mask.data(), volume_mask.size(), setup.iso.threshold);
+    for (std::size_t z = 0; z < size[2]; ++z) {
+      for (const detail::PixelValue& f : flat[z]) {
+        volume_mask[z * slice_pixels + f.pixel] = f.value >= setup.iso.threshold ? 1 : 0;
+      }
+    }
     result.foreground_voxels =
         static_cast<std::size_t>(std::count(volume_mask.begin(), volume_mask.end(), std::uint8_t{1}));
     detail::keep_largest_component(volume_mask, nx, ny, static_cast<int>(size[2]));
@@ -471,8 +497,8 @@ SegmentationResult segment_contours(const CtImage& input, const SegmentationOpti
   };
   pass([&](std::size_t z) {
     pending[z] = trace_slice(setup, values + z * slice_pixels,
-                             volume_mask.empty() ? nullptr : volume_mask.data() + z * slice_pixels, scratch.local(),
-                             slices[z]);
+                             volume_mask.empty() ? nullptr : volume_mask.data() + z * slice_pixels, flat[z],
+                             scratch.local(), slices[z]);
   });
   check_point_budget(pending, setup.sampling, options.limits);
   pass([&](std::size_t z) { slices[z].contours = separated(std::move(pending[z]), setup.sampling); });

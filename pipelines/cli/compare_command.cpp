@@ -234,6 +234,7 @@ Setup make_setup(const CompareArgs& a) {
   o.timing_repeats = a.repeat;
   o.reconstruction.tiling.limits.max_vertices = a.max_vertices;
   o.reconstruction.off_slice.placement = off_slice_placement(a.volume);
+  o.reconstruction.segmentation.flat_crossings = flat_crossings(a.volume);
   o.limits.max_vertices = a.max_vertices;
   o.methods.iterations = a.iterations;
   o.methods.only = split_list(a.methods);

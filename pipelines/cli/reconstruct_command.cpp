@@ -61,7 +61,7 @@ struct ReconstructArgs {
 // Options of one route, refused on the other's input.
 const std::vector<std::string> kVolumeOptions{"--threshold", "--otsu",   "--smoothing", "--keep",       "--min-area",
                                               "--fill-holes", "--label", "--labels",    "--series",     "--list-series",
-                                              "--off-slice"};
+                                              "--off-slice",  "--flat-crossings"};
 const std::vector<std::string> kContourOptions{"--roi", "--align", "--single-slice", "--slab-thickness",
                                                "--planarity-tolerance", "--sampling-tolerance"};
 
@@ -161,6 +161,7 @@ int run_reconstruct(const ReconstructArgs& a) {
   seg.fill_holes = a.fill_holes;
   options.tiling = tiling_options(a.tiling);
   options.off_slice.placement = off_slice_placement(a.volume);
+  options.segmentation.flat_crossings = flat_crossings(a.volume);
   MeshWriteOptions write_options;
   write_options.format = parse_mesh_format(a.format);
   if (write_options.format == MeshFormat::Auto) (void)format_from_extension(a.output);  // fail before the work

@@ -271,6 +271,7 @@ int run_run(const RunArgs& a, const std::string& output, const std::string& labe
   ReconstructionOptions ro;
   ro.tiling = tiling_options(a.tiling);
   ro.off_slice.placement = off_slice_placement(a.volume);
+  ro.segmentation.flat_crossings = flat_crossings(a.volume);
   // A phantom is segmented at its partial-volume iso-level, real CT at the bone default.
   const PhantomVolumeOptions phantom_defaults;
   ro.segmentation.threshold =

@@ -24,12 +24,23 @@ void add_volume_options(CLI::App* command, VolumeArgs& args) {
                    "intensity between the two slices crosses the threshold) | tiled (end caps half a spacing beyond "
                    "the last contour)")
       ->capture_default_str();
+  command
+      ->add_option("--flat-crossings", args.flat_crossings,
+                   "Pixels whose column the boundary crosses near the slice's centre (an end face on a slice): "
+                   "patches (a flat patch of them is decided as a whole) | per-pixel (each by its own value)")
+      ->capture_default_str();
 }
 
 OffSlicePlacement off_slice_placement(const VolumeArgs& args) {
   if (args.off_slice == "image") return OffSlicePlacement::ImageCrossing;
   if (args.off_slice == "tiled") return OffSlicePlacement::Tiled;
   throw InvalidInputError("--off-slice must be image or tiled, got '" + args.off_slice + "'");
+}
+
+FlatCrossings flat_crossings(const VolumeArgs& args) {
+  if (args.flat_crossings == "patches") return FlatCrossings::Patches;
+  if (args.flat_crossings == "per-pixel") return FlatCrossings::PerPixel;
+  throw InvalidInputError("--flat-crossings must be patches or per-pixel, got '" + args.flat_crossings + "'");
 }
 
 VolumeReadOptions volume_read_options(const VolumeArgs& args, const std::string& command) {

@@ -4,6 +4,7 @@
 #pragma once
 
 #include <contourmesh/reconstruct/off_slice_heights.h>
+#include <contourmesh/reconstruct/segmentation.h>
 #include <contourmesh/reconstruct/volume.h>
 
 #include <string>
@@ -18,13 +19,17 @@ struct VolumeArgs {
   bool allow_uneven_slices = false;
   bool non_finite_as_air = false;
   std::string off_slice = "image";
+  std::string flat_crossings = "patches";
 };
 
-/// Registers --allow-uneven-slices, --non-finite-as-air and --off-slice.
+/// Registers --allow-uneven-slices, --non-finite-as-air, --off-slice and --flat-crossings.
 void add_volume_options(CLI::App* command, VolumeArgs& args);
 
 /// The placement --off-slice names (image | tiled); InvalidInputError for anything else.
 [[nodiscard]] OffSlicePlacement off_slice_placement(const VolumeArgs& args);
+
+/// The rule --flat-crossings names (patches | per-pixel); InvalidInputError for anything else.
+[[nodiscard]] FlatCrossings flat_crossings(const VolumeArgs& args);
 
 /// The read options for `args`; warnings are printed as "contourmesh COMMAND: warning: ..." lines, and
 /// the libraries' own messages pass through with --verbose.

@@ -11,6 +11,7 @@
 #include <cmath>
 #include <functional>
 #include <numbers>
+#include <random>
 
 #include "reconstruct/mesh_checks.h"
 
@@ -191,6 +192,43 @@ TEST(Segmentation, KeepLargestDropsTheSmallerObject) {
   const auto r = segment_contours(*image, o);
   ASSERT_EQ(r.stack.slices[1].contours.size(), 1u);
   EXPECT_LT(r.stack.to_physical(r.stack.slices[1].contours[0].points[0], 0).x(), 0.0);
+}
+
+// A square prism (20 x 20 mm, 0.5 mm pixels, 2 mm slices) whose end face lies exactly at slice 3's centre:
+// slices 0-2 inside, slice 3 half inside (the iso-level) with 20 HU of noise, slice 4 outside.
+CtImage::Pointer end_face_on_slice() {
+  auto image = make_volume({60, 60, 5}, {0.5, 0.5, 2.0}, {-15, -15, 0}, [](const Eigen::Vector3d& p) {
+    return p.z() < 5.0 ? std::max(std::abs(p.x()), std::abs(p.y())) - 10.0 : 1.0;
+  });
+  std::mt19937 rng(3);
+  std::normal_distribution<float> noise(0.0f, 20.0f);
+  for (int j = 0; j < 60; ++j) {
+    for (int i = 0; i < 60; ++i) {
+      const float below = image->GetPixel({{i, j, 2}});
+      image->SetPixel({{i, j, 3}}, 0.5f * below + noise(rng));
+    }
+  }
+  return image;
+}
+
+TEST(Segmentation, AnEndFaceOnASliceCentreGivesOneCleanContourOrNone) {
+  const auto image = end_face_on_slice();
+  SegmentationOptions o;
+  o.threshold = 500;
+  // Pixel by pixel, the noise splits the half-bone slice into specks and holes.
+  o.flat_crossings = FlatCrossings::PerPixel;
+  EXPECT_GT(segment_contours(*image, o).stack.slices[3].contours.size(), 2u);
+  // Decided as one patch: the whole section or nothing, and the slices around as they were.
+  o.flat_crossings = FlatCrossings::Patches;
+  const SegmentationResult r = segment_contours(*image, o);
+  const std::vector<Contour>& end = r.stack.slices[3].contours;
+  ASSERT_LE(end.size(), 1u);
+  if (!end.empty()) {
+    EXPECT_NEAR(signed_area(end[0].points), 400.0, 10.0);
+  }
+  ASSERT_EQ(r.stack.slices[2].contours.size(), 1u);
+  EXPECT_NEAR(signed_area(r.stack.slices[2].contours[0].points), 400.0, 2.0);
+  EXPECT_TRUE(r.stack.slices[4].contours.empty());
 }
 
 TEST(Segmentation, OtsuFindsAThresholdBetweenTheTwoClasses) {

@@ -30,6 +30,14 @@ enum class ComponentSelection {
   KeepLargest,  ///< only the largest 6-connected 3-D component (drops the table, loose fragments)
 };
 
+/// How the pixels of a slice are decided where the boundary crosses their columns near the slice's own
+/// centre: a surface lying in or a few degrees off a slice plane, such as an end face on a slice centre
+/// (docs/reconstruction.md, "Surfaces that lie in a slice").
+enum class FlatCrossings {
+  PerPixel,  ///< each pixel by its own value: half-bone pixels fall either way with the noise
+  Patches,   ///< each patch of such pixels as a whole, or along a plane fitted over it
+};
+
 struct SegmentationOptions {
   ThresholdMethod threshold_method = ThresholdMethod::Fixed;
   /// Foreground threshold in the image's units (HU for CT). 300 HU keeps cortical and most
@@ -42,6 +50,9 @@ struct SegmentationOptions {
   double min_region_area = 2.0;
   /// Fill every hole of every region (per slice), not only the small ones.
   bool fill_holes = false;
+  /// Pixels whose column the boundary crosses within a fifth of the slice spacing of the slice's
+  /// centre, in patches of at least 8: decided per patch by default.
+  FlatCrossings flat_crossings = FlatCrossings::Patches;
   /// Target distance between contour points (the paper's "horizontal sampling rate"), mm.
   /// 0 = the smaller in-plane pixel spacing, but at most kMaxDefaultSampling: on coarse scans (3 mm
   /// pixels) contours at pixel spacing give small bones five to ten vertices, and those collapse
