@@ -5,6 +5,8 @@
 #include <contourmesh/smooth/errors.h>
 #include <contourmesh/smooth/normals.h>
 
+#include "contourmesh/internal/union_find.h"
+
 #include <Eigen/Core>
 #include <tbb/blocked_range.h>
 #include <tbb/parallel_for.h>
@@ -73,6 +75,10 @@ void check(const Mesh& mesh, const OffSliceOptions& o) {
     throw InvalidInputError("off-slice heights: min_fraction must be in [0, 0.5), got " +
                             std::to_string(o.min_fraction));
   }
+  if (!(o.cap_far_fraction >= 0.0 && o.cap_far_fraction < 0.5)) {
+    throw InvalidInputError("off-slice heights: cap_far_fraction must be in [0, 0.5), got " +
+                            std::to_string(o.cap_far_fraction));
+  }
   if (!(o.inward_pixels >= 0.0) || !std::isfinite(o.inward_pixels)) {
     throw InvalidInputError("off-slice heights: inward_pixels must be >= 0");
   }
@@ -120,6 +126,38 @@ Eigen::Vector3d face_normal(const Eigen::Matrix3Xd& x, const Triangle& t) {
   return (x.col(t[1]) - x.col(t[0])).cross(x.col(t[2]) - x.col(t[0]));
 }
 
+// Per vertex of an end cap (faces of role Cap): +1 when its cap closes a contour below it (along w), so
+// that the slice it may come near is the one above; -1 the reverse; 0 off the caps or where no cap
+// vertex of its cap (connected through cap faces) neighbours a contour vertex. Outer caps face away from
+// their contour and the caps of holes towards it, so the side comes from the contour, not the normal.
+std::vector<signed char> cap_sides(const Mesh& mesh, const std::vector<FaceRole>& face_roles,
+                                   const MeshAdjacency& adjacency, const Eigen::Vector3d& w) {
+  const std::size_t n = static_cast<std::size_t>(mesh.num_vertices());
+  std::vector<signed char> side(n, 0);
+  std::vector<std::uint8_t> on_cap(n, 0);
+  detail::UnionFind<Index> caps(n);
+  for (std::size_t f = 0; f < face_roles.size(); ++f) {
+    if (face_roles[f] != FaceRole::Cap) continue;
+    const auto& t = mesh.triangles[f];
+    for (Index v : t) on_cap[static_cast<std::size_t>(v)] = 1;
+    caps.unite(t[0], t[1]);
+    caps.unite(t[0], t[2]);
+  }
+  std::vector<signed char> root_side(n, 0);
+  for (std::size_t v = 0; v < n; ++v) {
+    if (!on_cap[v] || mesh.slice_ids[static_cast<Index>(v)] >= 0) continue;
+    for (Index u : adjacency.ring(static_cast<Index>(v))) {
+      if (mesh.slice_ids[u] < 0 || on_cap[static_cast<std::size_t>(u)]) continue;
+      const double dw = (mesh.positions.col(static_cast<Index>(v)) - mesh.positions.col(u)).dot(w);
+      if (dw != 0.0) root_side[static_cast<std::size_t>(caps.find(static_cast<Index>(v)))] = dw > 0.0 ? 1 : -1;
+    }
+  }
+  for (std::size_t v = 0; v < n; ++v) {
+    if (on_cap[v]) side[v] = root_side[static_cast<std::size_t>(caps.find(static_cast<Index>(v)))];
+  }
+  return side;
+}
+
 }  // namespace
 
 OffSliceResult fit_off_slice_heights(Mesh mesh, const CtImage& image, double threshold,
@@ -143,6 +181,7 @@ OffSliceResult fit_off_slice_heights(Mesh mesh, const CtImage& image, double thr
 
   // Which vertices read the whole step inwards: those of end caps (every vertex without roles, or when
   // asked); the others a step that shrinks as the surface there turns towards the slices.
+  const std::vector<signed char> cap_side = cap_sides(mesh, face_roles, adjacency, w);
   std::vector<std::uint8_t> reads_inward(static_cast<std::size_t>(n), 1);
   if (options.inward_read == InwardRead::ScaledOffCaps && !face_roles.empty()) {
     std::fill(reads_inward.begin(), reads_inward.end(), std::uint8_t{0});
@@ -164,10 +203,15 @@ OffSliceResult fit_off_slice_heights(Mesh mesh, const CtImage& image, double thr
     const double frac = kz - static_cast<double>(k);
     if (k < 0 || k + 1 >= sampler.slices() || frac < 1e-6 || frac > 1.0 - 1e-6) return;
     free_vertex[v] = 1;
-    low[v] = (options.min_fraction - frac) * h;
-    high[v] = (1.0 - options.min_fraction - frac) * h;
     const Eigen::Vector3d nv = normals.col(v);
     const double nu = nv.dot(sampler.axis(0)), nw = nv.dot(w), nvv = nv.dot(sampler.axis(1));
+    // A cap that closes a contour of slice k may come near slice k + 1, and the reverse.
+    const signed char cap = cap_side[static_cast<std::size_t>(v)];
+    const double far = std::min(options.cap_far_fraction, options.min_fraction);
+    const double lowest = cap < 0 ? far : options.min_fraction;
+    const double highest = 1.0 - (cap > 0 ? far : options.min_fraction);
+    low[v] = (lowest - frac) * h;
+    high[v] = (highest - frac) * h;
     const double tilt = std::abs(nw) / std::max(nv.norm(), 1e-12);  // |cos| of the angle to the slice axis
     const double inward = reads_inward[static_cast<std::size_t>(v)]
                               ? options.inward_pixels
@@ -175,7 +219,7 @@ OffSliceResult fit_off_slice_heights(Mesh mesh, const CtImage& image, double thr
     const double x = index.x() - inward * nu, y = index.y() - inward * nvv;
     double t = 0.0;
     if (!crossing(sampler, x, y, k, threshold, t)) return;
-    t = std::clamp(t, options.min_fraction, 1.0 - options.min_fraction);
+    t = std::clamp(t, lowest, highest);
     target[v] = (t - frac) * h;
     weight[v] = std::abs(nw);
     fitted[v] = 1;

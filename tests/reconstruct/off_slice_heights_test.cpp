@@ -20,10 +20,10 @@
 namespace contourmesh {
 namespace {
 
-// Voxel value: 1000 times the fraction of the voxel (4 x 4 x 8 supersamples, the slice's whole
+// Voxel value: 1000 times the fraction of the voxel (4 x 4 x `depth` supersamples, the slice's whole
 // thickness) where sdf < 0. Physical point of index (i, j, k) = spacing * index.
 CtImage::Pointer partial_volume(const std::array<int, 3>& n, const Eigen::Vector3d& spacing,
-                                const std::function<double(const Eigen::Vector3d&)>& sdf) {
+                                const std::function<double(const Eigen::Vector3d&)>& sdf, int depth = 8) {
   auto image = CtImage::New();
   CtImage::RegionType region;
   region.SetSize({{static_cast<itk::SizeValueType>(n[0]), static_cast<itk::SizeValueType>(n[1]),
@@ -37,12 +37,12 @@ CtImage::Pointer partial_volume(const std::array<int, 3>& n, const Eigen::Vector
         int inside = 0;
         for (int a = 0; a < 4; ++a)
           for (int b = 0; b < 4; ++b)
-            for (int c = 0; c < 8; ++c) {
+            for (int c = 0; c < depth; ++c) {
               const Eigen::Vector3d p((i - 0.375 + 0.25 * a) * spacing.x(), (j - 0.375 + 0.25 * b) * spacing.y(),
-                                      (k - 0.4375 + 0.125 * c) * spacing.z());
+                                      (k - 0.5 + (c + 0.5) / depth) * spacing.z());
               inside += sdf(p) < 0.0;
             }
-        image->SetPixel({{i, j, k}}, 1000.0f * static_cast<float>(inside) / 128.0f);
+        image->SetPixel({{i, j, k}}, 1000.0f * static_cast<float>(inside) / static_cast<float>(16 * depth));
       }
   return image;
 }
@@ -81,6 +81,74 @@ TEST(OffSliceHeights, AnEndFaceBetweenTheSlicesIsFoundFromTheImage) {
   const double fitted = top_error(reconstruct(*image, options_with(OffSlicePlacement::ImageCrossing)).mesh);
   EXPECT_NEAR(tiled, 0.5, 0.05);  // half a spacing beyond the last contour at z = 8
   EXPECT_LT(fitted, 0.2);         // the voxels' shares inside: exact for this box-profile volume
+}
+
+// The vertices without ids with z in (lo, hi): their mean |z - at| and their lowest and highest z.
+struct Band {
+  double error = 0.0, lowest = 1e9, highest = -1e9;
+  int count = 0;
+};
+Band band_of(const Mesh& mesh, double lo, double hi, double at) {
+  Band b;
+  for (Index v = 0; v < mesh.num_vertices(); ++v) {
+    const double z = mesh.positions(2, v);
+    if (mesh.slice_ids[v] >= 0 || z <= lo || z >= hi) continue;
+    b.error += std::abs(z - at);
+    b.lowest = std::min(b.lowest, z);
+    b.highest = std::max(b.highest, z);
+    ++b.count;
+  }
+  b.error /= std::max(b.count, 1);
+  return b;
+}
+
+TEST(OffSliceHeights, AnEndFaceNearTheSliceBeyondIsLaidWhereItIsRead) {
+  // The cylinder's ends 0.05 of a spacing from the slice beyond them: bottom z = 2.1 (the first contour
+  // at z = 4), top z = 9.9 (the last at z = 8). Read there, not at the tenth of a spacing `min_fraction`
+  // keeps elsewhere.
+  const auto ends = [](const Eigen::Vector3d& p) {
+    return std::max(std::hypot(p.x() - 16.0, p.y() - 16.0) - 8.0, std::max(2.1 - p.z(), p.z() - 9.9));
+  };
+  const CtImage::Pointer image = partial_volume({32, 32, 7}, {1.0, 1.0, 2.0}, ends, 64);
+  ReconstructionOptions o = options_with(OffSlicePlacement::ImageCrossing);
+  const Mesh near = reconstruct(*image, o).mesh;
+  const Band top = band_of(near, 8.0, 10.0, 9.9), bottom = band_of(near, 2.0, 4.0, 2.1);
+  ASSERT_GT(top.count, 20);
+  ASSERT_GT(bottom.count, 20);
+  EXPECT_LT(top.error, 0.06);
+  EXPECT_LT(bottom.error, 0.06);
+  EXPECT_LT(top.highest, 10.0 - 0.02 * 2.0 + 1e-9);  // never on the slice
+  EXPECT_GT(bottom.lowest, 2.0 + 0.02 * 2.0 - 1e-9);
+  o.off_slice.cap_far_fraction = o.off_slice.min_fraction;
+  const Mesh clamped = reconstruct(*image, o).mesh;
+  EXPECT_GT(band_of(clamped, 8.0, 10.0, 9.9).error, 0.08);  // held at 9.8
+  EXPECT_GT(band_of(clamped, 2.0, 4.0, 2.1).error, 0.08);   // held at 2.2
+}
+
+TEST(OffSliceHeights, ACavitysRoofKeepsItsDistanceFromItsOwnSlice) {
+  // A block with a cylindrical cavity from z = 3 to z = 8.1, 0.05 of a spacing above the cavity's last
+  // contour at z = 8: its roof's cap faces down, towards its own slice, and stays a tenth of a spacing
+  // from it, where the faces of the band between them keep their area.
+  const auto cavity = [](const Eigen::Vector3d& p) {
+    const double block =
+        std::max({std::abs(p.x() - 16.0) - 12.0, std::abs(p.y() - 16.0) - 12.0, std::abs(p.z() - 7.0) - 6.0});
+    const double hole = std::max(std::hypot(p.x() - 16.0, p.y() - 16.0) - 6.0, std::max(3.0 - p.z(), p.z() - 8.1));
+    return std::max(block, -hole);
+  };
+  const CtImage::Pointer image = partial_volume({32, 32, 8}, {1.0, 1.0, 2.0}, cavity, 64);
+  const Mesh mesh = reconstruct(*image, options_with(OffSlicePlacement::ImageCrossing)).mesh;
+  // The roof's vertices: inside the hole's radius, between slices 4 and 5.
+  double lowest = 1e9;
+  int count = 0;
+  for (Index v = 0; v < mesh.num_vertices(); ++v) {
+    const Eigen::Vector3d p = mesh.positions.col(v);
+    const bool roof = p.z() > 8.0 && p.z() < 10.0 && std::hypot(p.x() - 16.0, p.y() - 16.0) <= 7.0;
+    if (mesh.slice_ids[v] >= 0 || !roof) continue;
+    lowest = std::min(lowest, p.z());
+    ++count;
+  }
+  ASSERT_GT(count, 20);
+  EXPECT_GT(lowest, 8.0 + 0.1 * 2.0 - 1e-9);
 }
 
 TEST(OffSliceHeights, ADomeComesCloserToTheSphere) {
@@ -266,7 +334,8 @@ TEST(OffSliceHeights, OptionsOutOfRangeAndMeshesWithoutIdsAreRefused) {
   ok.contour_ids = {0, 0, 0};
   for (auto bad : std::initializer_list<std::function<void(OffSliceOptions&)>>{
            [](OffSliceOptions& o) { o.smoothness = 0.0; }, [](OffSliceOptions& o) { o.iterations = 0; },
-           [](OffSliceOptions& o) { o.min_fraction = 0.5; }, [](OffSliceOptions& o) { o.inward_pixels = -1.0; }}) {
+           [](OffSliceOptions& o) { o.min_fraction = 0.5; }, [](OffSliceOptions& o) { o.inward_pixels = -1.0; },
+           [](OffSliceOptions& o) { o.cap_far_fraction = -0.01; }}) {
     OffSliceOptions o;
     bad(o);
     EXPECT_THROW((void)fit_off_slice_heights(ok, *image, 500.0, o), InvalidInputError);

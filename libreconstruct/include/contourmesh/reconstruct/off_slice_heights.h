@@ -59,6 +59,11 @@ struct OffSliceOptions {
   /// A vertex stays at least this fraction of the slice spacing away from either slice, in [0, 0.5):
   /// it never lands on a slice, where it would make faces of zero area with the contour there.
   double min_fraction = 0.1;
+  /// An end cap's vertex (faces of role FaceRole::Cap, when the face roles are given) may come this
+  /// near the slice beyond it, the one the cap faces (no contour of its own lies there), in [0, 0.5);
+  /// at most `min_fraction` counts: an end face read between 0.9 and 0.98 of the way there is laid
+  /// where it is read.
+  double cap_far_fraction = 0.02;
   /// The image is read this many pixels inwards along the vertex's in-plane normal (scaled by the
   /// normal's in-plane part), >= 0: at a cap's rim the boundary column itself is blurred in the plane.
   /// Off the caps the step is scaled by default (`inward_read`).
