@@ -90,6 +90,8 @@ int vtkCtImageToContourSurfaceFilter::RequestData(vtkInformation*, vtkInformatio
     seg.fill_holes = this->FillHoles != 0;
     seg.sampling = this->Sampling;
     seg.min_contour_length = this->MinContourLength;
+    seg.flat_crossings = this->FlatCrossings == FLAT_CROSSINGS_PER_PIXEL ? contourmesh::FlatCrossings::PerPixel
+                                                                         : contourmesh::FlatCrossings::Patches;
     o.tiling = filter_detail::tiling_options(*this);
     o.off_slice.placement = this->OffSlicePlacement == OFF_SLICE_TILED ? contourmesh::OffSlicePlacement::Tiled
                                                                        : contourmesh::OffSlicePlacement::ImageCrossing;
@@ -131,6 +133,8 @@ void vtkCtImageToContourSurfaceFilter::PrintSelf(ostream& os, vtkIndent indent) 
   os << indent << "FillHoles: " << (this->FillHoles ? "On" : "Off") << "\n";
   os << indent << "Sampling: " << this->Sampling << (this->Sampling > 0.0 ? "" : " (pixel spacing)") << "\n";
   os << indent << "MinContourLength: " << this->MinContourLength << "\n";
+  os << indent << "FlatCrossings: " << (this->FlatCrossings == FLAT_CROSSINGS_PER_PIXEL ? "PerPixel" : "Patches")
+     << "\n";
   os << indent << "OffSlicePlacement: " << (this->OffSlicePlacement == OFF_SLICE_TILED ? "Tiled" : "ImageCrossing")
      << "\n";
   os << indent << "MinComponentVoxels: " << this->MinComponentVoxels << "\n";

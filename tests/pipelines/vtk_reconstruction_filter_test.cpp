@@ -178,6 +178,8 @@ TEST_F(VtkFilters, NonDefaultReconstructionOptionsReachTheLibrary) {
         [](Filter* f) { f->SetEndCapsToAtEndSlice(); });
   check("cap refinement", cavity, [](auto& o) { o.tiling.cap_refinement = CapRefinement::EarClipping; },
         [](Filter* f) { f->SetCapRefinementToEarClipping(); });
+  check("flat crossings", two, [](auto& o) { o.segmentation.flat_crossings = FlatCrossings::PerPixel; },
+        [](Filter* f) { f->SetFlatCrossingsToPerPixel(); });
   check("off-slice placement", cavity, [](auto& o) { o.off_slice.placement = OffSlicePlacement::Tiled; },
         [](Filter* f) { f->SetOffSlicePlacementToTiled(); });
   check("min overlap", pelvis, [](auto& o) { o.tiling.min_overlap_fraction = 0.9; },

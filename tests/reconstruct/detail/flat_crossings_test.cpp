@@ -73,7 +73,8 @@ TEST(FlatCrossings, TheInsideAboveIsMirrored) {
 TEST(FlatCrossings, ASurfaceTiltedAcrossTheBandKeepsEachPixelsSide) {
   // The crossing's height rises across the square by 0.3 of the slice spacing (a face a few degrees off
   // the slices): not flat, nothing changes.
-  const std::vector<float> v = three_slices([](int x, int) { return 350.0f + 15.0f * static_cast<float>(x - 5); }, 20.0f);
+  const std::vector<float> v =
+      three_slices([](int x, int) { return 350.0f + 15.0f * static_cast<float>(x - 5); }, 20.0f);
   EXPECT_TRUE(flat_crossing_values(v.data(), kN, kN, 3, 1, kThreshold, kAbove, kBelow).empty());
 }
 

@@ -43,6 +43,11 @@ class vtkCtImageToContourSurfaceFilter : public vtkContourTilingAlgorithm {
     DENOISING_MEDIAN = 1,                 ///< 3 x 3 median in each slice plane
     DENOISING_CURVATURE_ANISOTROPIC = 2,  ///< 5 steps of curvature anisotropic diffusion, 3-D
   };
+  enum FlatCrossingsType {
+    FLAT_CROSSINGS_PATCHES = 0,    ///< a flat patch of half-inside pixels (an end face on a slice) decided whole
+                                   ///< (default)
+    FLAT_CROSSINGS_PER_PIXEL = 1,  ///< each pixel by its own value
+  };
   enum OffSlicePlacementType {
     OFF_SLICE_IMAGE_CROSSING = 0,  ///< vertices between the slices where the image crosses the threshold (default)
     OFF_SLICE_TILED = 1,           ///< where the tiler put them (caps half a spacing beyond the last contour)
@@ -110,6 +115,16 @@ class vtkCtImageToContourSurfaceFilter : public vtkContourTilingAlgorithm {
   ///@}
 
   ///@{
+  /// Pixels whose column the boundary crosses near the slice's centre (a surface lying in a slice, such
+  /// as an end face on a slice centre): decided per flat patch (default) or each by its own value
+  /// (docs/reconstruction.md, "Surfaces that lie in a slice").
+  vtkSetClampMacro(FlatCrossings, int, FLAT_CROSSINGS_PATCHES, FLAT_CROSSINGS_PER_PIXEL);
+  vtkGetMacro(FlatCrossings, int);
+  void SetFlatCrossingsToPatches() { this->SetFlatCrossings(FLAT_CROSSINGS_PATCHES); }
+  void SetFlatCrossingsToPerPixel() { this->SetFlatCrossings(FLAT_CROSSINGS_PER_PIXEL); }
+  ///@}
+
+  ///@{
   /// Heights of the vertices between the slices (end caps, intermediate contours): from the image
   /// (default) or as tiled.
   vtkSetClampMacro(OffSlicePlacement, int, OFF_SLICE_IMAGE_CROSSING, OFF_SLICE_TILED);
@@ -144,6 +159,7 @@ class vtkCtImageToContourSurfaceFilter : public vtkContourTilingAlgorithm {
   vtkTypeBool FillHoles = 0;
   double Sampling = 0.0;
   double MinContourLength = 3.0;
+  int FlatCrossings = FLAT_CROSSINGS_PATCHES;
   int OffSlicePlacement = OFF_SLICE_IMAGE_CROSSING;
   double MinComponentVoxels = 4.0;
 
