@@ -97,7 +97,10 @@ std::vector<PixelValue> flat_crossing_values(const float* volume, int nx, int ny
       const double spread = median_deviation(v, center);
       const double noise = median_deviation(d, 0.0) / std::sqrt(6.0);
       if (noise > options.band / 3.0 || spread > options.flatness * noise) continue;
-      scale[l] = center >= 0.0 ? static_cast<float>(1.0 / std::max(median(shares[l]), 0.25)) : 0.0f;
+      // Inside when the face lies far enough beyond the slice's centre, whatever the threshold
+      // (FlatCrossingOptions::inside_share).
+      const double share = median(shares[l]);
+      scale[l] = share > options.inside_share ? static_cast<float>(1.0 / share) : 0.0f;
     }
     // Outside: the pixels under the threshold. Inside: the slice as the patch's median share scales it
     // to a whole voxel, the pixels of the patch and those next to it (where the section's rim passes),

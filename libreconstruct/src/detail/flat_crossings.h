@@ -19,24 +19,34 @@ struct FlatCrossingOptions {
   /// of the slice's centre: with a the neighbour slice's value on the inside and b the outside one's,
   /// |(c - t) / (a - b)| <= band (c the pixel's value, t the threshold).
   double band = 0.2;
-  /// Patches of undecided pixels smaller than this keep the pixels' own sides.
-  std::size_t min_pixels = 64;
+  /// Patches of undecided pixels smaller than this keep the pixels' own sides: on fewer the ratio of
+  /// the two spreads below varies too much (at 60 HU, patches of 70 pixels on the skull phantom's dome
+  /// passed as flat).
+  std::size_t min_pixels = 128;
   /// A patch is flat when the spread of its values (median absolute deviation) is at most this times
   /// their noise's (from second differences of adjacent pixels): its median then decides all of it. Other patches (a
   /// dome's rim, a face a few degrees off the slices, where the crossing's height varies across the
   /// patch) keep their pixels' own sides.
   double flatness = 1.3;
+  /// A flat patch is inside when its median share (c - b) / (a - b) is above this, whatever the
+  /// threshold: the face then lies that far beyond the slice's centre (0.04 of a spacing). Inside, the
+  /// off-slice heights lay its cap at least a tenth of a spacing beyond the slice; outside, between the
+  /// slice before and this one, at most 0.02 of a spacing short of it (OffSliceOptions::min_fraction
+  /// and cap_far_fraction): from 0.04 on, inside is the nearer of the two.
+  double inside_share = 0.54;
 };
 
 /// For slice z of a volume (nx x ny x nz values, x fastest; 0 < z < nz - 1) segmented at `threshold`:
-/// the pixels of every patch (4-connected) of undecided pixels whose boundary crosses the same way (the
-/// inside below, or above), whose side the patch decides as a whole instead of each pixel's noise. The
-/// patch's values, as the share of the way from the outside neighbour to the inside one, minus the
-/// threshold's, are fitted by a plane in the pixel coordinates: where the plane's slope is significant
-/// (a surface a few degrees off the slices), a pixel is inside when the plane is at or above zero there;
-/// otherwise (a surface in the slice, such as an end face on a slice centre), all are inside when the
-/// patch's mean is. A pixel whose own value is on the other side gets `above` or `below` (just above or
-/// under the threshold); the others keep theirs and are not listed. Empty when nothing changes.
+/// new values for the pixels of every flat patch of undecided pixels (4-connected; those with the inside
+/// below and those with it above apart), which the patch decides as a whole instead of each pixel's
+/// noise. A patch of at least `min_pixels` is flat when the median absolute deviation of its values
+/// (c - t) / (a - b) is at most `flatness` times their noise's, from second differences of adjacent
+/// pixels: a surface in the slice, such as an end face on a slice centre. On a dome's rim or a face a
+/// few degrees off the slices, where the crossing's height runs across the band, the pixels keep their
+/// own values. A flat patch is inside when its median share (c - b) / (a - b) is above `inside_share`:
+/// its pixels and their neighbours are then divided by that share, as if the voxels were wholly inside
+/// (at least `above` in the patch); otherwise its pixels are at most `below`. Pixels whose value does
+/// not change are not listed. Empty when nothing changes.
 [[nodiscard]] std::vector<PixelValue> flat_crossing_values(const float* volume, int nx, int ny, int nz, int z,
                                                            float threshold, float above, float below,
                                                            const FlatCrossingOptions& options = {});

@@ -4,6 +4,7 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cstddef>
 #include <random>
 #include <vector>
@@ -56,16 +57,32 @@ TEST(FlatCrossings, AnEndFaceOnTheSliceIsDecidedAsAWhole) {
 }
 
 TEST(FlatCrossings, ThePatchsMedianChoosesTheSide) {
-  // The face a little above the slice's centre (the pixels 52 % inside): all inside.
-  const std::vector<float> up = three_slices([](int, int) { return 520.0f; }, 20.0f);
+  // The face 0.06 of a spacing beyond the slice's centre (the pixels 56 % inside): all inside.
+  const std::vector<float> up = three_slices([](int, int) { return 560.0f; }, 20.0f);
   EXPECT_EQ(inside_count(up, flat_crossing_values(up.data(), kN, kN, 3, 1, kThreshold, kAbove, kBelow)), 400);
   const std::vector<float> down = three_slices([](int, int) { return 480.0f; }, 20.0f);
   EXPECT_EQ(inside_count(down, flat_crossing_values(down.data(), kN, kN, 3, 1, kThreshold, kAbove, kBelow)), 0);
+  // 0.02 beyond: outside, where the off-slice heights lay the cap nearer the face than inside.
+  const std::vector<float> near = three_slices([](int, int) { return 520.0f; }, 20.0f);
+  EXPECT_EQ(inside_count(near, flat_crossing_values(near.data(), kN, kN, 3, 1, kThreshold, kAbove, kBelow)), 0);
+}
+
+TEST(FlatCrossings, TheSideIsWhereTheFaceLiesNotTheThresholds) {
+  // Segmented at 450 HU, pixels 47 % inside are above the threshold one by one; the face they show
+  // lies just before the slice's centre, so the patch is outside (the cap then goes between this slice
+  // and the one before, where the off-slice heights read it).
+  const std::vector<float> v = three_slices([](int, int) { return 470.0f; }, 20.0f);
+  std::vector<float> slice(v.begin() + kN * kN, v.begin() + 2 * kN * kN);
+  EXPECT_GT(std::count_if(slice.begin(), slice.end(), [](float x) { return x >= 450.0f; }), 300);
+  for (const PixelValue& c : flat_crossing_values(v.data(), kN, kN, 3, 1, 450.0f, 451.0f, 449.999f)) {
+    slice[c.pixel] = c.value;
+  }
+  for (float x : slice) EXPECT_LT(x, 450.0f);
 }
 
 TEST(FlatCrossings, TheInsideAboveIsMirrored) {
   // The same end face upside down: outside below, inside above.
-  std::vector<float> v = three_slices([](int, int) { return 520.0f; }, 20.0f);
+  std::vector<float> v = three_slices([](int, int) { return 560.0f; }, 20.0f);
   for (std::size_t p = 0; p < static_cast<std::size_t>(kN * kN); ++p) std::swap(v[p], v[2 * kN * kN + p]);
   EXPECT_EQ(inside_count(v, flat_crossing_values(v.data(), kN, kN, 3, 1, kThreshold, kAbove, kBelow)), 400);
 }

@@ -51,7 +51,7 @@ struct SegmentationOptions {
   /// Fill every hole of every region (per slice), not only the small ones.
   bool fill_holes = false;
   /// Pixels whose column the boundary crosses within a fifth of the slice spacing of the slice's
-  /// centre, in patches of at least 8: decided per patch by default.
+  /// centre, in flat patches of at least 128: decided per patch by default.
   FlatCrossings flat_crossings = FlatCrossings::Patches;
   /// Target distance between contour points (the paper's "horizontal sampling rate"), mm.
   /// 0 = the smaller in-plane pixel spacing, but at most kMaxDefaultSampling: on coarse scans (3 mm
