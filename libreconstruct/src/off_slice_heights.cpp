@@ -126,20 +126,30 @@ Eigen::Vector3d face_normal(const Eigen::Matrix3Xd& x, const Triangle& t) {
   return (x.col(t[1]) - x.col(t[0])).cross(x.col(t[2]) - x.col(t[0]));
 }
 
-// Per vertex of an end cap (faces of role Cap): +1 when its cap closes a contour below it (along w), so
-// that the slice it may come near is the one above; -1 the reverse; 0 off the caps or where no cap
-// vertex of its cap (connected through cap faces) neighbours a contour vertex. Outer caps face away from
-// their contour and the caps of holes towards it, so the side comes from the contour, not the normal.
+// 1 for the vertices of end caps (faces of role Cap), else 0.
+std::vector<std::uint8_t> cap_vertices(const Mesh& mesh, const std::vector<FaceRole>& face_roles) {
+  std::vector<std::uint8_t> on_cap(static_cast<std::size_t>(mesh.num_vertices()), 0);
+  for (std::size_t f = 0; f < face_roles.size(); ++f) {
+    if (face_roles[f] != FaceRole::Cap) continue;
+    for (Index v : mesh.triangles[f]) on_cap[static_cast<std::size_t>(v)] = 1;
+  }
+  return on_cap;
+}
+
+// Per vertex of an end cap (`on_cap`, from cap_vertices): +1 when its cap closes a contour below it
+// (along w), so that the slice it may come near is the one above; -1 the reverse; 0 off the caps or
+// where no cap vertex of its cap (connected through cap faces) neighbours a contour vertex. Outer caps
+// face away from their contour and the caps of holes towards it, so the side comes from the contour,
+// not the normal.
 std::vector<signed char> cap_sides(const Mesh& mesh, const std::vector<FaceRole>& face_roles,
-                                   const MeshAdjacency& adjacency, const Eigen::Vector3d& w) {
+                                   const std::vector<std::uint8_t>& on_cap, const MeshAdjacency& adjacency,
+                                   const Eigen::Vector3d& w) {
   const std::size_t n = static_cast<std::size_t>(mesh.num_vertices());
   std::vector<signed char> side(n, 0);
-  std::vector<std::uint8_t> on_cap(n, 0);
   detail::UnionFind<Index> caps(n);
   for (std::size_t f = 0; f < face_roles.size(); ++f) {
     if (face_roles[f] != FaceRole::Cap) continue;
     const auto& t = mesh.triangles[f];
-    for (Index v : t) on_cap[static_cast<std::size_t>(v)] = 1;
     caps.unite(t[0], t[1]);
     caps.unite(t[0], t[2]);
   }
@@ -181,15 +191,10 @@ OffSliceResult fit_off_slice_heights(Mesh mesh, const CtImage& image, double thr
 
   // Which vertices read the whole step inwards: those of end caps (every vertex without roles, or when
   // asked); the others a step that shrinks as the surface there turns towards the slices.
-  const std::vector<signed char> cap_side = cap_sides(mesh, face_roles, adjacency, w);
+  const std::vector<std::uint8_t> on_cap = cap_vertices(mesh, face_roles);
+  const std::vector<signed char> cap_side = cap_sides(mesh, face_roles, on_cap, adjacency, w);
   std::vector<std::uint8_t> reads_inward(static_cast<std::size_t>(n), 1);
-  if (options.inward_read == InwardRead::ScaledOffCaps && !face_roles.empty()) {
-    std::fill(reads_inward.begin(), reads_inward.end(), std::uint8_t{0});
-    for (std::size_t f = 0; f < face_roles.size(); ++f) {
-      if (face_roles[f] != FaceRole::Cap) continue;
-      for (Index v : mesh.triangles[f]) reads_inward[static_cast<std::size_t>(v)] = 1;
-    }
-  }
+  if (options.inward_read == InwardRead::ScaledOffCaps && !face_roles.empty()) reads_inward = on_cap;
 
   // Data term and bounds per vertex, all as displacements along w in mm.
   std::vector<double> target(n, 0.0), weight(n, 0.0), low(n, 0.0), high(n, 0.0);
