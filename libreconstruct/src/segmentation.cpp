@@ -436,12 +436,14 @@ SegmentationResult segment_contours(const CtImage& input, const SegmentationOpti
   // The sides of the flat crossings, slice by slice (they read the slices on either side).
   std::vector<std::vector<detail::PixelValue>> flat(size[2]);
   if (options.flat_crossings == FlatCrossings::Patches && size[2] >= 3) {
+    tbb::enumerable_thread_specific<detail::FlatCrossingScratch> buffers;
     tbb::parallel_for(tbb::blocked_range<std::size_t>(1, size[2] - 1, 1),
                       [&](const tbb::blocked_range<std::size_t>& range) {
+                        detail::FlatCrossingScratch& scratch = buffers.local();
                         for (std::size_t z = range.begin(); z != range.end(); ++z) {
                           flat[z] = detail::flat_crossing_values(values, nx, ny, static_cast<int>(size[2]),
                                                                  static_cast<int>(z), setup.iso.threshold,
-                                                                 setup.iso.above, setup.iso.below);
+                                                                 setup.iso.above, setup.iso.below, {}, scratch);
                         }
                       });
   }

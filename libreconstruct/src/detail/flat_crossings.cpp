@@ -1,8 +1,6 @@
 // SPDX-License-Identifier: BSD-3-Clause
 #include "detail/flat_crossings.h"
 
-#include "detail/slice_components.h"
-
 #include <algorithm>
 #include <cmath>
 #include <cstdint>
@@ -36,20 +34,11 @@ struct Columns {
   std::size_t pixels;
 };
 
-// The undecided pixels of one way of crossing, their patches, and what each patch's test reads.
-struct Patches {
-  std::vector<std::uint8_t> mask;  // 1: undecided
-  std::vector<float> offset;       // (c - t) / (a - b): the share above the threshold's
-  std::vector<PixelRun> runs;
-  UnionFind<int> labels;
-  std::vector<std::vector<float>> values, differences, shares;  // per patch
-};
-
 // Marks the undecided pixels, labels their patches and gathers each patch's values, their shares
 // (c - b) / (a - b), and the second differences along x and y of the pixels whose two neighbours on that
 // axis are in it too (a linear trend cancels there; independent noise of standard deviation s gives them
 // sqrt(6) s). Returns the number of patches.
-std::size_t find_patches(const Columns& c, float threshold, double band, Patches& out) {
+std::size_t find_patches(const Columns& c, float threshold, double band, FlatCrossingScratch& out) {
   bool any = false;
   for (std::size_t p = 0; p < c.pixels; ++p) {
     out.mask[p] = 0;
@@ -92,7 +81,7 @@ std::size_t find_patches(const Columns& c, float threshold, double band, Patches
 // than their noise: robust spreads (medians of absolute deviations), so that the partial-volume pixels
 // at a patch's rim do not count. Where the noise fills much of the band, the band truncates every
 // patch's spread to about the same: left alone.
-std::vector<float> patch_scales(Patches& patches, std::size_t count, const FlatCrossingOptions& options) {
+std::vector<float> patch_scales(FlatCrossingScratch& patches, std::size_t count, const FlatCrossingOptions& options) {
   std::vector<float> scale(count + 1, -1.0f);
   for (std::size_t l = 1; l <= count; ++l) {
     std::vector<float>& v = patches.values[l];
@@ -113,9 +102,10 @@ std::vector<float> patch_scales(Patches& patches, std::size_t count, const FlatC
 // Outside: the patch's pixels under the threshold. Inside: the slice as the patch's median share scales
 // it to a whole voxel, the pixels of the patch and those next to it (where the section's rim passes),
 // so that the contour follows the in-plane shares at the rim as on a slice wholly inside. A pixel gets
-// at most one new value (`changed`); those that keep theirs are not listed.
-void set_sides(const Columns& c, const Patches& patches, const std::vector<float>& scale, float above, float below,
-               std::vector<std::uint8_t>& changed, std::vector<PixelValue>& out) {
+// at most one new value (`patches.changed`); those that keep theirs are not listed.
+void set_sides(const Columns& c, FlatCrossingScratch& patches, const std::vector<float>& scale, float above,
+               float below, std::vector<PixelValue>& out) {
+  std::vector<std::uint8_t>& changed = patches.changed;
   const auto set = [&](std::size_t p, float value) {
     if (changed[p]) return;
     changed[p] = 1;
@@ -144,24 +134,30 @@ void set_sides(const Columns& c, const Patches& patches, const std::vector<float
 }  // namespace
 
 std::vector<PixelValue> flat_crossing_values(const float* volume, int nx, int ny, int nz, int z, float threshold,
-                                             float above, float below, const FlatCrossingOptions& options) {
+                                             float above, float below, const FlatCrossingOptions& options,
+                                             FlatCrossingScratch& scratch) {
   std::vector<PixelValue> out;
   if (z <= 0 || z >= nz - 1) return out;
   const std::size_t pixels = static_cast<std::size_t>(nx) * static_cast<std::size_t>(ny);
   const float* lower = volume + static_cast<std::size_t>(z - 1) * pixels;
   const float* own = lower + pixels;
   const float* upper = own + pixels;
-  Patches patches;
-  patches.mask.resize(pixels);
-  patches.offset.resize(pixels);
-  std::vector<std::uint8_t> changed(pixels, 0);
+  scratch.mask.resize(pixels);
+  scratch.offset.resize(pixels);
+  scratch.changed.assign(pixels, 0);
   for (const bool inside_below : {true, false}) {
     const Columns c{own, inside_below ? lower : upper, inside_below ? upper : lower, nx, ny, pixels};
-    const std::size_t count = find_patches(c, threshold, options.band, patches);
+    const std::size_t count = find_patches(c, threshold, options.band, scratch);
     if (count == 0) continue;
-    set_sides(c, patches, patch_scales(patches, count, options), above, below, changed, out);
+    set_sides(c, scratch, patch_scales(scratch, count, options), above, below, out);
   }
   return out;
+}
+
+std::vector<PixelValue> flat_crossing_values(const float* volume, int nx, int ny, int nz, int z, float threshold,
+                                             float above, float below, const FlatCrossingOptions& options) {
+  FlatCrossingScratch scratch;
+  return flat_crossing_values(volume, nx, ny, nz, z, threshold, above, below, options, scratch);
 }
 
 }  // namespace contourmesh::detail

@@ -3,7 +3,10 @@
 // (segmentation; docs/reconstruction.md, "Surfaces that lie in a slice").
 #pragma once
 
+#include "detail/slice_components.h"
+
 #include <cstddef>
+#include <cstdint>
 #include <vector>
 
 namespace contourmesh::detail {
@@ -36,6 +39,17 @@ struct FlatCrossingOptions {
   double inside_share = 0.54;
 };
 
+/// The buffers of flat_crossing_values, kept from call to call (one per thread): the undecided pixels of
+/// one way of crossing, their patches and what each patch's test reads, and which pixels got a value.
+struct FlatCrossingScratch {
+  std::vector<std::uint8_t> mask;  // 1: undecided
+  std::vector<float> offset;       // (c - t) / (a - b): the share above the threshold's
+  std::vector<PixelRun> runs;
+  UnionFind<int> labels;
+  std::vector<std::vector<float>> values, differences, shares;  // per patch
+  std::vector<std::uint8_t> changed;                            // per pixel: given a value already
+};
+
 /// For slice z of a volume (nx x ny x nz values, x fastest; 0 < z < nz - 1) segmented at `threshold`:
 /// new values for the pixels of every flat patch of undecided pixels (4-connected; those with the inside
 /// below and those with it above apart), which the patch decides as a whole instead of each pixel's
@@ -47,6 +61,12 @@ struct FlatCrossingOptions {
 /// its pixels and their neighbours are then divided by that share, as if the voxels were wholly inside
 /// (at least `above` in the patch); otherwise its pixels are at most `below`. Pixels whose value does
 /// not change are not listed. Empty when nothing changes.
+[[nodiscard]] std::vector<PixelValue> flat_crossing_values(const float* volume, int nx, int ny, int nz, int z,
+                                                           float threshold, float above, float below,
+                                                           const FlatCrossingOptions& options,
+                                                           FlatCrossingScratch& scratch);
+
+/// The same with buffers of its own.
 [[nodiscard]] std::vector<PixelValue> flat_crossing_values(const float* volume, int nx, int ny, int nz, int z,
                                                            float threshold, float above, float below,
                                                            const FlatCrossingOptions& options = {});
