@@ -267,6 +267,9 @@ CrossSliceResult cross_slice_smooth(const Mesh& mesh, const CrossSliceOptions& o
   if (!features.noise) features.noise = result.noise_across;  // the creases rise above the noise left
   result.features = detect_creases(result.mesh, frame.adjacency, features);
   result.labels = result.features.labels;
+  if (options.crease_restoration == CreaseRestoration::Subdivide) {
+    result.mesh = restore_creases(result.mesh, result.labels, options.restoration).mesh;
+  }
   result.seconds_detect = seconds_since(t);
   result.seconds_total = seconds_since(start);
   if (options.progress && !options.progress("detect", 1.0)) throw CancelledError("feature detection");

@@ -73,6 +73,11 @@ TEST(MethodTable, VariantsParseIntoRowsOfTheirOwn) {
   EXPECT_EQ(v.options.cross_slice.kink_sides, KinkSides::Curves);
   EXPECT_EQ(parse_variant("straight-sides:kink-sides=lines").options.cross_slice.kink_sides, KinkSides::Lines);
   EXPECT_THROW((void)parse_variant("flat-sides:kink-sides=flat"), InvalidInputError);
+  EXPECT_EQ(v.options.cross_slice.crease_restoration, CreaseRestoration::None);
+  v = parse_variant("sharp:creases=restore,restore-levels=2");
+  EXPECT_EQ(v.options.cross_slice.crease_restoration, CreaseRestoration::Subdivide);
+  EXPECT_EQ(v.options.cross_slice.restoration.levels, 2);
+  EXPECT_THROW((void)parse_variant("sharp:creases=sharpen"), InvalidInputError);
   v = parse_variant("paper-normal:preset=xu2006,measure=normal,in-slice=along-line");
   EXPECT_EQ(v.method, SmoothingMethod::FeaturePreserving);
   EXPECT_EQ(v.options.paper.detection.measure, UmbrellaMeasure::NormalComponent);

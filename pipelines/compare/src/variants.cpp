@@ -167,6 +167,13 @@ const std::vector<Key>& keys() {
       {"min-extent", kCrossSlice,
        [](SmoothOptions& o, const Value& v) { o.cross_slice.features.min_extent = v.number(); }},
       {"band", kCrossSlice, [](SmoothOptions& o, const Value& v) { o.cross_slice.features.band = v.number(); }},
+      {"creases", kCrossSlice,
+       [](SmoothOptions& o, const Value& v) {
+         o.cross_slice.crease_restoration = v.choice<CreaseRestoration>(
+             {{"none", CreaseRestoration::None}, {"restore", CreaseRestoration::Subdivide}});
+       }},
+      {"restore-levels", kCrossSlice,
+       [](SmoothOptions& o, const Value& v) { o.cross_slice.restoration.levels = v.integer(); }},
       {"link-radius", kCrossSlice,
        [](SmoothOptions& o, const Value& v) { o.cross_slice.features.link_radius = v.number(); }},
       {"link-angle", kCrossSlice,

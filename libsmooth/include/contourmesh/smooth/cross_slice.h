@@ -25,6 +25,7 @@
 #pragma once
 
 #include "contourmesh/smooth/crease_detection.h"
+#include "contourmesh/smooth/crease_restoration.h"
 #include "contourmesh/smooth/feature_detection.h"
 #include "contourmesh/smooth/mesh.h"
 #include "contourmesh/smooth/progress.h"
@@ -182,6 +183,11 @@ struct CrossSliceOptions {
   /// The feature labels of the result: creases of the smoothed mesh (crease_detection.h); its noise
   /// unset: the estimated noise across the slices.
   CreaseOptions features;
+  /// Creases the image's blur rounded, restored after the labels (crease_restoration.h; docs/smoothing.md,
+  /// "Creases rounded by the image's blur"). With CreaseRestoration::Subdivide the result has more
+  /// vertices than the input (the input's first, in order); the labels stay one per input vertex.
+  CreaseRestoration crease_restoration = CreaseRestoration::None;
+  CreaseRestorationOptions restoration;
   /// Stages "smooth" and "detect"; return false to cancel (CancelledError).
   ProgressCallback progress;
 };
@@ -197,7 +203,9 @@ enum class NoiseSource {
 [[nodiscard]] std::string_view to_string(NoiseSource source);
 
 struct CrossSliceResult {
-  Mesh mesh;                   ///< smoothed, same connectivity and ids
+  /// Smoothed, same connectivity and ids; with CreaseRestoration::Subdivide the restored, subdivided mesh
+  /// (the input's vertices first).
+  Mesh mesh;
   std::vector<VertexLabel> labels;  ///< per vertex: Smooth, Edge, Corner, or Noise (a crease too short)
   CreaseDetection features;         ///< how the labels were found
   double noise_across = 0.0;   ///< the noise levels used, mm

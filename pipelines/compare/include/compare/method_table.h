@@ -100,7 +100,8 @@ struct MethodVariant {
 ///   (lines | curves), stages (across-then-along | across-only), extension-iterations, off-slice-filter
 ///   (bilateral | none), off-slice-motion (free | axis), off-slice-range (faces | patches), normal-iterations,
 ///   normal-sigma (degrees), vertex-iterations, max-move (slice spacings), contour-max-move (mm), crease-radius,
-///   edge-threshold, corner-threshold, min-extent, band;
+///   edge-threshold, corner-threshold, min-extent, band, creases (none | restore),
+///   restore-levels;
 /// - paper: iterations, lambda, mu, max-levels, diffusion (taubin | laplacian), measure (length | normal),
 ///   in-slice (noise | along-line), gamma-factor, delta-factor, window, corner-spread, prefilter;
 /// - baselines: iterations, lambda, mu, beta.

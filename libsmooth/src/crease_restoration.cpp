@@ -1,0 +1,283 @@
+// SPDX-License-Identifier: BSD-3-Clause
+#include "contourmesh/smooth/crease_restoration.h"
+
+#include "detail/parallel.h"
+#include "contourmesh/smooth/adaptive_subdivision.h"
+#include "contourmesh/smooth/adjacency.h"
+#include "contourmesh/smooth/contour_structure.h"
+#include "contourmesh/smooth/errors.h"
+
+#include <Eigen/Eigenvalues>
+
+#include <algorithm>
+#include <cmath>
+#include <cstdint>
+#include <limits>
+#include <memory>
+#include <mutex>
+#include <numbers>
+#include <optional>
+#include <string>
+#include <utility>
+
+namespace contourmesh {
+
+namespace {
+
+void check(const Mesh& mesh, const std::vector<VertexLabel>& labels, const CreaseRestorationOptions& o) {
+  const auto fail = [](const std::string& what) { throw InvalidInputError("crease restoration: " + what); };
+  if (labels.size() != static_cast<std::size_t>(mesh.num_vertices())) fail("one label per vertex is needed");
+  if (!(o.levels >= 0 && o.levels <= 3)) fail("levels must be in [0, 3]");
+  const auto positive = [&](double v, const char* name) {
+    if (!(v > 0.0 && std::isfinite(v))) fail(std::string(name) + " must be a finite number > 0");
+  };
+  positive(o.radius, "radius");
+  positive(o.slab, "slab");
+  positive(o.max_residual, "max residual");
+  positive(o.max_line_distance, "max line distance");
+  positive(o.max_move, "max move");
+  if (!(o.mode_angle_degrees > 0.0 && o.mode_angle_degrees <= 45.0)) fail("mode angle must be in (0, 45] degrees");
+  if (!(o.min_angle_degrees > 0.0 && o.min_angle_degrees < 180.0)) fail("min angle must be in (0, 180) degrees");
+}
+
+// Per worker: the ball's vertices and a stamp per mesh vertex, so that membership is one look-up.
+struct Ball {
+  std::vector<Index> members;
+  std::vector<std::uint32_t> stamp;
+  std::uint32_t current = 0;
+};
+
+// Hands each chunk a Ball no other chunk is using; builds one (of the mesh's size) only when all are taken.
+class BallPool {
+ public:
+  explicit BallPool(Index vertices) : vertices_(vertices) {}
+  std::unique_ptr<Ball> take() {
+    {
+      const std::lock_guard<std::mutex> lock(mutex_);
+      if (!free_.empty()) {
+        std::unique_ptr<Ball> b = std::move(free_.back());
+        free_.pop_back();
+        return b;
+      }
+    }
+    auto b = std::make_unique<Ball>();
+    b->stamp.assign(static_cast<std::size_t>(vertices_), 0u);
+    return b;
+  }
+  void give_back(std::unique_ptr<Ball> b) {
+    const std::lock_guard<std::mutex> lock(mutex_);
+    free_.push_back(std::move(b));
+  }
+
+ private:
+  Index vertices_;
+  std::mutex mutex_;
+  std::vector<std::unique_ptr<Ball>> free_;
+};
+
+void gather(const Mesh& mesh, const MeshAdjacency& adjacency, Index i, double radius, Ball& ball) {
+  if (++ball.current == 0) {
+    std::fill(ball.stamp.begin(), ball.stamp.end(), 0u);
+    ball.current = 1;
+  }
+  const Eigen::Vector3d centre = mesh.positions.col(i);
+  const double r2 = radius * radius;
+  ball.members.assign(1, i);
+  ball.stamp[static_cast<std::size_t>(i)] = ball.current;
+  constexpr std::size_t kMaxBall = 1024;  // a safeguard against degenerate, very dense meshes
+  for (std::size_t b = 0; b < ball.members.size() && ball.members.size() < kMaxBall; ++b) {
+    for (Index j : adjacency.ring(ball.members[b])) {
+      std::uint32_t& s = ball.stamp[static_cast<std::size_t>(j)];
+      if (s == ball.current || (mesh.positions.col(j) - centre).squaredNorm() > r2) continue;
+      s = ball.current;
+      ball.members.push_back(j);
+    }
+  }
+}
+
+// The two planes of a ball, as unit normals m and offsets o (m . x = o on the plane).
+// `convex`: each side's vertices lie behind the other side's plane (the solid is behind both planes);
+// otherwise both lie in front of it (concave: the solid is behind either).
+struct Planes {
+  Eigen::Vector3d m[2];
+  double o[2] = {0.0, 0.0};
+  bool convex = true;
+};
+
+// Steps 2 and 3 of the header; nothing where the ball is not two planes as the options ask.
+std::optional<Planes> fit_planes(const Mesh& mesh, const Eigen::Matrix3Xd& area_normal, const std::vector<Index>& ball,
+                                 const Eigen::Vector3d& centre, const CreaseRestorationOptions& options) {
+  Eigen::Matrix3d tensor = Eigen::Matrix3d::Zero();
+  for (Index j : ball) {
+    const double len = area_normal.col(j).norm();
+    if (len > 0.0) tensor += area_normal.col(j) * area_normal.col(j).transpose() / len;
+  }
+  Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d> eigen;
+  eigen.computeDirect(tensor);
+  const Eigen::Vector3d split = eigen.eigenvectors().col(1);
+  Planes p;
+  double lo = std::numeric_limits<double>::infinity(), hi = -lo;
+  for (Index j : ball) {
+    const double len = area_normal.col(j).norm();
+    if (!(len > 0.0)) continue;
+    const double s = area_normal.col(j).dot(split) / len;
+    if (s > hi) hi = s, p.m[0] = area_normal.col(j) / len;
+    if (s < lo) lo = s, p.m[1] = area_normal.col(j) / len;
+  }
+  if (!(hi > lo)) return std::nullopt;
+  const auto side = [&](Index j) { return area_normal.col(j).dot(p.m[0]) >= area_normal.col(j).dot(p.m[1]) ? 0 : 1; };
+  const double mode_cos = std::cos(options.mode_angle_degrees * std::numbers::pi / 180.0);
+  const auto near_mode = [&](Index j, int k) {
+    const double len = area_normal.col(j).norm();
+    return len > 0.0 && area_normal.col(j).dot(p.m[k]) >= mode_cos * len;
+  };
+  for (int round = 0; round < 9; ++round) {  // five rounds of 2-means, then four of the mode
+    Eigen::Vector3d sum[2] = {Eigen::Vector3d::Zero(), Eigen::Vector3d::Zero()};
+    for (Index j : ball) {
+      const int k = side(j);
+      if (round < 5 || near_mode(j, k)) sum[k] += area_normal.col(j);
+    }
+    const double len0 = sum[0].norm(), len1 = sum[1].norm();
+    if (!(len0 > 0.0 && len1 > 0.0)) return std::nullopt;
+    p.m[0] = sum[0] / len0;
+    p.m[1] = sum[1] / len1;
+  }
+  if (p.m[0].dot(p.m[1]) > std::cos(options.min_angle_degrees * std::numbers::pi / 180.0)) return std::nullopt;
+  const Eigen::Vector3d along = p.m[0].cross(p.m[1]).normalized();
+  double sum[2] = {0.0, 0.0}, sum2[2] = {0.0, 0.0}, weight[2] = {0.0, 0.0};
+  Eigen::Vector3d centroid[2] = {Eigen::Vector3d::Zero(), Eigen::Vector3d::Zero()};
+  double count[2] = {0.0, 0.0};
+  for (Index j : ball) {
+    const int k = side(j);
+    centroid[k] += mesh.positions.col(j);
+    count[k] += 1.0;
+    if (!near_mode(j, k) || std::abs((mesh.positions.col(j) - centre).dot(along)) > options.slab) continue;
+    const double w = area_normal.col(j).norm(), d = p.m[k].dot(mesh.positions.col(j));
+    sum[k] += w * d;
+    sum2[k] += w * d * d;
+    weight[k] += w;
+  }
+  for (int k = 0; k < 2; ++k) {
+    if (!(weight[k] > 0.0)) return std::nullopt;
+    p.o[k] = sum[k] / weight[k];
+    if (std::sqrt(std::max(0.0, sum2[k] / weight[k] - p.o[k] * p.o[k])) > options.max_residual) return std::nullopt;
+  }
+  // Which side of the other plane each side's centroid lies on.
+  const double behind0 = p.m[0].dot(centroid[1] / count[1]) - p.o[0];
+  const double behind1 = p.m[1].dot(centroid[0] / count[0]) - p.o[1];
+  if (behind0 < 0.0 && behind1 < 0.0) {
+    p.convex = true;
+  } else if (behind0 > 0.0 && behind1 > 0.0) {
+    p.convex = false;
+  } else {
+    return std::nullopt;
+  }
+  return p;
+}
+
+// Step 4 of the header: the move of the vertex at x onto the crease of `p`; nothing where it stays.
+// `axis`: the slice axis for a contour vertex (it moves within its slice plane), else null.
+std::optional<Eigen::Vector3d> move_onto(const Planes& p, const Eigen::Vector3d& x, const Eigen::Vector3d* axis,
+                                         const CreaseRestorationOptions& options) {
+  const double d[2] = {p.m[0].dot(x) - p.o[0], p.m[1].dot(x) - p.o[1]};
+  const double g = p.m[0].dot(p.m[1]), det = 1.0 - g * g;
+  // The nearest point of the planes' line is x + a m0 + b m1 with m_k . x = o_k.
+  const double a = (-d[0] + g * d[1]) / det, b = (-d[1] + g * d[0]) / det;
+  const Eigen::Vector3d to_line = a * p.m[0] + b * p.m[1];
+  if (to_line.norm() > options.max_line_distance) return std::nullopt;
+  // In the convex frame (a concave crease mirrored) the surface is max(e0, e1) = 0.
+  const double sign = p.convex ? 1.0 : -1.0;
+  const double e[2] = {sign * d[0], sign * d[1]};
+  const int nearer = e[0] > e[1] ? 0 : 1;  // inside both: the nearer plane; outside both: the farther
+  int k = nearer;
+  Eigen::Vector3d move;
+  if (e[0] <= 0.0 && e[1] <= 0.0) {
+    move = -d[k] * p.m[k];
+  } else if (e[0] > 0.0 && e[1] > 0.0) {
+    move = to_line;
+  } else {
+    k = e[0] > 0.0 ? 0 : 1;
+    move = -d[k] * p.m[k];
+  }
+  if (axis != nullptr) {
+    // Within the slice plane, along plane k's in-plane normal, by as much as brings x onto plane k
+    // (or, towards the line, as far along its normal as the 3-D move goes).
+    Eigen::Vector3d u = p.m[k] - p.m[k].dot(*axis) * *axis;
+    const double len = u.norm();
+    if (len < 0.5) return std::nullopt;  // a plane within 30 degrees of the slices: no in-plane fix
+    u /= len;
+    move = p.m[k].dot(move) / p.m[k].dot(u) * u;
+  }
+  if (!(move.norm() <= options.max_move)) return std::nullopt;
+  return move;
+}
+
+}  // namespace
+
+RestoredCreases restore_creases(const Mesh& mesh, const std::vector<VertexLabel>& labels,
+                                const CreaseRestorationOptions& options) {
+  check(mesh, labels, options);
+  RestoredCreases result;
+  result.original_vertices = mesh.num_vertices();
+  std::vector<std::uint8_t> selected(labels.size(), 0);
+  bool any = false;
+  for (std::size_t i = 0; i < labels.size(); ++i) {
+    selected[i] = labels[i] == VertexLabel::Edge ? 1 : 0;
+    any = any || selected[i] != 0;
+  }
+  if (!any || options.levels == 0) {
+    result.mesh = mesh;
+  } else {
+    SubdivisionOptions subdivision;
+    subdivision.max_levels = options.levels;
+    subdivision.gamma = 0.0;  // every level bisects every spoke of a selected vertex
+    result.mesh = subdivide_adaptively(mesh, selected, subdivision).mesh;
+  }
+  if (!any) return result;
+  const Mesh& m = result.mesh;
+  const Index n = m.num_vertices();
+  const MeshAdjacency adjacency = build_adjacency(m);
+  Eigen::Matrix3Xd area_normal = Eigen::Matrix3Xd::Zero(3, n);  // sum of the faces' area vectors, x2
+  for (const Triangle& t : m.triangles) {
+    const Eigen::Vector3d c =
+        (m.positions.col(t[1]) - m.positions.col(t[0])).cross(m.positions.col(t[2]) - m.positions.col(t[0]));
+    for (Index v : t) area_normal.col(v) += c;
+  }
+  std::optional<Eigen::Vector3d> axis;
+  if (m.has_contour_ids()) {
+    try {
+      axis = estimate_slice_axis(m);
+    } catch (const InvalidInputError&) {
+      axis.reset();  // ids that do not span planes: every vertex moves freely
+    }
+  }
+  Eigen::Matrix3Xd moves = Eigen::Matrix3Xd::Zero(3, n);
+  std::vector<std::uint8_t> moved(static_cast<std::size_t>(n), 0);
+  BallPool pool(n);
+  detail::parallel_chunks(static_cast<std::size_t>(n), 4096, [&](std::size_t, std::size_t begin, std::size_t end) {
+    std::unique_ptr<Ball> ball;  // taken at the chunk's first vertex to examine
+    for (std::size_t k = begin; k < end; ++k) {
+      const auto i = static_cast<Index>(k);
+      if (i < result.original_vertices && !selected[k]) continue;
+      if (!ball) ball = pool.take();
+      gather(m, adjacency, i, options.radius, *ball);
+      const Eigen::Vector3d x = m.positions.col(i);
+      const std::optional<Planes> planes = fit_planes(m, area_normal, ball->members, x, options);
+      if (!planes) continue;
+      const bool on_contour = axis && m.slice_ids[k] >= 0;
+      const std::optional<Eigen::Vector3d> move = move_onto(*planes, x, on_contour ? &*axis : nullptr, options);
+      if (!move) continue;
+      moves.col(i) = *move;
+      moved[k] = 1;
+    }
+    if (ball) pool.give_back(std::move(ball));
+  });
+  for (Index i = 0; i < n; ++i) {
+    if (!moved[static_cast<std::size_t>(i)]) continue;
+    result.mesh.positions.col(i) += moves.col(i);
+    ++result.moved;
+  }
+  return result;
+}
+
+}  // namespace contourmesh

@@ -1,0 +1,179 @@
+// SPDX-License-Identifier: BSD-3-Clause
+#include "contourmesh/smooth/crease_restoration.h"
+#include "contourmesh/smooth/errors.h"
+#include "contourmesh/smooth/shapes.h"
+
+#include "detail/parallel.h"
+
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cmath>
+#include <vector>
+
+namespace contourmesh {
+namespace {
+
+constexpr double kHalf = 10.0;  // the cube [-10, 10]^3
+constexpr double kRound = 0.8;  // radius of the rounded edges, mm
+
+// Signed distance to the sharp cube's surface, for points near it (max of the six planes).
+double to_sharp_cube(const Eigen::Vector3d& p) { return p.cwiseAbs().maxCoeff() - kHalf; }
+
+// Distance from a point on the cube's surface to its nearest edge, and to its nearest corner.
+double to_edge(const Eigen::Vector3d& p) {
+  Eigen::Vector3d gaps = (Eigen::Vector3d::Constant(kHalf) - p.cwiseAbs()).cwiseMax(0.0);
+  std::sort(gaps.data(), gaps.data() + 3);
+  return gaps[1];  // gaps[0] is the face the point lies on
+}
+double to_corner(const Eigen::Vector3d& p) { return (p.cwiseAbs() - Eigen::Vector3d::Constant(kHalf)).norm(); }
+
+// A 0.5 mm cube whose edges and corners are rounded with radius kRound, as thresholding a blurred image
+// rounds them: each vertex moved onto the rounded box, along the direction from its clamped core point.
+Mesh rounded_cube() {
+  Mesh cube = make_cube(40, kHalf);
+  const double core = kHalf - kRound;
+  for (Index i = 0; i < cube.num_vertices(); ++i) {
+    const Eigen::Vector3d p = cube.positions.col(i);
+    const Eigen::Vector3d c = p.cwiseMax(-core).cwiseMin(core);
+    cube.positions.col(i) = c + kRound * (p - c).normalized();
+  }
+  return cube;
+}
+
+// Edge labels within 1.5 mm of an edge and 3 mm from every corner (where two planes meet, not three).
+std::vector<VertexLabel> edge_labels(const Mesh& mesh) {
+  std::vector<VertexLabel> labels(static_cast<std::size_t>(mesh.num_vertices()), VertexLabel::Smooth);
+  for (Index i = 0; i < mesh.num_vertices(); ++i) {
+    const Eigen::Vector3d p = mesh.positions.col(i);
+    if (to_edge(p) < 1.5 && to_corner(p) > 3.0) labels[static_cast<std::size_t>(i)] = VertexLabel::Edge;
+  }
+  return labels;
+}
+
+// The largest distance to the sharp cube of the vertices within 0.6 mm of an edge and 4 mm from the
+// corners (new vertices included).
+double worst_near_edges(const Mesh& mesh) {
+  double worst = 0.0;
+  for (Index i = 0; i < mesh.num_vertices(); ++i) {
+    const Eigen::Vector3d p = mesh.positions.col(i);
+    if (to_edge(p) < 0.6 && to_corner(p) > 4.0) worst = std::max(worst, std::abs(to_sharp_cube(p)));
+  }
+  return worst;
+}
+
+TEST(CreaseRestoration, RoundedCubeEdgesComeBackSharp) {
+  const Mesh rounded = rounded_cube();
+  ASSERT_GT(worst_near_edges(rounded), 0.2);  // the rounding: 0.8 (sqrt(2) - 1) = 0.33 mm at an edge
+  const RestoredCreases r = restore_creases(rounded, edge_labels(rounded));
+  EXPECT_GT(r.mesh.num_vertices(), rounded.num_vertices());  // the spokes were bisected
+  EXPECT_EQ(r.original_vertices, rounded.num_vertices());
+  EXPECT_GT(r.moved, 0u);
+  EXPECT_LT(worst_near_edges(r.mesh), 0.05);  // within a seventh of the rounding
+}
+
+TEST(CreaseRestoration, TheInputsVerticesComeFirstAndFacesOnlyGrow) {
+  const Mesh rounded = rounded_cube();
+  CreaseRestorationOptions no_moves;
+  no_moves.max_move = 1e-12;  // subdivision alone
+  const RestoredCreases r = restore_creases(rounded, edge_labels(rounded), no_moves);
+  ASSERT_GT(r.mesh.num_vertices(), rounded.num_vertices());
+  EXPECT_EQ(r.moved, 0u);
+  EXPECT_TRUE(r.mesh.positions.leftCols(rounded.num_vertices()) == rounded.positions);
+}
+
+TEST(CreaseRestoration, FlatFacesAwayFromTheEdgesDoNotMove) {
+  const Mesh rounded = rounded_cube();
+  const RestoredCreases r = restore_creases(rounded, edge_labels(rounded));
+  for (Index i = 0; i < rounded.num_vertices(); ++i) {
+    if (to_edge(rounded.positions.col(i)) > 2.6) {
+      EXPECT_TRUE(r.mesh.positions.col(i) == rounded.positions.col(i)) << "vertex " << i;
+    }
+  }
+}
+
+TEST(CreaseRestoration, ContourVerticesStayOnTheirSlicePlanes) {
+  // The rounded cube's side walls as a contour stack: every vertex with |z| < 10 lies on a 0.5 mm grid
+  // plane and gets that plane as its slice; the caps' vertices have no ids. The vertical edges are
+  // restored by moves within the slice planes.
+  Mesh rounded = rounded_cube();
+  const Index n = rounded.num_vertices();
+  rounded.slice_ids.assign(static_cast<std::size_t>(n), -1);
+  rounded.contour_ids.assign(static_cast<std::size_t>(n), -1);
+  for (Index i = 0; i < n; ++i) {
+    const double z = rounded.positions(2, i);
+    if (std::abs(z) < kHalf - kRound) {
+      rounded.slice_ids[static_cast<std::size_t>(i)] = static_cast<std::int32_t>(std::lround((z + kHalf) / 0.5));
+      rounded.contour_ids[static_cast<std::size_t>(i)] = 0;
+    }
+  }
+  const RestoredCreases r = restore_creases(rounded, edge_labels(rounded));
+  double worst_vertical = 0.0;
+  for (Index i = 0; i < r.mesh.num_vertices(); ++i) {
+    if (r.mesh.slice_ids[static_cast<std::size_t>(i)] < 0) continue;
+    const Eigen::Vector3d before = i < n ? Eigen::Vector3d(rounded.positions.col(i)) : r.mesh.positions.col(i);
+    if (i < n) {
+      EXPECT_EQ(r.mesh.positions(2, i), before.z()) << "vertex " << i << " left its slice plane";
+    }
+    const Eigen::Vector3d p = r.mesh.positions.col(i);
+    const bool vertical_edge = std::abs(p.z()) < kHalf - 4.0 && to_edge(p) < 0.6;
+    if (vertical_edge) worst_vertical = std::max(worst_vertical, std::abs(to_sharp_cube(p)));
+  }
+  EXPECT_LT(worst_vertical, 0.05);
+}
+
+TEST(CreaseRestoration, NothingChangesWithoutEdgeLabels) {
+  const Mesh rounded = rounded_cube();
+  const std::vector<VertexLabel> smooth(static_cast<std::size_t>(rounded.num_vertices()), VertexLabel::Smooth);
+  const RestoredCreases r = restore_creases(rounded, smooth);
+  EXPECT_EQ(r.moved, 0u);
+  EXPECT_TRUE(r.mesh.positions == rounded.positions);
+  EXPECT_EQ(r.mesh.triangles, rounded.triangles);
+}
+
+TEST(CreaseRestoration, ASmoothSphereLabelledEverywhereDoesNotMove) {
+  // A sphere has no two planes anywhere: every ball fails the angle or the residual test.
+  const Mesh sphere = make_icosphere(4, 10.0);
+  const std::vector<VertexLabel> all(static_cast<std::size_t>(sphere.num_vertices()), VertexLabel::Edge);
+  CreaseRestorationOptions no_subdivision;
+  no_subdivision.levels = 0;
+  const RestoredCreases r = restore_creases(sphere, all, no_subdivision);
+  EXPECT_EQ(r.moved, 0u);
+}
+
+TEST(CreaseRestoration, SameResultOnOneThreadAndSeveral) {
+  const Mesh rounded = rounded_cube();
+  const std::vector<VertexLabel> labels = edge_labels(rounded);
+  RestoredCreases one, three;
+  {
+    const detail::ScopedWorkerCount threads(1);
+    one = restore_creases(rounded, labels);
+  }
+  {
+    const detail::ScopedWorkerCount threads(3);
+    three = restore_creases(rounded, labels);
+  }
+  EXPECT_TRUE(one.mesh.positions == three.mesh.positions);
+  EXPECT_EQ(one.moved, three.moved);
+}
+
+TEST(CreaseRestoration, BadInputIsRefused) {
+  const Mesh cube = make_cube(2, 1.0);
+  const std::vector<VertexLabel> labels(static_cast<std::size_t>(cube.num_vertices()), VertexLabel::Edge);
+  EXPECT_THROW((void)restore_creases(cube, std::vector<VertexLabel>(3, VertexLabel::Edge)), InvalidInputError);
+  CreaseRestorationOptions levels;
+  levels.levels = 4;
+  EXPECT_THROW((void)restore_creases(cube, labels, levels), InvalidInputError);
+  CreaseRestorationOptions radius;
+  radius.radius = 0.0;
+  EXPECT_THROW((void)restore_creases(cube, labels, radius), InvalidInputError);
+  CreaseRestorationOptions angle;
+  angle.min_angle_degrees = 180.0;
+  EXPECT_THROW((void)restore_creases(cube, labels, angle), InvalidInputError);
+  CreaseRestorationOptions mode;
+  mode.mode_angle_degrees = 50.0;
+  EXPECT_THROW((void)restore_creases(cube, labels, mode), InvalidInputError);
+}
+
+}  // namespace
+}  // namespace contourmesh
