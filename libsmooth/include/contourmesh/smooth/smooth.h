@@ -46,7 +46,8 @@ struct SmoothOptions {
 struct SmoothResult {
   SmoothingMethod method = SmoothingMethod::None;
   /// The smoothed mesh: the input's connectivity and ids, or for the paper's method with
-  /// OutputResolution::Adaptive its smoothed adaptive mesh.
+  /// OutputResolution::Adaptive its smoothed adaptive mesh, or for cross-slice smoothing with
+  /// CreaseRestoration::Subdivide its restored, subdivided mesh (in both, the input's vertices first).
   Mesh mesh;
   /// One label per input vertex from methods that label features (FeaturePreserving, CrossSlice);
   /// empty otherwise.
