@@ -38,6 +38,7 @@ void check(const Mesh& mesh, const std::vector<VertexLabel>& labels, const Creas
   positive(o.max_move, "max move");
   if (!(o.mode_angle_degrees > 0.0 && o.mode_angle_degrees <= 45.0)) fail("mode angle must be in (0, 45] degrees");
   if (!(o.min_angle_degrees > 0.0 && o.min_angle_degrees < 180.0)) fail("min angle must be in (0, 180) degrees");
+  if (!(o.max_third_share >= 0.0 && o.max_third_share <= 1.0)) fail("max third share must be in [0, 1]");
 }
 
 // Per worker: the ball's vertices and a stamp per mesh vertex, so that membership is one look-up.
@@ -144,6 +145,14 @@ std::optional<Planes> fit_planes(const Mesh& mesh, const Eigen::Matrix3Xd& area_
   }
   if (p.m[0].dot(p.m[1]) > std::cos(options.min_angle_degrees * std::numbers::pi / 180.0)) return std::nullopt;
   const Eigen::Vector3d along = p.m[0].cross(p.m[1]).normalized();
+  // A third plane (a corner): normals far out of the plane of the two sides' normals.
+  double out_of_plane = 0.0, total = 0.0;
+  for (Index j : ball) {
+    const double len = area_normal.col(j).norm();
+    total += len;
+    if (std::abs(area_normal.col(j).dot(along)) > 0.5 * len) out_of_plane += len;
+  }
+  if (out_of_plane > options.max_third_share * total) return std::nullopt;
   double sum[2] = {0.0, 0.0}, sum2[2] = {0.0, 0.0}, weight[2] = {0.0, 0.0};
   Eigen::Vector3d centroid[2] = {Eigen::Vector3d::Zero(), Eigen::Vector3d::Zero()};
   double count[2] = {0.0, 0.0};

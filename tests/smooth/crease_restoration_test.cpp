@@ -72,6 +72,25 @@ TEST(CreaseRestoration, RoundedCubeEdgesComeBackSharp) {
   EXPECT_LT(worst_near_edges(r.mesh), 0.05);  // within a seventh of the rounding
 }
 
+TEST(CreaseRestoration, CornersWhereThreePlanesMeetDoNotMove) {
+  // Every vertex within 1.5 mm of an edge labelled, corners included: a ball there holds three planes,
+  // and a two-plane fit would throw its vertices onto one of them. None within 1.5 mm of a corner moves.
+  const Mesh rounded = rounded_cube();
+  std::vector<VertexLabel> labels(static_cast<std::size_t>(rounded.num_vertices()), VertexLabel::Smooth);
+  for (Index i = 0; i < rounded.num_vertices(); ++i) {
+    if (to_edge(rounded.positions.col(i)) < 1.5) labels[static_cast<std::size_t>(i)] = VertexLabel::Edge;
+  }
+  CreaseRestorationOptions no_subdivision;
+  no_subdivision.levels = 0;
+  const RestoredCreases r = restore_creases(rounded, labels, no_subdivision);
+  ASSERT_GT(r.moved, 0u);
+  for (Index i = 0; i < rounded.num_vertices(); ++i) {
+    if (to_corner(rounded.positions.col(i)) < 1.5) {
+      EXPECT_TRUE(r.mesh.positions.col(i) == rounded.positions.col(i)) << "vertex " << i;
+    }
+  }
+}
+
 TEST(CreaseRestoration, TheInputsVerticesComeFirstAndFacesOnlyGrow) {
   const Mesh rounded = rounded_cube();
   CreaseRestorationOptions no_moves;
@@ -173,6 +192,9 @@ TEST(CreaseRestoration, BadInputIsRefused) {
   CreaseRestorationOptions mode;
   mode.mode_angle_degrees = 50.0;
   EXPECT_THROW((void)restore_creases(cube, labels, mode), InvalidInputError);
+  CreaseRestorationOptions third;
+  third.max_third_share = 1.5;
+  EXPECT_THROW((void)restore_creases(cube, labels, third), InvalidInputError);
 }
 
 }  // namespace

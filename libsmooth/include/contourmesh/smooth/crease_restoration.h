@@ -15,7 +15,8 @@
 // 3. Each side's plane passes through the area-weighted mean offset of its vertices within
 //    `mode_angle_degrees` of its normal and within `slab` of the vertex along the crease (a longer
 //    stretch of a curved wall would put the plane inside it by the arc's sagitta).
-// 4. A vertex moves only where the planes meet at `min_angle_degrees` or more, each fits its vertices to
+// 4. A vertex moves only where the planes meet at `min_angle_degrees` or more, no third plane holds more
+//    than `max_third_share` of the ball (a corner), each fits its vertices to
 //    `max_residual` RMS, and the vertex lies within `max_line_distance` of their line. With signed
 //    distances d0, d1 to the planes, a convex crease's surface is max(d0, d1) = 0 and a concave one's
 //    min(d0, d1) = 0: a vertex inside both planes of a convex crease moves onto the nearer one, one
@@ -48,6 +49,9 @@ struct CreaseRestorationOptions {
   double max_residual = 0.1;         ///< mm, the largest RMS distance of a side's vertices to its plane, > 0
   double max_line_distance = 1.0;    ///< mm, the farthest a moving vertex lies from the planes' line, > 0
   double max_move = 0.6;             ///< mm, the longest move, > 0
+  /// A ball where normals more than 30 degrees out of the plane of the two sides' normals hold more
+  /// than this share of the area is a corner (three planes): no move there, in [0, 1].
+  double max_third_share = 0.05;
 };
 
 struct RestoredCreases {
