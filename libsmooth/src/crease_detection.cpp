@@ -2,6 +2,7 @@
 #include "contourmesh/smooth/crease_detection.h"
 
 #include "detail/parallel.h"
+#include "detail/vertex_ball.h"
 #include "contourmesh/smooth/contour_structure.h"
 #include "contourmesh/smooth/errors.h"
 
@@ -12,7 +13,6 @@
 #include <cstdint>
 #include <limits>
 #include <memory>
-#include <mutex>
 #include <numbers>
 #include <optional>
 #include <queue>
@@ -99,74 +99,12 @@ struct BallTensor {
   Eigen::Vector3d mean_normal = Eigen::Vector3d::Zero();  // unit, area-weighted (zero if undefined)
 };
 
-// Scratch space of ball_tensor, one per worker: the gathered vertices, and a stamp per mesh vertex
-// (the ball's number when it was gathered), so that membership is one look-up instead of a search.
-struct BallScratch {
-  std::vector<Index> ball;
-  std::vector<std::uint32_t> stamp;
-  std::uint32_t current = 0;
+using detail::BallScratch;
+using detail::BallScratchPool;
 
-  explicit BallScratch(Index vertices) : stamp(static_cast<std::size_t>(vertices), 0) {}
-
-  // Starts a new ball: no vertex is a member.
-  void clear() {
-    ball.clear();
-    if (++current == 0) {  // after 2^32 balls: forget every stamp
-      std::fill(stamp.begin(), stamp.end(), 0u);
-      current = 1;
-    }
-  }
-  // Adds j unless it is a member; whether it was added.
-  bool add(Index j) {
-    std::uint32_t& s = stamp[static_cast<std::size_t>(j)];
-    if (s == current) return false;
-    s = current;
-    ball.push_back(j);
-    return true;
-  }
-};
-
-// Hands each chunk of a parallel loop a BallScratch no other chunk is using; builds one only when all
-// are taken (so as many as run at once, each of the mesh's size).
-class ScratchPool {
- public:
-  explicit ScratchPool(Index vertices) : vertices_(vertices) {}
-  std::unique_ptr<BallScratch> take() {
-    {
-      const std::lock_guard<std::mutex> lock(mutex_);
-      if (!free_.empty()) {
-        std::unique_ptr<BallScratch> s = std::move(free_.back());
-        free_.pop_back();
-        return s;
-      }
-    }
-    return std::make_unique<BallScratch>(vertices_);
-  }
-  void give_back(std::unique_ptr<BallScratch> s) {
-    const std::lock_guard<std::mutex> lock(mutex_);
-    free_.push_back(std::move(s));
-  }
-
- private:
-  Index vertices_;
-  std::mutex mutex_;
-  std::vector<std::unique_ptr<BallScratch>> free_;
-};
-
-// Every vertex within `radius` of vertex i and connected to it through such vertices, gathered
-// breadth-first from i (at most about kMaxBall of them) into scratch.ball.
+// The ball of vertex i in crease detection: at most about kMaxBall vertices (detail::gather_ball).
 void gather_ball(const Mesh& mesh, const MeshAdjacency& adjacency, Index i, double radius, BallScratch& scratch) {
-  const Eigen::Vector3d centre = mesh.positions.col(i);
-  const double r2 = radius * radius;
-  scratch.clear();
-  scratch.add(i);
-  const std::vector<Index>& ball = scratch.ball;
-  for (std::size_t b = 0; b < ball.size() && ball.size() < kMaxBall; ++b) {
-    for (Index j : adjacency.ring(ball[b])) {
-      if ((mesh.positions.col(j) - centre).squaredNorm() > r2) continue;
-      scratch.add(j);
-    }
-  }
+  detail::gather_ball(mesh, adjacency, i, radius, kMaxBall, scratch);
 }
 
 // The normal tensor of the ball of `radius` around vertex i (gather_ball).
@@ -198,7 +136,7 @@ BallTensor ball_tensor(const Mesh& mesh, const MeshAdjacency& adjacency, const s
 // do not depend on the grouping, so they are found in fixed chunks on every core.
 template <typename AlongCrease>
 void link_partners(const Mesh& mesh, const MeshAdjacency& adjacency, const std::vector<std::uint8_t>& core,
-                   double radius, const AlongCrease& along_crease, ScratchPool& pool, std::vector<Index>& offsets,
+                   double radius, const AlongCrease& along_crease, BallScratchPool& pool, std::vector<Index>& offsets,
                    std::vector<Index>& partners) {
   const auto n = static_cast<std::size_t>(mesh.num_vertices());
   constexpr std::size_t kChunk = 4096;
@@ -273,7 +211,7 @@ CreaseDetection detect_creases(const Mesh& mesh, const MeshAdjacency& adjacency,
   Eigen::VectorXd threshold = Eigen::VectorXd::Constant(n, options.confirm_threshold + lift);
   result.confirm_strength = Eigen::VectorXd::Zero(n);
   result.confirm_corner_strength = Eigen::VectorXd::Zero(n);
-  ScratchPool scratch_pool(n);
+  BallScratchPool scratch_pool(n);
   detail::parallel_chunks(static_cast<std::size_t>(n), 4096, [&](std::size_t, std::size_t begin, std::size_t end) {
     std::unique_ptr<BallScratch> scratch;  // taken at the chunk's first candidate
     for (std::size_t k = begin; k < end; ++k) {

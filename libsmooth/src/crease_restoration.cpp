@@ -2,6 +2,7 @@
 #include "contourmesh/smooth/crease_restoration.h"
 
 #include "detail/parallel.h"
+#include "detail/vertex_ball.h"
 #include "contourmesh/smooth/adaptive_subdivision.h"
 #include "contourmesh/smooth/adjacency.h"
 #include "contourmesh/smooth/contour_structure.h"
@@ -14,7 +15,6 @@
 #include <cstdint>
 #include <limits>
 #include <memory>
-#include <mutex>
 #include <numbers>
 #include <optional>
 #include <string>
@@ -41,60 +41,8 @@ void check(const Mesh& mesh, const std::vector<VertexLabel>& labels, const Creas
   if (!(o.max_third_share >= 0.0 && o.max_third_share <= 1.0)) fail("max third share must be in [0, 1]");
 }
 
-// Per worker: the ball's vertices and a stamp per mesh vertex, so that membership is one look-up.
-struct Ball {
-  std::vector<Index> members;
-  std::vector<std::uint32_t> stamp;
-  std::uint32_t current = 0;
-};
-
-// Hands each chunk a Ball no other chunk is using; builds one (of the mesh's size) only when all are taken.
-class BallPool {
- public:
-  explicit BallPool(Index vertices) : vertices_(vertices) {}
-  std::unique_ptr<Ball> take() {
-    {
-      const std::lock_guard<std::mutex> lock(mutex_);
-      if (!free_.empty()) {
-        std::unique_ptr<Ball> b = std::move(free_.back());
-        free_.pop_back();
-        return b;
-      }
-    }
-    auto b = std::make_unique<Ball>();
-    b->stamp.assign(static_cast<std::size_t>(vertices_), 0u);
-    return b;
-  }
-  void give_back(std::unique_ptr<Ball> b) {
-    const std::lock_guard<std::mutex> lock(mutex_);
-    free_.push_back(std::move(b));
-  }
-
- private:
-  Index vertices_;
-  std::mutex mutex_;
-  std::vector<std::unique_ptr<Ball>> free_;
-};
-
-void gather(const Mesh& mesh, const MeshAdjacency& adjacency, Index i, double radius, Ball& ball) {
-  if (++ball.current == 0) {
-    std::fill(ball.stamp.begin(), ball.stamp.end(), 0u);
-    ball.current = 1;
-  }
-  const Eigen::Vector3d centre = mesh.positions.col(i);
-  const double r2 = radius * radius;
-  ball.members.assign(1, i);
-  ball.stamp[static_cast<std::size_t>(i)] = ball.current;
-  constexpr std::size_t kMaxBall = 1024;  // a safeguard against degenerate, very dense meshes
-  for (std::size_t b = 0; b < ball.members.size() && ball.members.size() < kMaxBall; ++b) {
-    for (Index j : adjacency.ring(ball.members[b])) {
-      std::uint32_t& s = ball.stamp[static_cast<std::size_t>(j)];
-      if (s == ball.current || (mesh.positions.col(j) - centre).squaredNorm() > r2) continue;
-      s = ball.current;
-      ball.members.push_back(j);
-    }
-  }
-}
+// The most vertices a ball gathers (detail::gather_ball's safeguard).
+constexpr std::size_t kMaxRestorationBall = 1024;
 
 // The two planes of a ball, as unit normals m and offsets o (m . x = o on the plane).
 // `convex`: each side's vertices lie behind the other side's plane (the solid is behind both planes);
@@ -262,16 +210,16 @@ RestoredCreases restore_creases(const Mesh& mesh, const std::vector<VertexLabel>
   }
   Eigen::Matrix3Xd moves = Eigen::Matrix3Xd::Zero(3, n);
   std::vector<std::uint8_t> moved(static_cast<std::size_t>(n), 0);
-  BallPool pool(n);
+  detail::BallScratchPool pool(n);
   detail::parallel_chunks(static_cast<std::size_t>(n), 4096, [&](std::size_t, std::size_t begin, std::size_t end) {
-    std::unique_ptr<Ball> ball;  // taken at the chunk's first vertex to examine
+    std::unique_ptr<detail::BallScratch> ball;  // taken at the chunk's first vertex to examine
     for (std::size_t k = begin; k < end; ++k) {
       const auto i = static_cast<Index>(k);
       if (i < result.original_vertices && !selected[k]) continue;
       if (!ball) ball = pool.take();
-      gather(m, adjacency, i, options.radius, *ball);
+      detail::gather_ball(m, adjacency, i, options.radius, kMaxRestorationBall, *ball);
       const Eigen::Vector3d x = m.positions.col(i);
-      const std::optional<Planes> planes = fit_planes(m, area_normal, ball->members, x, options);
+      const std::optional<Planes> planes = fit_planes(m, area_normal, ball->ball, x, options);
       if (!planes) continue;
       const bool on_contour = axis && m.slice_ids[k] >= 0;
       const std::optional<Eigen::Vector3d> move = move_onto(*planes, x, on_contour ? &*axis : nullptr, options);
