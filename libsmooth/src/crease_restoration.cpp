@@ -54,11 +54,12 @@ struct Planes {
 };
 
 // Steps 2 and 3 of the header; nothing where the ball is not two planes as the options ask.
-std::optional<Planes> fit_planes(const Mesh& mesh, const Eigen::Matrix3Xd& area_normal, const std::vector<Index>& ball,
-                                 const Eigen::Vector3d& centre, const CreaseRestorationOptions& options) {
+std::optional<Planes> fit_planes(const Mesh& mesh, const Eigen::Matrix3Xd& area_normal, const std::vector<double>& area,
+                                 const std::vector<Index>& ball, const Eigen::Vector3d& centre,
+                                 const CreaseRestorationOptions& options) {
   Eigen::Matrix3d tensor = Eigen::Matrix3d::Zero();
   for (Index j : ball) {
-    const double len = area_normal.col(j).norm();
+    const double len = area[static_cast<std::size_t>(j)];
     if (len > 0.0) tensor += area_normal.col(j) * area_normal.col(j).transpose() / len;
   }
   Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d> eigen;
@@ -67,7 +68,7 @@ std::optional<Planes> fit_planes(const Mesh& mesh, const Eigen::Matrix3Xd& area_
   Planes p;
   double lo = std::numeric_limits<double>::infinity(), hi = -lo;
   for (Index j : ball) {
-    const double len = area_normal.col(j).norm();
+    const double len = area[static_cast<std::size_t>(j)];
     if (!(len > 0.0)) continue;
     const double s = area_normal.col(j).dot(split) / len;
     if (s > hi) hi = s, p.m[0] = area_normal.col(j) / len;
@@ -77,7 +78,7 @@ std::optional<Planes> fit_planes(const Mesh& mesh, const Eigen::Matrix3Xd& area_
   const auto side = [&](Index j) { return area_normal.col(j).dot(p.m[0]) >= area_normal.col(j).dot(p.m[1]) ? 0 : 1; };
   const double mode_cos = std::cos(options.mode_angle_degrees * std::numbers::pi / 180.0);
   const auto near_mode = [&](Index j, int k) {
-    const double len = area_normal.col(j).norm();
+    const double len = area[static_cast<std::size_t>(j)];
     return len > 0.0 && area_normal.col(j).dot(p.m[k]) >= mode_cos * len;
   };
   for (int round = 0; round < 9; ++round) {  // five rounds of 2-means, then four of the mode
@@ -96,7 +97,7 @@ std::optional<Planes> fit_planes(const Mesh& mesh, const Eigen::Matrix3Xd& area_
   // A third plane (a corner): normals far out of the plane of the two sides' normals.
   double out_of_plane = 0.0, total = 0.0;
   for (Index j : ball) {
-    const double len = area_normal.col(j).norm();
+    const double len = area[static_cast<std::size_t>(j)];
     total += len;
     if (std::abs(area_normal.col(j).dot(along)) > 0.5 * len) out_of_plane += len;
   }
@@ -109,7 +110,7 @@ std::optional<Planes> fit_planes(const Mesh& mesh, const Eigen::Matrix3Xd& area_
     centroid[k] += mesh.positions.col(j);
     count[k] += 1.0;
     if (!near_mode(j, k) || std::abs((mesh.positions.col(j) - centre).dot(along)) > options.slab) continue;
-    const double w = area_normal.col(j).norm(), d = p.m[k].dot(mesh.positions.col(j));
+    const double w = area[static_cast<std::size_t>(j)], d = p.m[k].dot(mesh.positions.col(j));
     sum[k] += w * d;
     sum2[k] += w * d * d;
     weight[k] += w;
@@ -200,6 +201,8 @@ RestoredCreases restore_creases(const Mesh& mesh, const std::vector<VertexLabel>
         (m.positions.col(t[1]) - m.positions.col(t[0])).cross(m.positions.col(t[2]) - m.positions.col(t[0]));
     for (Index v : t) area_normal.col(v) += c;
   }
+  std::vector<double> area(static_cast<std::size_t>(n));  // |area_normal|, read many times per ball
+  for (Index v = 0; v < n; ++v) area[static_cast<std::size_t>(v)] = area_normal.col(v).norm();
   std::optional<Eigen::Vector3d> axis;
   if (m.has_contour_ids()) {
     try {
@@ -219,7 +222,7 @@ RestoredCreases restore_creases(const Mesh& mesh, const std::vector<VertexLabel>
       if (!ball) ball = pool.take();
       detail::gather_ball(m, adjacency, i, options.radius, kMaxRestorationBall, *ball);
       const Eigen::Vector3d x = m.positions.col(i);
-      const std::optional<Planes> planes = fit_planes(m, area_normal, ball->ball, x, options);
+      const std::optional<Planes> planes = fit_planes(m, area_normal, area, ball->ball, x, options);
       if (!planes) continue;
       const bool on_contour = axis && m.slice_ids[k] >= 0;
       const std::optional<Eigen::Vector3d> move = move_onto(*planes, x, on_contour ? &*axis : nullptr, options);
