@@ -170,6 +170,59 @@ std::optional<Eigen::Vector3d> move_onto(const Planes& p, const Eigen::Vector3d&
   return move;
 }
 
+// Per vertex, the sum of its faces' area vectors (twice their area times their unit normal) and its
+// length, read many times per ball.
+struct AreaNormals {
+  Eigen::Matrix3Xd sum;
+  std::vector<double> length;
+};
+
+AreaNormals area_normals(const Mesh& m) {
+  const Index n = m.num_vertices();
+  AreaNormals a{Eigen::Matrix3Xd::Zero(3, n), std::vector<double>(static_cast<std::size_t>(n))};
+  for (const Triangle& t : m.triangles) {
+    const Eigen::Vector3d c =
+        (m.positions.col(t[1]) - m.positions.col(t[0])).cross(m.positions.col(t[2]) - m.positions.col(t[0]));
+    for (Index v : t) a.sum.col(v) += c;
+  }
+  for (Index v = 0; v < n; ++v) a.length[static_cast<std::size_t>(v)] = a.sum.col(v).norm();
+  return a;
+}
+
+// The slice axis along which contour vertices must stay in their planes; none without ids, or where
+// the ids do not span planes (every vertex then moves freely).
+std::optional<Eigen::Vector3d> slice_axis_of(const Mesh& m) {
+  if (!m.has_contour_ids()) return std::nullopt;
+  try {
+    return estimate_slice_axis(m);
+  } catch (const InvalidInputError&) {
+    return std::nullopt;
+  }
+}
+
+// Step 2 for every vertex with `examine` set: its ball's two planes, where it fits them (in parallel;
+// each vertex writes only its own entries).
+std::vector<std::optional<Planes>> fit_balls(const Mesh& m, const std::vector<std::uint8_t>& examine,
+                                             const CreaseRestorationOptions& options) {
+  const Index n = m.num_vertices();
+  const MeshAdjacency adjacency = build_adjacency(m);
+  const AreaNormals normals = area_normals(m);
+  std::vector<std::optional<Planes>> planes(static_cast<std::size_t>(n));
+  detail::BallScratchPool pool(n);
+  detail::parallel_chunks(static_cast<std::size_t>(n), 4096, [&](std::size_t, std::size_t begin, std::size_t end) {
+    std::unique_ptr<detail::BallScratch> ball;  // taken at the chunk's first vertex to examine
+    for (std::size_t k = begin; k < end; ++k) {
+      if (!examine[k]) continue;
+      const auto i = static_cast<Index>(k);
+      if (!ball) ball = pool.take();
+      detail::gather_ball(m, adjacency, i, options.radius, kMaxRestorationBall, *ball);
+      planes[k] = fit_planes(m, normals.sum, normals.length, ball->ball, m.positions.col(i), options);
+    }
+    if (ball) pool.give_back(std::move(ball));
+  });
+  return planes;
+}
+
 }  // namespace
 
 RestoredCreases restore_creases(const Mesh& mesh, const std::vector<VertexLabel>& labels,
@@ -177,64 +230,47 @@ RestoredCreases restore_creases(const Mesh& mesh, const std::vector<VertexLabel>
   check(mesh, labels, options);
   RestoredCreases result;
   result.original_vertices = mesh.num_vertices();
+  result.mesh = mesh;
+  // Step 2 on the input's edge vertices first: only those whose ball already fits two planes are refined
+  // (step 1) and examined again; elsewhere (gentle or noisy folds, corners) the mesh stays as it is.
   std::vector<std::uint8_t> selected(labels.size(), 0);
-  bool any = false;
-  for (std::size_t i = 0; i < labels.size(); ++i) {
-    selected[i] = labels[i] == VertexLabel::Edge ? 1 : 0;
-    any = any || selected[i] != 0;
-  }
-  if (!any || options.levels == 0) {
-    result.mesh = mesh;
-  } else {
+  for (std::size_t i = 0; i < labels.size(); ++i) selected[i] = labels[i] == VertexLabel::Edge ? 1 : 0;
+  if (std::find(selected.begin(), selected.end(), 1) == selected.end()) return result;
+  const std::vector<std::optional<Planes>> planes = fit_balls(mesh, selected, options);
+  std::vector<std::uint8_t> fitted(selected.size(), 0);
+  for (std::size_t i = 0; i < fitted.size(); ++i) fitted[i] = planes[i] ? 1 : 0;
+  if (std::find(fitted.begin(), fitted.end(), 1) == fitted.end()) return result;
+  if (options.levels > 0) {
     SubdivisionOptions subdivision;
     subdivision.max_levels = options.levels;
     subdivision.gamma = 0.0;  // every level bisects every spoke of a selected vertex
-    result.mesh = subdivide_adaptively(mesh, selected, subdivision).mesh;
+    result.mesh = subdivide_adaptively(mesh, fitted, subdivision).mesh;
   }
-  if (!any) return result;
-  const Mesh& m = result.mesh;
+  Mesh& m = result.mesh;
   const Index n = m.num_vertices();
-  const MeshAdjacency adjacency = build_adjacency(m);
-  Eigen::Matrix3Xd area_normal = Eigen::Matrix3Xd::Zero(3, n);  // sum of the faces' area vectors, x2
-  for (const Triangle& t : m.triangles) {
-    const Eigen::Vector3d c =
-        (m.positions.col(t[1]) - m.positions.col(t[0])).cross(m.positions.col(t[2]) - m.positions.col(t[0]));
-    for (Index v : t) area_normal.col(v) += c;
-  }
-  std::vector<double> area(static_cast<std::size_t>(n));  // |area_normal|, read many times per ball
-  for (Index v = 0; v < n; ++v) area[static_cast<std::size_t>(v)] = area_normal.col(v).norm();
-  std::optional<Eigen::Vector3d> axis;
-  if (m.has_contour_ids()) {
-    try {
-      axis = estimate_slice_axis(m);
-    } catch (const InvalidInputError&) {
-      axis.reset();  // ids that do not span planes: every vertex moves freely
-    }
-  }
+  const std::optional<Eigen::Vector3d> axis = slice_axis_of(m);
+  // Steps 2-4 again on the refined mesh, for the fitted input vertices and the new ones; every move from
+  // the positions before any (Jacobi).
+  std::vector<std::uint8_t> examine(static_cast<std::size_t>(n), 1);
+  std::copy(fitted.begin(), fitted.end(), examine.begin());
+  const std::vector<std::optional<Planes>> refined = fit_balls(m, examine, options);
   Eigen::Matrix3Xd moves = Eigen::Matrix3Xd::Zero(3, n);
   std::vector<std::uint8_t> moved(static_cast<std::size_t>(n), 0);
-  detail::BallScratchPool pool(n);
-  detail::parallel_chunks(static_cast<std::size_t>(n), 4096, [&](std::size_t, std::size_t begin, std::size_t end) {
-    std::unique_ptr<detail::BallScratch> ball;  // taken at the chunk's first vertex to examine
+  detail::parallel_chunks(static_cast<std::size_t>(n), 8192, [&](std::size_t, std::size_t begin, std::size_t end) {
     for (std::size_t k = begin; k < end; ++k) {
-      const auto i = static_cast<Index>(k);
-      if (i < result.original_vertices && !selected[k]) continue;
-      if (!ball) ball = pool.take();
-      detail::gather_ball(m, adjacency, i, options.radius, kMaxRestorationBall, *ball);
-      const Eigen::Vector3d x = m.positions.col(i);
-      const std::optional<Planes> planes = fit_planes(m, area_normal, area, ball->ball, x, options);
-      if (!planes) continue;
+      if (!refined[k]) continue;
       const bool on_contour = axis && m.slice_ids[k] >= 0;
-      const std::optional<Eigen::Vector3d> move = move_onto(*planes, x, on_contour ? &*axis : nullptr, options);
+      const auto i = static_cast<Index>(k);
+      const std::optional<Eigen::Vector3d> move =
+          move_onto(*refined[k], m.positions.col(i), on_contour ? &*axis : nullptr, options);
       if (!move) continue;
       moves.col(i) = *move;
       moved[k] = 1;
     }
-    if (ball) pool.give_back(std::move(ball));
   });
   for (Index i = 0; i < n; ++i) {
     if (!moved[static_cast<std::size_t>(i)]) continue;
-    result.mesh.positions.col(i) += moves.col(i);
+    m.positions.col(i) += moves.col(i);
     ++result.moved;
   }
   return result;

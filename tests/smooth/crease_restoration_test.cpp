@@ -160,6 +160,40 @@ TEST(CreaseRestoration, ASmoothSphereLabelledEverywhereDoesNotMove) {
   EXPECT_EQ(r.moved, 0u);
 }
 
+TEST(CreaseRestoration, LabelsWithoutTwoPlanesAreNotRefined) {
+  // Only edge vertices whose ball fits two planes get their spokes bisected: a sphere labelled
+  // everywhere keeps its mesh, vertex for vertex and face for face.
+  const Mesh sphere = make_icosphere(4, 10.0);
+  const std::vector<VertexLabel> all(static_cast<std::size_t>(sphere.num_vertices()), VertexLabel::Edge);
+  const RestoredCreases r = restore_creases(sphere, all);
+  EXPECT_EQ(r.mesh.num_vertices(), sphere.num_vertices());
+  EXPECT_EQ(r.mesh.triangles, sphere.triangles);
+  EXPECT_TRUE(r.mesh.positions == sphere.positions);
+}
+
+TEST(CreaseRestoration, FalseLabelsOnAFlatFaceAddNoVertices) {
+  // The cube's edges labelled, and a patch in the middle of a face too: the patch's balls are one
+  // plane, so the refined mesh has as many vertices as with the edges' labels alone.
+  // The patch's vertices are shifted within the face, so that their umbrellas do not vanish (an
+  // umbrella of zero length would not be bisected anyway).
+  Mesh rounded = rounded_cube();
+  const std::vector<VertexLabel> edges = edge_labels(rounded);
+  std::vector<VertexLabel> with_patch = edges;
+  std::size_t patch = 0;
+  for (Index i = 0; i < rounded.num_vertices(); ++i) {
+    const Eigen::Vector3d p = rounded.positions.col(i);
+    if (p.z() > kHalf - 1e-9 && std::abs(p.x()) < 3.0 && std::abs(p.y()) < 3.0) {
+      with_patch[static_cast<std::size_t>(i)] = VertexLabel::Edge;
+      rounded.positions.col(i) +=
+          0.1 * Eigen::Vector3d(std::sin(1.3 * static_cast<double>(i)), std::cos(0.7 * static_cast<double>(i)), 0.0);
+      ++patch;
+    }
+  }
+  ASSERT_GT(patch, 10u);
+  EXPECT_EQ(restore_creases(rounded, with_patch).mesh.num_vertices(),
+            restore_creases(rounded, edges).mesh.num_vertices());
+}
+
 TEST(CreaseRestoration, SameResultOnOneThreadAndSeveral) {
   const Mesh rounded = rounded_cube();
   const std::vector<VertexLabel> labels = edge_labels(rounded);

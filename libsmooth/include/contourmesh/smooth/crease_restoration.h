@@ -5,13 +5,15 @@
 // Where crease detection labelled an edge, this step refines the mesh there and moves the vertices near
 // the crease onto the two planes that meet in it.
 //
-// 1. Subdivision: `levels` spoke bisections around the vertices labelled Edge (subdivide_adaptively,
-//    the paper's adaptive subdivision): new vertices come after the input's, which keep their order.
-// 2. For each labelled or new vertex, its ball: the vertices within `radius` connected to it through
-//    such vertices. Their normals are split in two by 2-means, seeded with the extremes along the
-//    middle eigenvector of the ball's normal tensor, and each side's normal is the mode of its
-//    normals: the mean of those within `mode_angle_degrees` of it, four rounds (a plain mean is pulled
-//    towards the other side by the rounded part).
+// 1. Subdivision: `levels` spoke bisections around the vertices labelled Edge whose ball (step 2, on the
+//    input mesh) fits two planes (subdivide_adaptively, the paper's adaptive subdivision): new vertices
+//    come after the input's, which keep their order. Labels without two planes (gentle or noisy folds,
+//    corners: most of a real scan's) leave the mesh as it is.
+// 2. For each such input vertex and each new vertex, its ball on the refined mesh: the vertices within
+//    `radius` connected to it through such vertices. Their normals are split in two by 2-means, seeded
+//    with the extremes along the middle eigenvector of the ball's normal tensor, and each side's normal
+//    is the mode of its normals: the mean of those within `mode_angle_degrees` of it, four rounds (a
+//    plain mean is pulled towards the other side by the rounded part).
 // 3. Each side's plane passes through the area-weighted mean offset of its vertices within
 //    `mode_angle_degrees` of its normal and within `slab` of the vertex along the crease (a longer
 //    stretch of a curved wall would put the plane inside it by the arc's sagitta).
