@@ -20,6 +20,9 @@ void add_method_options(CLI::App* cmd, MethodArgs& args, bool iterations) {
   if (!iterations) return;
   cmd->add_option("--iterations", args.iterations,
                   "Smoothing iterations (>= 0); default: the method's (20 for the baselines, 40 for paper)");
+  cmd->add_option("--creases", args.creases,
+                  "cross-slice: none | restore (sharpen the creases the image's blur rounded: the mesh is refined "
+                  "around them, the input's vertices first; default none)");
 }
 
 void add_step_options(CLI::App* cmd, StepArgs& args) {
@@ -49,6 +52,14 @@ MethodConfig method_config(const MethodArgs& args, const StepArgs& steps, const 
       throw InvalidInputError("--iterations: " + std::string(to_string(c.method)) + " has no iteration count");
     }
     c.options.iterations = *args.iterations;
+  }
+  if (args.creases) {
+    if (c.method != SmoothingMethod::CrossSlice) {
+      throw InvalidInputError("--creases does not apply to " + std::string(to_string(c.method)) + " smoothing");
+    }
+    if (*args.creases == "none") c.options.cross_slice.crease_restoration = CreaseRestoration::None;
+    else if (*args.creases == "restore") c.options.cross_slice.crease_restoration = CreaseRestoration::Subdivide;
+    else throw InvalidInputError("--creases must be 'none' or 'restore', got '" + *args.creases + "'");
   }
   // A step option the selected method has no use for is a mistake worth reporting, not ignoring.
   const auto refuse = [&](bool given, const char* option, bool applies) {
@@ -83,11 +94,13 @@ MethodConfig method_config(const MethodArgs& args, const StepArgs& steps, const 
   if (DetectionOptions* d = detection_options_of(c.method, o)) {
     apply_detection_args(features, *d);
   } else {
-    const std::pair<bool, const char*> given[] = {
-        {features.gamma.has_value(), "--gamma"},     {features.delta.has_value(), "--delta"},
-        {features.measure.has_value(), "--measure"}, {features.in_slice.has_value(), "--in-slice"},
-        {features.prefilter.has_value(), "--prefilter"}, {features.window.has_value(), "--window"},
-        {features.corner_spread.has_value(), "--corner-spread"}};
+    const std::pair<bool, const char*> given[] = {{features.gamma.has_value(), "--gamma"},
+                                                  {features.delta.has_value(), "--delta"},
+                                                  {features.measure.has_value(), "--measure"},
+                                                  {features.in_slice.has_value(), "--in-slice"},
+                                                  {features.prefilter.has_value(), "--prefilter"},
+                                                  {features.window.has_value(), "--window"},
+                                                  {features.corner_spread.has_value(), "--corner-spread"}};
     for (const auto& [is_given, option] : given) {
       refuse(is_given, option, false);
     }
@@ -112,8 +125,7 @@ PreparedMesh prepare_for_method(MethodConfig& config, Mesh mesh, const FeatureAr
                                 "give --slice-axis to recover them, or choose another --method");
       }
       return prepare_input(std::move(mesh), path, command, ContourIdUse::Detection, features, MissingIds::Refuse);
-    default:
-      return prepare_input(std::move(mesh), path, command, ContourIdUse::PassThrough, features);
+    default: return prepare_input(std::move(mesh), path, command, ContourIdUse::PassThrough, features);
   }
 }
 

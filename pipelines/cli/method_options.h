@@ -22,6 +22,7 @@ struct MethodArgs {
   std::string method;  ///< --method; empty: the preset's method
   std::string preset;  ///< --preset; empty: the default preset (unless --method is given)
   std::optional<int> iterations;
+  std::optional<std::string> creases;  ///< --creases: none | restore (cross-slice smoothing)
 };
 
 /// Step options of `smooth` (run and detect keep the defaults).
@@ -33,14 +34,16 @@ struct StepArgs {
   bool keep_adaptive = false;
 };
 
-/// Registers --method and --preset (the two exclude each other) and, with `iterations`, --iterations.
+/// Registers --method and --preset (the two exclude each other) and, with `iterations`, --iterations and
+/// --creases.
 void add_method_options(CLI::App* command, MethodArgs& args, bool iterations = true);
 /// Registers --lambda, --mu, --beta, --boundary, --max-levels, --diffusion, --keep-adaptive.
 void add_step_options(CLI::App* command, StepArgs& args);
 
 /// The method and options selected: the preset (default: Preset::Default), or --method with the
-/// library's defaults for it; then --iterations, the step options and the detection options given.
-/// Throws InvalidInputError for an unknown name, --iterations on a method without an iteration count,
+/// library's defaults for it; then --iterations, --creases, the step options and the detection options
+/// given. Throws InvalidInputError for an unknown name, --iterations on a method without an iteration count,
+/// --creases on a method other than cross-slice smoothing,
 /// --keep-adaptive without the paper's method, or a detection option out of its vocabulary.
 [[nodiscard]] MethodConfig method_config(const MethodArgs& args, const StepArgs& steps, const FeatureArgs& features);
 

@@ -217,8 +217,8 @@ TEST_F(Cli, PresetXu2006MatchesTheGolden) {
 TEST_F(Cli, SmoothHonoursParameters) {
   const fs::path out = dir_ / "o.stl";
   const CliRun r = run_cli("smooth " + input_.string() + " -o " + out.string() +
-                            " --method taubin --iterations 3 --lambda 0.5 --mu -0.53 --json",
-                        dir_);
+                               " --method taubin --iterations 3 --lambda 0.5 --mu -0.53 --json",
+                           dir_);
   ASSERT_EQ(r.code, 0) << r.err;
   const auto j = nlohmann::json::parse(r.out);
   EXPECT_EQ(j["iterations"], 3);
@@ -434,6 +434,31 @@ TEST_F(Cli, RunFormatOverrideAndLabelsOut) {
   EXPECT_FALSE(fs::exists(out2));
 }
 
+// run --creases restore: the ridge box's creases restored on a refined mesh, closer to the truth in the
+// feature region than without; the labels stay one per reconstructed vertex; other methods refuse it.
+TEST_F(Cli, RunCreasesRestoreRefinesAndSharpensTheRidgeBox) {
+  const auto run = [&](const std::string& extra, const fs::path& out, const fs::path& labels) {
+    const CliRun r = run_cli(
+        "run --shape ridge-box -o " + out.string() + " --labels-out " + labels.string() + " --json " + extra, dir_);
+    EXPECT_EQ(r.code, 0) << r.err;
+    return nlohmann::json::parse(r.out);
+  };
+  const auto plain = run("", dir_ / "plain.vtp", dir_ / "plain_labels.vtp");
+  const auto restored = run("--creases restore", dir_ / "restored.vtp", dir_ / "restored_labels.vtp");
+  EXPECT_GT(restored["vertices"].get<int>(), plain["vertices"].get<int>());
+  EXPECT_EQ(read_mesh(dir_ / "restored.vtp").num_vertices(), restored["vertices"].get<int>());
+  EXPECT_EQ(read_mesh(dir_ / "restored_labels.vtp").num_vertices(),
+            read_mesh(dir_ / "plain_labels.vtp").num_vertices());
+  EXPECT_TRUE(restored["is_closed"].get<bool>());
+  EXPECT_TRUE(restored["is_manifold"].get<bool>());
+  EXPECT_LT(restored["surface_feature_rms_after"].get<double>(),
+            0.9 * plain["surface_feature_rms_after"].get<double>());
+  const fs::path out = dir_ / "refused.stl";
+  EXPECT_EQ(run_cli("run --method taubin --creases restore -o " + out.string(), dir_).code, 2);
+  EXPECT_EQ(run_cli("run --creases sharp -o " + out.string(), dir_).code, 2);
+  EXPECT_FALSE(fs::exists(out));
+}
+
 // Off a terminal (here stderr is a file) progress is one line per finished stage; --quiet silences it
 // and the summary; --threads is validated.
 TEST_F(Cli, ProgressIsOneLinePerStageOffATerminalAndQuietSilencesIt) {
@@ -473,11 +498,11 @@ TEST_F(Cli, HelpListsEveryOptionOfEverySubcommand) {
         "--corner-spread", "--slice-axis", "--json"}},
       {"smooth",
        {"--method", "--preset", "--iterations", "--gamma", "--delta", "--max-levels", "--keep-adaptive", "--labels-out",
-        "--in-slice", "--json", "--quiet", "--threads"}},
+        "--in-slice", "--creases", "--json", "--quiet", "--threads"}},
       {"run",
        {"--shape", "--noise", "--method", "--preset", "--iterations", "--threshold", "--end-caps", "--branching",
         "--max-band-aspect", "--interpolation-grid", "--in-slice", "--measure", "--json", "--quiet", "--threads",
-        "--roi", "--sampling", "--slab-thickness"}},
+        "--roi", "--sampling", "--slab-thickness", "--creases"}},
   };
   for (const auto& [command, names] : options) {
     const CliRun r = run_cli(command + " --help", dir_);
