@@ -85,7 +85,7 @@ void set_properties(Filter* f, const contourmesh::MethodConfig& config) {
   f->SetBeta(o.baseline.beta);
   f->SetBoundarySmoothing((paper ? o.paper.boundary : o.baseline.boundary) == BoundaryPolicy::Free);
   f->SetTimeStepMode(o.baseline.time_step == TimeStep::Absolute ? Filter::TIME_STEP_ABSOLUTE
-                                                                 : Filter::TIME_STEP_RELATIVE_TO_MEAN_EDGE);
+                                                                : Filter::TIME_STEP_RELATIVE_TO_MEAN_EDGE);
   const DetectionOptions* chosen = detection_options_of(m, o);
   const DetectionOptions d = chosen != nullptr ? *chosen : DetectionOptions{};
   f->SetDetectionMode(d.mode == DetectionMode::CurvatureOnly ? Filter::DETECTION_CURVATURE_ONLY
@@ -108,6 +108,9 @@ void set_properties(Filter* f, const contourmesh::MethodConfig& config) {
   f->SetDiffusionMethod(o.paper.diffusion == SmoothingMethod::Laplacian ? Filter::METHOD_LAPLACIAN
                                                                         : Filter::METHOD_TAUBIN);
   f->SetKeepAdaptiveMesh(o.paper.output == OutputResolution::Adaptive);
+  f->SetCreaseRestoration(o.cross_slice.crease_restoration == CreaseRestoration::Subdivide
+                              ? Filter::CREASE_RESTORATION_SUBDIVIDE
+                              : Filter::CREASE_RESTORATION_NONE);
 }
 
 // The input's point arrays for the prepared mesh's vertices: the first input point merged into each.
@@ -121,8 +124,8 @@ std::vector<vtkIdType> representatives(const std::vector<contourmesh::Index>& ve
 
 void vtkContourFeatureSmoothingFilter::SetPreset(int preset) {
   const int clamped = preset < PRESET_DEFAULT ? PRESET_DEFAULT : (preset > PRESET_XU2006 ? PRESET_XU2006 : preset);
-  set_properties(this, contourmesh::preset(clamped == PRESET_XU2006 ? contourmesh::Preset::Xu2006
-                                                                    : contourmesh::Preset::Default));
+  set_properties(
+      this, contourmesh::preset(clamped == PRESET_XU2006 ? contourmesh::Preset::Xu2006 : contourmesh::Preset::Default));
   if (this->Preset != clamped) {
     this->Preset = clamped;
     this->Modified();
@@ -211,7 +214,7 @@ int vtkContourFeatureSmoothingFilter::Execute(vtkPolyData* input, vtkPolyData* o
   // cannot do without them.
   InputPolicyOptions policy;
   policy.ids = cross_slice || (detect && this->DetectionMode != DETECTION_CURVATURE_ONLY) ? ContourIdUse::Detection
-                                                                                         : ContourIdUse::PassThrough;
+                                                                                          : ContourIdUse::PassThrough;
   if (this->SliceAxis != SLICE_AXIS_NONE) policy.slice_axis = Eigen::Vector3d::Unit(this->SliceAxis);
   policy.slice_tolerance = this->SliceTolerance;
   policy.missing_ids =
@@ -298,6 +301,14 @@ int vtkContourFeatureSmoothingFilter::Execute(vtkPolyData* input, vtkPolyData* o
   o.paper.boundary = boundary;
   o.paper.output = this->KeepAdaptiveMesh ? OutputResolution::Adaptive : OutputResolution::Original;
   o.paper.locked = locked;
+  if (this->CreaseRestoration == CREASE_RESTORATION_SUBDIVIDE) {
+    if (!cross_slice) {
+      throw InvalidInputError(
+          "crease restoration (CreaseRestoration) needs cross-slice smoothing: set "
+          "CreaseRestoration to None or choose SetMethodToCrossSlice()");
+    }
+    o.cross_slice.crease_restoration = contourmesh::CreaseRestoration::Subdivide;
+  }
 
   filter_detail::StageProgress stages(
       this, [](vtkAlgorithm* a) { return static_cast<vtkContourFeatureSmoothingFilter*>(a)->AbortRequested(); });
@@ -395,6 +406,9 @@ void vtkContourFeatureSmoothingFilter::PrintSelf(ostream& os, vtkIndent indent) 
   os << indent << "MaxLevels: " << this->MaxLevels << "\n";
   os << indent << "DiffusionMethod: " << (this->DiffusionMethod == METHOD_LAPLACIAN ? "Laplacian" : "Taubin") << "\n";
   os << indent << "KeepAdaptiveMesh: " << (this->KeepAdaptiveMesh ? "On" : "Off") << "\n";
+  os << indent
+     << "CreaseRestoration: " << (this->CreaseRestoration == CREASE_RESTORATION_SUBDIVIDE ? "Subdivide" : "None")
+     << "\n";
   os << indent << "GenerateLabels: " << (this->GenerateLabels ? "On" : "Off") << "\n";
   os << indent
      << "SliceAxis: " << (this->SliceAxis == SLICE_AXIS_NONE ? "None" : std::string(1, "XYZ"[this->SliceAxis])) << "\n";

@@ -78,12 +78,16 @@ class vtkContourFeatureSmoothingFilter : public vtkPolyDataAlgorithm {
     UMBRELLA_NORMAL_COMPONENT = 1,  ///< |U . n|
   };
   enum InSliceFeaturesType {
-    IN_SLICE_NOISE = 0,         ///< the paper's rule: no continuity across contours, noise (default)
-    IN_SLICE_ALONG_LINE = 1,    ///< extension: continuity along the feature line itself
+    IN_SLICE_NOISE = 0,       ///< the paper's rule: no continuity across contours, noise (default)
+    IN_SLICE_ALONG_LINE = 1,  ///< extension: continuity along the feature line itself
   };
   enum TimeStepType {
     TIME_STEP_RELATIVE_TO_MEAN_EDGE = 0,  ///< mean curvature flow: dt = lambda h^2 / 4 (default)
     TIME_STEP_ABSOLUTE = 1,               ///< dt = lambda in squared length units
+  };
+  enum CreaseRestorationType {
+    CREASE_RESTORATION_NONE = 0,       ///< the input's connectivity (default)
+    CREASE_RESTORATION_SUBDIVIDE = 1,  ///< cross-slice: creases restored on a refined mesh
   };
   enum SliceAxisType {
     SLICE_AXIS_NONE = -1,  ///< never recover missing ids (default)
@@ -267,6 +271,18 @@ class vtkContourFeatureSmoothingFilter : public vtkPolyDataAlgorithm {
   ///@}
 
   ///@{
+  /// Cross-slice smoothing: CREASE_RESTORATION_NONE (default) keeps the input's connectivity;
+  /// CREASE_RESTORATION_SUBDIVIDE restores the creases the image's blur rounded: the mesh is refined
+  /// around the edge vertices whose neighbourhood fits two planes, and the vertices near each crease move
+  /// onto its planes (contourmesh/smooth/crease_restoration.h). The output then has more points, the
+  /// input's first; FeatureLabel is -1 on the new ones.
+  vtkSetClampMacro(CreaseRestoration, int, CREASE_RESTORATION_NONE, CREASE_RESTORATION_SUBDIVIDE);
+  vtkGetMacro(CreaseRestoration, int);
+  void SetCreaseRestorationToNone() { this->SetCreaseRestoration(CREASE_RESTORATION_NONE); }
+  void SetCreaseRestorationToSubdivide() { this->SetCreaseRestoration(CREASE_RESTORATION_SUBDIVIDE); }
+  ///@}
+
+  ///@{
   /// Add the per-vertex "FeatureLabel" array (default Off): the labels of the paper's method or of
   /// cross-slice smoothing; with a baseline method the paper's detection runs on the input just for them.
   vtkSetMacro(GenerateLabels, vtkTypeBool);
@@ -333,6 +349,7 @@ class vtkContourFeatureSmoothingFilter : public vtkPolyDataAlgorithm {
   int MaxLevels = 3;
   int DiffusionMethod = METHOD_TAUBIN;
   vtkTypeBool KeepAdaptiveMesh = 0;
+  int CreaseRestoration = CREASE_RESTORATION_NONE;
   vtkTypeBool GenerateLabels = 0;
   int SliceAxis = SLICE_AXIS_NONE;
   double SliceTolerance = 0.0;
