@@ -138,6 +138,22 @@ def test_cross_slice_profile_model(box_mesh):
         cm.smooth(*box_mesh[:4], method="cross-slice", profile_model="ellipse")
 
 
+def test_cross_slice_crease_restoration(box_mesh):
+    """Restoring the creases refines the mesh around the roof's ridge: the input's vertices first (the
+    labels cover them), more vertices after; other methods and other values refuse it."""
+    default = cm.smooth(*box_mesh[:4])
+    restored = cm.smooth(*box_mesh[:4], creases="restore")
+    n = len(default.points)
+    assert len(restored.points) > n and len(restored.slice_ids) == len(restored.points)
+    assert restored.labels.shape == (n,)
+    np.testing.assert_array_equal(restored.labels, default.labels)
+    assert np.array_equal(cm.smooth(*box_mesh[:4], creases="none").points, default.points)
+    with pytest.raises(cm.InvalidInputError, match="creases must be"):
+        cm.smooth(*box_mesh[:4], creases="sharp")
+    with pytest.raises(cm.InvalidInputError, match="not known to method 'taubin'"):
+        cm.smooth(*box_mesh[:4], method="taubin", creases="restore")
+
+
 def test_cross_slice_kinks(box_mesh):
     """Bounding the profiles at their slope breaks is an option of cross-slice smoothing (on by default)."""
     default = cm.smooth(*box_mesh[:4])

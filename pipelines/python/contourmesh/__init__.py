@@ -74,7 +74,9 @@ def smooth(points, triangles, slice_ids=None, contour_ids=None, method=None, *, 
     "laplacian", "taubin", "mcf", "mindist". ``options`` are the command line's options of the method
     with ``_`` for ``-``: iterations, lambda (or lambda_), mu, beta, boundary; for "paper" also max_levels,
     diffusion, keep_adaptive, gamma, delta, measure, in_slice, prefilter, window, corner_spread,
-    slice_axis; for "cross-slice" reach, along_reach, gamma, noise_across, noise_along, profile_model, kinks
+    slice_axis; for "cross-slice" creases ("none" or "restore": the creases the image's blur rounded,
+    restored on a refined mesh whose new vertices follow the input's), reach, along_reach, gamma,
+    noise_across, noise_along, profile_model, kinks
     ("ignore" or "bound"), kink_rate, kink_sides ("curves" or "lines"), stages, extension_iterations,
     slice_axis (and no iterations). An option the method does not know is an
     InvalidInputError, as is a diverging run. Returns a ``Smoothed``.

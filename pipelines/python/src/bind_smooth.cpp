@@ -186,6 +186,12 @@ MethodConfig method_config(const py::object& method_arg, Options& o, Mesh& mesh)
     o.take_double("noise_along", co.noise_along);
     o.take_double("min_profile_share", co.min_profile_share);
     o.take_int("extension_iterations", co.extension_iterations);
+    o.take("creases", [&](const py::object& v) {
+      const std::string s = as_string(v, "creases");
+      if (s == "none") co.crease_restoration = CreaseRestoration::None;
+      else if (s == "restore") co.crease_restoration = CreaseRestoration::Subdivide;
+      else throw InvalidInputError("creases must be 'none' or 'restore', got '" + s + "'");
+    });
     o.take("profile_model", [&](const py::object& v) {
       const std::string s = as_string(v, "profile_model");
       if (s == "parabola") co.across_model = ProfileModel::Parabola;
