@@ -39,6 +39,7 @@ void check(const Mesh& mesh, const std::vector<VertexLabel>& labels, const Creas
   if (!(o.mode_angle_degrees > 0.0 && o.mode_angle_degrees <= 45.0)) fail("mode angle must be in (0, 45] degrees");
   if (!(o.min_angle_degrees > 0.0 && o.min_angle_degrees < 180.0)) fail("min angle must be in (0, 180) degrees");
   if (!(o.max_third_share >= 0.0 && o.max_third_share <= 1.0)) fail("max third share must be in [0, 1]");
+  if (!(o.min_rounding >= 0.0 && std::isfinite(o.min_rounding))) fail("min rounding must be a finite number >= 0");
 }
 
 // The most vertices a ball gathers (detail::gather_ball's safeguard).
@@ -133,6 +134,13 @@ std::optional<Planes> fit_planes(const Mesh& mesh, const Eigen::Matrix3Xd& area_
   return p;
 }
 
+// How far x lies inside both planes of a convex crease (outside both of a concave one): the depth of
+// the rounding at x; 0 where x lies on or beyond either plane.
+double rounded_by(const Planes& p, const Eigen::Vector3d& x) {
+  const double sign = p.convex ? 1.0 : -1.0;
+  return std::max(0.0, -std::max(sign * (p.m[0].dot(x) - p.o[0]), sign * (p.m[1].dot(x) - p.o[1])));
+}
+
 // Step 4 of the header: the move of the vertex at x onto the crease of `p`; nothing where it stays.
 // `axis`: the slice axis for a contour vertex (it moves within its slice plane), else null.
 std::optional<Eigen::Vector3d> move_onto(const Planes& p, const Eigen::Vector3d& x, const Eigen::Vector3d* axis,
@@ -202,10 +210,10 @@ std::optional<Eigen::Vector3d> slice_axis_of(const Mesh& m) {
 
 // Step 2 for every vertex with `examine` set: its ball's two planes, where it fits them (in parallel;
 // each vertex writes only its own entries).
-std::vector<std::optional<Planes>> fit_balls(const Mesh& m, const std::vector<std::uint8_t>& examine,
+std::vector<std::optional<Planes>> fit_balls(const Mesh& m, const MeshAdjacency& adjacency,
+                                             const std::vector<std::uint8_t>& examine,
                                              const CreaseRestorationOptions& options) {
   const Index n = m.num_vertices();
-  const MeshAdjacency adjacency = build_adjacency(m);
   const AreaNormals normals = area_normals(m);
   std::vector<std::optional<Planes>> planes(static_cast<std::size_t>(n));
   detail::BallScratchPool pool(n);
@@ -236,9 +244,19 @@ RestoredCreases restore_creases(const Mesh& mesh, const std::vector<VertexLabel>
   std::vector<std::uint8_t> selected(labels.size(), 0);
   for (std::size_t i = 0; i < labels.size(); ++i) selected[i] = labels[i] == VertexLabel::Edge ? 1 : 0;
   if (std::find(selected.begin(), selected.end(), 1) == selected.end()) return result;
-  const std::vector<std::optional<Planes>> planes = fit_balls(mesh, selected, options);
+  const MeshAdjacency input_adjacency = build_adjacency(mesh);
+  const std::vector<std::optional<Planes>> planes = fit_balls(mesh, input_adjacency, selected, options);
   std::vector<std::uint8_t> fitted(selected.size(), 0);
-  for (std::size_t i = 0; i < fitted.size(); ++i) fitted[i] = planes[i] ? 1 : 0;
+  for (std::size_t i = 0; i < fitted.size(); ++i) {
+    if (!planes[i]) continue;
+    // Only where the mesh is rounded: some vertex of the ring lies inside both planes (a convex crease;
+    // outside both for a concave one) by more than min_rounding.
+    double rounding = 0.0;
+    const auto inside = [&](Index v) { rounding = std::max(rounding, rounded_by(*planes[i], mesh.positions.col(v))); };
+    inside(static_cast<Index>(i));
+    for (Index u : input_adjacency.ring(static_cast<Index>(i))) inside(u);
+    fitted[i] = rounding > options.min_rounding ? 1 : 0;
+  }
   if (std::find(fitted.begin(), fitted.end(), 1) == fitted.end()) return result;
   if (options.levels > 0) {
     SubdivisionOptions subdivision;
@@ -253,7 +271,7 @@ RestoredCreases restore_creases(const Mesh& mesh, const std::vector<VertexLabel>
   // the positions before any (Jacobi).
   std::vector<std::uint8_t> examine(static_cast<std::size_t>(n), 1);
   std::copy(fitted.begin(), fitted.end(), examine.begin());
-  const std::vector<std::optional<Planes>> refined = fit_balls(m, examine, options);
+  const std::vector<std::optional<Planes>> refined = fit_balls(m, build_adjacency(m), examine, options);
   Eigen::Matrix3Xd moves = Eigen::Matrix3Xd::Zero(3, n);
   std::vector<std::uint8_t> moved(static_cast<std::size_t>(n), 0);
   detail::parallel_chunks(static_cast<std::size_t>(n), 8192, [&](std::size_t, std::size_t begin, std::size_t end) {

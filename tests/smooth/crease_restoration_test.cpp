@@ -171,6 +171,15 @@ TEST(CreaseRestoration, LabelsWithoutTwoPlanesAreNotRefined) {
   EXPECT_TRUE(r.mesh.positions == sphere.positions);
 }
 
+TEST(CreaseRestoration, EdgesThatAreAlreadySharpAreNotRefined) {
+  // The sharp cube: every ball near an edge fits its two planes, but no vertex lies inside them, so
+  // there is nothing to restore and the mesh stays as it is.
+  const Mesh sharp = make_cube(40, kHalf);
+  const RestoredCreases r = restore_creases(sharp, edge_labels(sharp));
+  EXPECT_EQ(r.mesh.num_vertices(), sharp.num_vertices());
+  EXPECT_EQ(r.moved, 0u);
+}
+
 TEST(CreaseRestoration, FalseLabelsOnAFlatFaceAddNoVertices) {
   // The cube's edges labelled, and a patch in the middle of a face too: the patch's balls are one
   // plane, so the refined mesh has as many vertices as with the edges' labels alone.
@@ -229,6 +238,9 @@ TEST(CreaseRestoration, BadInputIsRefused) {
   CreaseRestorationOptions third;
   third.max_third_share = 1.5;
   EXPECT_THROW((void)restore_creases(cube, labels, third), InvalidInputError);
+  CreaseRestorationOptions rounding;
+  rounding.min_rounding = -0.1;
+  EXPECT_THROW((void)restore_creases(cube, labels, rounding), InvalidInputError);
 }
 
 }  // namespace
