@@ -94,13 +94,11 @@ MethodConfig method_config(const MethodArgs& args, const StepArgs& steps, const 
   if (DetectionOptions* d = detection_options_of(c.method, o)) {
     apply_detection_args(features, *d);
   } else {
-    const std::pair<bool, const char*> given[] = {{features.gamma.has_value(), "--gamma"},
-                                                  {features.delta.has_value(), "--delta"},
-                                                  {features.measure.has_value(), "--measure"},
-                                                  {features.in_slice.has_value(), "--in-slice"},
-                                                  {features.prefilter.has_value(), "--prefilter"},
-                                                  {features.window.has_value(), "--window"},
-                                                  {features.corner_spread.has_value(), "--corner-spread"}};
+    const std::pair<bool, const char*> given[] = {
+        {features.gamma.has_value(), "--gamma"},     {features.delta.has_value(), "--delta"},
+        {features.measure.has_value(), "--measure"}, {features.in_slice.has_value(), "--in-slice"},
+        {features.prefilter.has_value(), "--prefilter"}, {features.window.has_value(), "--window"},
+        {features.corner_spread.has_value(), "--corner-spread"}};
     for (const auto& [is_given, option] : given) {
       refuse(is_given, option, false);
     }
@@ -125,7 +123,8 @@ PreparedMesh prepare_for_method(MethodConfig& config, Mesh mesh, const FeatureAr
                                 "give --slice-axis to recover them, or choose another --method");
       }
       return prepare_input(std::move(mesh), path, command, ContourIdUse::Detection, features, MissingIds::Refuse);
-    default: return prepare_input(std::move(mesh), path, command, ContourIdUse::PassThrough, features);
+    default:
+      return prepare_input(std::move(mesh), path, command, ContourIdUse::PassThrough, features);
   }
 }
 

@@ -85,7 +85,7 @@ void set_properties(Filter* f, const contourmesh::MethodConfig& config) {
   f->SetBeta(o.baseline.beta);
   f->SetBoundarySmoothing((paper ? o.paper.boundary : o.baseline.boundary) == BoundaryPolicy::Free);
   f->SetTimeStepMode(o.baseline.time_step == TimeStep::Absolute ? Filter::TIME_STEP_ABSOLUTE
-                                                                : Filter::TIME_STEP_RELATIVE_TO_MEAN_EDGE);
+                                                                 : Filter::TIME_STEP_RELATIVE_TO_MEAN_EDGE);
   const DetectionOptions* chosen = detection_options_of(m, o);
   const DetectionOptions d = chosen != nullptr ? *chosen : DetectionOptions{};
   f->SetDetectionMode(d.mode == DetectionMode::CurvatureOnly ? Filter::DETECTION_CURVATURE_ONLY
@@ -124,8 +124,8 @@ std::vector<vtkIdType> representatives(const std::vector<contourmesh::Index>& ve
 
 void vtkContourFeatureSmoothingFilter::SetPreset(int preset) {
   const int clamped = preset < PRESET_DEFAULT ? PRESET_DEFAULT : (preset > PRESET_XU2006 ? PRESET_XU2006 : preset);
-  set_properties(
-      this, contourmesh::preset(clamped == PRESET_XU2006 ? contourmesh::Preset::Xu2006 : contourmesh::Preset::Default));
+  set_properties(this, contourmesh::preset(clamped == PRESET_XU2006 ? contourmesh::Preset::Xu2006
+                                                                    : contourmesh::Preset::Default));
   if (this->Preset != clamped) {
     this->Preset = clamped;
     this->Modified();
@@ -214,7 +214,7 @@ int vtkContourFeatureSmoothingFilter::Execute(vtkPolyData* input, vtkPolyData* o
   // cannot do without them.
   InputPolicyOptions policy;
   policy.ids = cross_slice || (detect && this->DetectionMode != DETECTION_CURVATURE_ONLY) ? ContourIdUse::Detection
-                                                                                          : ContourIdUse::PassThrough;
+                                                                                         : ContourIdUse::PassThrough;
   if (this->SliceAxis != SLICE_AXIS_NONE) policy.slice_axis = Eigen::Vector3d::Unit(this->SliceAxis);
   policy.slice_tolerance = this->SliceTolerance;
   policy.missing_ids =

@@ -217,8 +217,8 @@ TEST_F(Cli, PresetXu2006MatchesTheGolden) {
 TEST_F(Cli, SmoothHonoursParameters) {
   const fs::path out = dir_ / "o.stl";
   const CliRun r = run_cli("smooth " + input_.string() + " -o " + out.string() +
-                               " --method taubin --iterations 3 --lambda 0.5 --mu -0.53 --json",
-                           dir_);
+                            " --method taubin --iterations 3 --lambda 0.5 --mu -0.53 --json",
+                        dir_);
   ASSERT_EQ(r.code, 0) << r.err;
   const auto j = nlohmann::json::parse(r.out);
   EXPECT_EQ(j["iterations"], 3);

@@ -288,29 +288,12 @@ TEST_F(VtkFilters, OptionsClampAndPrintSelfListsThem) {
   }
   std::ostringstream printed_surface;
   s->Print(printed_surface);
-  for (const char* option : {"ThresholdMethod",
-                             "Threshold",
-                             "Denoising",
-                             "KeepLargestComponent",
-                             "MinRegionArea",
-                             "FillHoles",
-                             "Sampling",
-                             "MinContourLength",
-                             "EndCaps",
-                             "CapRefinement",
-                             "MinOverlapFraction: 1",
-                             "FullDynamicProgrammingLimit",
-                             "BandFraction",
-                             "Branching",
-                             "MaxBranchingDepth",
-                             "BandRefinement",
-                             "MaxBandSliverShare",
-                             "MaxBandAspect",
-                             "MaxIntermediateContours",
-                             "InterpolationGrid",
-                             "MinOverlapOfLarger",
-                             "MinComponentVoxels",
-                             "ContourIdArrayName"}) {
+  for (const char* option : {"ThresholdMethod", "Threshold", "Denoising", "KeepLargestComponent", "MinRegionArea",
+                             "FillHoles", "Sampling", "MinContourLength", "EndCaps", "CapRefinement",
+                             "MinOverlapFraction: 1", "FullDynamicProgrammingLimit", "BandFraction",
+                             "Branching", "MaxBranchingDepth", "BandRefinement", "MaxBandSliverShare", "MaxBandAspect",
+                             "MaxIntermediateContours", "InterpolationGrid", "MinOverlapOfLarger",
+                             "MinComponentVoxels", "ContourIdArrayName"}) {
     EXPECT_NE(printed_surface.str().find(option), std::string::npos) << option;
   }
 }

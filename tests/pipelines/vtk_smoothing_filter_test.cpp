@@ -191,112 +191,88 @@ TEST_F(VtkFilters, NonDefaultSmoothingOptionsReachTheLibrary) {
                    const std::function<void(Filter*)>& configure) {
     FeatureSmoothingOptions o;
     library(o);
-    check(
-        name, feature_preserving_smooth(mesh, o).mesh.positions, paper_default,
-        [&](Filter* f) {
-          f->SetMethodToPaper();
-          configure(f);
-        },
-        mesh);
+    check(name, feature_preserving_smooth(mesh, o).mesh.positions, paper_default,
+          [&](Filter* f) {
+            f->SetMethodToPaper();
+            configure(f);
+          },
+          mesh);
   };
-  paper(
-      "gamma", [](auto& o) { o.detection.gamma = 0.3; }, [](Filter* f) { f->SetGamma(0.3); });
-  paper(
-      "gamma factor", [](auto& o) { o.detection.gamma_factor = 1.5; }, [](Filter* f) { f->SetGammaFactor(1.5); });
-  paper(
-      "delta", [](auto& o) { o.detection.delta = 0.01; }, [](Filter* f) { f->SetDelta(0.01); });
-  paper(
-      "delta factor", [](auto& o) { o.detection.delta_factor = 0.1; }, [](Filter* f) { f->SetDeltaFactor(0.1); });
-  paper(
-      "measure", [](auto& o) { o.detection.measure = UmbrellaMeasure::NormalComponent; },
-      [](Filter* f) { f->SetUmbrellaMeasureToNormalComponent(); });
-  paper(
-      "window", [](auto& o) { o.detection.window = 9; }, [](Filter* f) { f->SetWindow(9); });
-  paper(
-      "in-slice features", [](auto& o) { o.detection.in_slice = InSliceFeatures::AlongFeatureLine; },
-      [](Filter* f) { f->SetInSliceFeaturesToAlongLine(); });
-  paper(
-      "corner spread", [](auto& o) { o.detection.corner_spread = 0.0; }, [](Filter* f) { f->SetCornerSpread(0.0); });
-  paper(
-      "prefilter", [](auto& o) { o.detection.prefilter_iterations = 2; },
-      [](Filter* f) { f->SetPrefilterIterations(2); });
-  paper(
-      "umbilic tolerance", [](auto& o) { o.detection.curvature.umbilic_tolerance = 3.0; },
-      [](Filter* f) { f->SetUmbilicTolerance(3.0); });
-  paper(
-      "min reciprocal condition", [](auto& o) { o.detection.curvature.min_reciprocal_condition = 0.5; },
-      [](Filter* f) { f->SetMinReciprocalCondition(0.5); });
-  paper(
-      "max levels", [](auto& o) { o.max_levels = 1; }, [](Filter* f) { f->SetMaxLevels(1); });
-  paper(
-      "diffusion", [](auto& o) { o.diffusion = SmoothingMethod::Laplacian; },
-      [](Filter* f) { f->SetDiffusionMethodToLaplacian(); });
-  paper(
-      "iterations", [](auto& o) { o.iterations = 12; }, [](Filter* f) { f->SetNumberOfIterations(12); });
-  paper(
-      "lambda", [](auto& o) { o.lambda = 0.4; }, [](Filter* f) { f->SetLambda(0.4); });
-  paper(
-      "mu", [](auto& o) { o.mu = -0.7; }, [](Filter* f) { f->SetMu(-0.7); });
-  paper(
-      "curvature-only", [](auto& o) { o.detection.mode = DetectionMode::CurvatureOnly; },
-      [](Filter* f) { f->SetDetectionModeToCurvatureOnly(); });
+  paper("gamma", [](auto& o) { o.detection.gamma = 0.3; }, [](Filter* f) { f->SetGamma(0.3); });
+  paper("gamma factor", [](auto& o) { o.detection.gamma_factor = 1.5; }, [](Filter* f) { f->SetGammaFactor(1.5); });
+  paper("delta", [](auto& o) { o.detection.delta = 0.01; }, [](Filter* f) { f->SetDelta(0.01); });
+  paper("delta factor", [](auto& o) { o.detection.delta_factor = 0.1; }, [](Filter* f) { f->SetDeltaFactor(0.1); });
+  paper("measure", [](auto& o) { o.detection.measure = UmbrellaMeasure::NormalComponent; },
+        [](Filter* f) { f->SetUmbrellaMeasureToNormalComponent(); });
+  paper("window", [](auto& o) { o.detection.window = 9; }, [](Filter* f) { f->SetWindow(9); });
+  paper("in-slice features", [](auto& o) { o.detection.in_slice = InSliceFeatures::AlongFeatureLine; },
+        [](Filter* f) { f->SetInSliceFeaturesToAlongLine(); });
+  paper("corner spread", [](auto& o) { o.detection.corner_spread = 0.0; }, [](Filter* f) { f->SetCornerSpread(0.0); });
+  paper("prefilter", [](auto& o) { o.detection.prefilter_iterations = 2; },
+        [](Filter* f) { f->SetPrefilterIterations(2); });
+  paper("umbilic tolerance", [](auto& o) { o.detection.curvature.umbilic_tolerance = 3.0; },
+        [](Filter* f) { f->SetUmbilicTolerance(3.0); });
+  paper("min reciprocal condition", [](auto& o) { o.detection.curvature.min_reciprocal_condition = 0.5; },
+        [](Filter* f) { f->SetMinReciprocalCondition(0.5); });
+  paper("max levels", [](auto& o) { o.max_levels = 1; }, [](Filter* f) { f->SetMaxLevels(1); });
+  paper("diffusion", [](auto& o) { o.diffusion = SmoothingMethod::Laplacian; },
+        [](Filter* f) { f->SetDiffusionMethodToLaplacian(); });
+  paper("iterations", [](auto& o) { o.iterations = 12; }, [](Filter* f) { f->SetNumberOfIterations(12); });
+  paper("lambda", [](auto& o) { o.lambda = 0.4; }, [](Filter* f) { f->SetLambda(0.4); });
+  paper("mu", [](auto& o) { o.mu = -0.7; }, [](Filter* f) { f->SetMu(-0.7); });
+  paper("curvature-only", [](auto& o) { o.detection.mode = DetectionMode::CurvatureOnly; },
+        [](Filter* f) { f->SetDetectionModeToCurvatureOnly(); });
   {
     FeatureSmoothingOptions base, o;
     base.detection.mode = o.detection.mode = DetectionMode::CurvatureOnly;
     o.detection.anisotropy = 1.5;
-    check(
-        "anisotropy", feature_preserving_smooth(mesh, o).mesh.positions,
-        feature_preserving_smooth(mesh, base).mesh.positions,
-        [](Filter* f) {
-          f->SetMethodToPaper();
-          f->SetDetectionModeToCurvatureOnly();
-          f->SetAnisotropy(1.5);
-        },
-        mesh);
+    check("anisotropy", feature_preserving_smooth(mesh, o).mesh.positions,
+          feature_preserving_smooth(mesh, base).mesh.positions,
+          [](Filter* f) {
+            f->SetMethodToPaper();
+            f->SetDetectionModeToCurvatureOnly();
+            f->SetAnisotropy(1.5);
+          },
+          mesh);
   }
 
   // The baselines, against the input (the method) or the method with its defaults (the option).
   auto baseline = [&](const char* name, const SmoothingOptions& o, const SmoothingOptions& base,
-                      const std::function<void(Filter*)>& configure,
-                      const Mesh& input) { check(name, smooth(input, o), smooth(input, base), configure, input); };
+                      const std::function<void(Filter*)>& configure, const Mesh& input) {
+    check(name, smooth(input, o), smooth(input, base), configure, input);
+  };
   SmoothingOptions none;
   none.method = SmoothingMethod::None;
   SmoothingOptions laplacian;
   laplacian.method = SmoothingMethod::Laplacian;
-  baseline(
-      "laplacian", laplacian, none, [](Filter* f) { f->SetMethodToLaplacian(); }, mesh);
+  baseline("laplacian", laplacian, none, [](Filter* f) { f->SetMethodToLaplacian(); }, mesh);
   SmoothingOptions taubin;
-  baseline(
-      "taubin", taubin, none, [](Filter* f) { f->SetMethodToTaubin(); }, mesh);
+  baseline("taubin", taubin, none, [](Filter* f) { f->SetMethodToTaubin(); }, mesh);
   SmoothingOptions mcf;
   mcf.method = SmoothingMethod::MeanCurvatureFlow;
-  baseline(
-      "mcf", mcf, none, [](Filter* f) { f->SetMethodToMeanCurvatureFlow(); }, mesh);
+  baseline("mcf", mcf, none, [](Filter* f) { f->SetMethodToMeanCurvatureFlow(); }, mesh);
   SmoothingOptions mcf_absolute = mcf;
   mcf_absolute.time_step = TimeStep::Absolute;
   mcf_absolute.lambda = 0.01;
   mcf.lambda = 0.01;
-  baseline(
-      "time step", mcf_absolute, mcf,
-      [](Filter* f) {
-        f->SetMethodToMeanCurvatureFlow();
-        f->SetTimeStepModeToAbsolute();
-        f->SetLambda(0.01);
-      },
-      mesh);
+  baseline("time step", mcf_absolute, mcf,
+           [](Filter* f) {
+             f->SetMethodToMeanCurvatureFlow();
+             f->SetTimeStepModeToAbsolute();
+             f->SetLambda(0.01);
+           },
+           mesh);
   SmoothingOptions mindist;
   mindist.method = SmoothingMethod::MinDistFlow;
-  baseline(
-      "mindist", mindist, none, [](Filter* f) { f->SetMethodToMinDistFlow(); }, mesh);
+  baseline("mindist", mindist, none, [](Filter* f) { f->SetMethodToMinDistFlow(); }, mesh);
   SmoothingOptions mindist_beta = mindist;
   mindist_beta.beta = 0.1;
-  baseline(
-      "beta", mindist_beta, mindist,
-      [](Filter* f) {
-        f->SetMethodToMinDistFlow();
-        f->SetBeta(0.1);
-      },
-      mesh);
+  baseline("beta", mindist_beta, mindist,
+           [](Filter* f) {
+             f->SetMethodToMinDistFlow();
+             f->SetBeta(0.1);
+           },
+           mesh);
   // Boundary policy, on the stack without its caps (an open tube).
   Mesh tube = mesh;
   std::erase_if(tube.triangles, [&](const Triangle& t) {
@@ -305,13 +281,12 @@ TEST_F(VtkFilters, NonDefaultSmoothingOptionsReachTheLibrary) {
   ASSERT_LT(tube.num_faces(), mesh.num_faces());
   SmoothingOptions free_boundary = laplacian;
   free_boundary.boundary = BoundaryPolicy::Free;
-  baseline(
-      "boundary", free_boundary, laplacian,
-      [](Filter* f) {
-        f->SetMethodToLaplacian();
-        f->BoundarySmoothingOn();
-      },
-      tube);
+  baseline("boundary", free_boundary, laplacian,
+           [](Filter* f) {
+             f->SetMethodToLaplacian();
+             f->BoundarySmoothingOn();
+           },
+           tube);
 }
 
 // (b) FeatureLabel equals detect_features, with the paper's method and with detection only (METHOD_NONE,

@@ -78,8 +78,8 @@ class vtkContourFeatureSmoothingFilter : public vtkPolyDataAlgorithm {
     UMBRELLA_NORMAL_COMPONENT = 1,  ///< |U . n|
   };
   enum InSliceFeaturesType {
-    IN_SLICE_NOISE = 0,       ///< the paper's rule: no continuity across contours, noise (default)
-    IN_SLICE_ALONG_LINE = 1,  ///< extension: continuity along the feature line itself
+    IN_SLICE_NOISE = 0,         ///< the paper's rule: no continuity across contours, noise (default)
+    IN_SLICE_ALONG_LINE = 1,    ///< extension: continuity along the feature line itself
   };
   enum TimeStepType {
     TIME_STEP_RELATIVE_TO_MEAN_EDGE = 0,  ///< mean curvature flow: dt = lambda h^2 / 4 (default)
