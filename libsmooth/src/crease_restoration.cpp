@@ -231,6 +231,24 @@ std::vector<std::optional<Planes>> fit_balls(const Mesh& m, const MeshAdjacency&
   return planes;
 }
 
+// Per input vertex: its ball fits two planes (`planes`) and the mesh is rounded there: the vertex or one
+// of its ring lies inside both planes (a convex crease; outside both for a concave one) by more than
+// min_rounding.
+std::vector<std::uint8_t> rounded_creases(const Mesh& mesh, const MeshAdjacency& adjacency,
+                                          const std::vector<std::optional<Planes>>& planes,
+                                          const CreaseRestorationOptions& options) {
+  std::vector<std::uint8_t> fitted(planes.size(), 0);
+  for (std::size_t i = 0; i < fitted.size(); ++i) {
+    if (!planes[i]) continue;
+    double rounding = rounded_by(*planes[i], mesh.positions.col(static_cast<Index>(i)));
+    for (Index u : adjacency.ring(static_cast<Index>(i))) {
+      rounding = std::max(rounding, rounded_by(*planes[i], mesh.positions.col(u)));
+    }
+    fitted[i] = rounding > options.min_rounding ? 1 : 0;
+  }
+  return fitted;
+}
+
 }  // namespace
 
 RestoredCreases restore_creases(const Mesh& mesh, const std::vector<VertexLabel>& labels,
@@ -239,24 +257,15 @@ RestoredCreases restore_creases(const Mesh& mesh, const std::vector<VertexLabel>
   RestoredCreases result;
   result.original_vertices = mesh.num_vertices();
   result.mesh = mesh;
-  // Step 2 on the input's edge vertices first: only those whose ball already fits two planes are refined
-  // (step 1) and examined again; elsewhere (gentle or noisy folds, corners) the mesh stays as it is.
+  // Step 2 on the input's edge vertices first: only those whose ball already fits two planes, with the
+  // mesh rounded inside them, are refined (step 1) and examined again; elsewhere (gentle or noisy folds,
+  // corners, creases already sharp) the mesh stays as it is.
   std::vector<std::uint8_t> selected(labels.size(), 0);
   for (std::size_t i = 0; i < labels.size(); ++i) selected[i] = labels[i] == VertexLabel::Edge ? 1 : 0;
   if (std::find(selected.begin(), selected.end(), 1) == selected.end()) return result;
   const MeshAdjacency input_adjacency = build_adjacency(mesh);
   const std::vector<std::optional<Planes>> planes = fit_balls(mesh, input_adjacency, selected, options);
-  std::vector<std::uint8_t> fitted(selected.size(), 0);
-  for (std::size_t i = 0; i < fitted.size(); ++i) {
-    if (!planes[i]) continue;
-    // Only where the mesh is rounded: some vertex of the ring lies inside both planes (a convex crease;
-    // outside both for a concave one) by more than min_rounding.
-    double rounding = 0.0;
-    const auto inside = [&](Index v) { rounding = std::max(rounding, rounded_by(*planes[i], mesh.positions.col(v))); };
-    inside(static_cast<Index>(i));
-    for (Index u : input_adjacency.ring(static_cast<Index>(i))) inside(u);
-    fitted[i] = rounding > options.min_rounding ? 1 : 0;
-  }
+  const std::vector<std::uint8_t> fitted = rounded_creases(mesh, input_adjacency, planes, options);
   if (std::find(fitted.begin(), fitted.end(), 1) == fitted.end()) return result;
   if (options.levels > 0) {
     SubdivisionOptions subdivision;
@@ -267,11 +276,19 @@ RestoredCreases restore_creases(const Mesh& mesh, const std::vector<VertexLabel>
   Mesh& m = result.mesh;
   const Index n = m.num_vertices();
   const std::optional<Eigen::Vector3d> axis = slice_axis_of(m);
-  // Steps 2-4 again on the refined mesh, for the fitted input vertices and the new ones; every move from
-  // the positions before any (Jacobi).
-  std::vector<std::uint8_t> examine(static_cast<std::size_t>(n), 1);
-  std::copy(fitted.begin(), fitted.end(), examine.begin());
-  const std::vector<std::optional<Planes>> refined = fit_balls(m, build_adjacency(m), examine, options);
+  // Steps 2-4 again on the refined mesh, for the fitted input vertices and the new ones (without
+  // refinement, the planes found); every move from the positions before any (Jacobi).
+  std::vector<std::optional<Planes>> refined;
+  if (options.levels > 0) {
+    std::vector<std::uint8_t> examine(static_cast<std::size_t>(n), 1);
+    std::copy(fitted.begin(), fitted.end(), examine.begin());
+    refined = fit_balls(m, build_adjacency(m), examine, options);
+  } else {
+    refined = planes;
+    for (std::size_t i = 0; i < refined.size(); ++i) {
+      if (!fitted[i]) refined[i].reset();
+    }
+  }
   Eigen::Matrix3Xd moves = Eigen::Matrix3Xd::Zero(3, n);
   std::vector<std::uint8_t> moved(static_cast<std::size_t>(n), 0);
   detail::parallel_chunks(static_cast<std::size_t>(n), 8192, [&](std::size_t, std::size_t begin, std::size_t end) {

@@ -30,13 +30,13 @@ double to_corner(const Eigen::Vector3d& p) { return (p.cwiseAbs() - Eigen::Vecto
 
 // A 0.5 mm cube whose edges and corners are rounded with radius kRound, as thresholding a blurred image
 // rounds them: each vertex moved onto the rounded box, along the direction from its clamped core point.
-Mesh rounded_cube() {
+Mesh rounded_cube(double radius = kRound) {
   Mesh cube = make_cube(40, kHalf);
-  const double core = kHalf - kRound;
+  const double core = kHalf - radius;
   for (Index i = 0; i < cube.num_vertices(); ++i) {
     const Eigen::Vector3d p = cube.positions.col(i);
     const Eigen::Vector3d c = p.cwiseMax(-core).cwiseMin(core);
-    cube.positions.col(i) = c + kRound * (p - c).normalized();
+    cube.positions.col(i) = c + radius * (p - c).normalized();
   }
   return cube;
 }
@@ -180,6 +180,37 @@ TEST(CreaseRestoration, EdgesThatAreAlreadySharpAreNotRefined) {
   EXPECT_EQ(r.moved, 0u);
 }
 
+TEST(CreaseRestoration, RoundingUnderMinRoundingIsLeftAlone) {
+  // Edges rounded with r = 0.05 mm lie at most 0.02 mm inside their planes: under the default
+  // min_rounding (0.03 mm) nothing is refined or moved; with min_rounding 0 they are restored.
+  const Mesh slight = rounded_cube(0.05);
+  const std::vector<VertexLabel> labels = edge_labels(slight);
+  const RestoredCreases kept = restore_creases(slight, labels);
+  EXPECT_EQ(kept.mesh.num_vertices(), slight.num_vertices());
+  EXPECT_EQ(kept.moved, 0u);
+  CreaseRestorationOptions any;
+  any.min_rounding = 0.0;
+  const RestoredCreases restored = restore_creases(slight, labels, any);
+  EXPECT_GT(restored.mesh.num_vertices(), slight.num_vertices());
+  EXPECT_GT(restored.moved, 0u);
+}
+
+TEST(CreaseRestoration, AConcaveCreaseIsRestoredAsTheConvexOne) {
+  // The rounded cube with its faces turned over is the cube's complement: its creases are concave, and
+  // the rounding fills them. They come back as sharp as the convex ones, with as many vertices refined
+  // and moved. (Positions may differ where a vertex lies on the bisector of the two planes: which plane
+  // it moves onto follows the order the fit found them in, which the turn swaps.)
+  const Mesh rounded = rounded_cube();
+  Mesh turned = rounded;
+  for (Triangle& t : turned.triangles) std::swap(t[1], t[2]);
+  const std::vector<VertexLabel> labels = edge_labels(rounded);
+  const RestoredCreases convex = restore_creases(rounded, labels);
+  const RestoredCreases concave = restore_creases(turned, labels);
+  ASSERT_EQ(concave.mesh.num_vertices(), convex.mesh.num_vertices());
+  EXPECT_EQ(concave.moved, convex.moved);
+  EXPECT_LT(worst_near_edges(concave.mesh), 0.05);
+}
+
 TEST(CreaseRestoration, FalseLabelsOnAFlatFaceAddNoVertices) {
   // The cube's edges labelled, and a patch in the middle of a face too: the patch's balls are one
   // plane, so the refined mesh has as many vertices as with the edges' labels alone.
@@ -199,8 +230,9 @@ TEST(CreaseRestoration, FalseLabelsOnAFlatFaceAddNoVertices) {
     }
   }
   ASSERT_GT(patch, 10u);
-  EXPECT_EQ(restore_creases(rounded, with_patch).mesh.num_vertices(),
-            restore_creases(rounded, edges).mesh.num_vertices());
+  const Index refined = restore_creases(rounded, edges).mesh.num_vertices();
+  ASSERT_GT(refined, rounded.num_vertices());
+  EXPECT_EQ(restore_creases(rounded, with_patch).mesh.num_vertices(), refined);
 }
 
 TEST(CreaseRestoration, SameResultOnOneThreadAndSeveral) {

@@ -55,10 +55,10 @@ struct CreaseRestorationOptions {
   /// A ball where normals more than 30 degrees out of the plane of the two sides' normals hold more
   /// than this share of the area is a corner (three planes): no move there, in [0, 1].
   double max_third_share = 0.05;
-  /// mm: an edge vertex whose ball fits two planes is refined only where a vertex of its 1-ring lies
-  /// inside both planes (a convex crease; outside both, a concave one) by more than this: elsewhere the
-  /// mesh is already sharp and new vertices would not move. >= 0. Default 0.03: on the phantoms 2-35 %
-  /// fewer vertices than without the test, the same accuracy (docs/smoothing.md).
+  /// mm: an edge vertex whose ball fits two planes is refined and moved only where it or a vertex of its
+  /// 1-ring lies inside both planes (a convex crease; outside both, a concave one) by more than this:
+  /// elsewhere the mesh is already sharp and new vertices would not move. >= 0. Default 0.03: on the
+  /// phantoms 2-35 % fewer vertices than without the test, the same accuracy (docs/smoothing.md).
   double min_rounding = 0.03;
 };
 

@@ -184,8 +184,8 @@ struct CrossSliceOptions {
   /// unset: the estimated noise across the slices.
   CreaseOptions features;
   /// Creases the image's blur rounded, restored after the labels (crease_restoration.h; docs/smoothing.md,
-  /// "Creases rounded by the image's blur"). With CreaseRestoration::Subdivide the result has more
-  /// vertices than the input (the input's first, in order); the labels stay one per input vertex.
+  /// "Creases rounded by the image's blur"). With CreaseRestoration::Subdivide the result may have
+  /// more vertices than the input (the input's first, in order); the labels stay one per input vertex.
   CreaseRestoration crease_restoration = CreaseRestoration::None;
   CreaseRestorationOptions restoration;
   /// Stages "smooth" and "detect"; return false to cancel (CancelledError).

@@ -274,8 +274,9 @@ class vtkContourFeatureSmoothingFilter : public vtkPolyDataAlgorithm {
   /// Cross-slice smoothing: CREASE_RESTORATION_NONE (default) keeps the input's connectivity;
   /// CREASE_RESTORATION_SUBDIVIDE restores the creases the image's blur rounded: the mesh is refined
   /// around the edge vertices whose neighbourhood fits two planes, and the vertices near each crease move
-  /// onto its planes (contourmesh/smooth/crease_restoration.h). The output then has more points, the
-  /// input's first; FeatureLabel is -1 on the new ones.
+  /// onto its planes (contourmesh/smooth/crease_restoration.h). The output may then have more points, the
+  /// input's first; FeatureLabel is -1 on the new ones, and the input's other point arrays are passed
+  /// only when no point was added.
   vtkSetClampMacro(CreaseRestoration, int, CREASE_RESTORATION_NONE, CREASE_RESTORATION_SUBDIVIDE);
   vtkGetMacro(CreaseRestoration, int);
   void SetCreaseRestorationToNone() { this->SetCreaseRestoration(CREASE_RESTORATION_NONE); }
