@@ -33,6 +33,7 @@ struct Args {
   bool keep_largest = false;
   std::string method = CONTOURMESH_DEFAULT_METHOD;
   int iterations = -1;
+  std::string creases = "none";
   int threads = 0;
 };
 
@@ -47,17 +48,29 @@ SmoothingMethod module_method(const std::string& name) {
   throw InvalidInputError("--method must be cross-slice, paper, taubin, laplacian or none, got '" + name + "'");
 }
 
-// libsmooth's one entry point, as `contourmesh run --method M [--iterations N]` calls it; --iterations
-// is ignored by the methods without an iteration count (cross-slice, none).
+// --creases: Slicer passes it whatever the method, so only "restore" needs cross-slice smoothing.
+CreaseRestoration module_creases(const Args& a, SmoothingMethod method) {
+  if (a.creases == "none") return CreaseRestoration::None;
+  if (a.creases != "restore") throw InvalidInputError("--creases must be none or restore, got '" + a.creases + "'");
+  if (method != SmoothingMethod::CrossSlice) {
+    throw InvalidInputError("--creases restore needs the cross-slice method, not " + a.method);
+  }
+  return CreaseRestoration::Subdivide;
+}
+
+// libsmooth's one entry point, as `contourmesh run --method M [--iterations N] [--creases C]` calls it;
+// --iterations is ignored by the methods without an iteration count (cross-slice, none).
 Mesh smooth_mesh(const Mesh& mesh, SmoothingMethod method, const Args& a, const ProgressCallback& progress) {
   SmoothOptions o;
   if (a.iterations >= 0 && default_iterations(method) > 0) o.iterations = a.iterations;
+  o.cross_slice.crease_restoration = module_creases(a, method);
   o.progress = progress;
   return smooth(mesh, method, o).mesh;
 }
 
 int run(const Args& a) {
   const SmoothingMethod method = module_method(a.method);
+  (void)module_creases(a, method);  // fail before the work
   MeshWriteOptions write_options;
   (void)format_from_extension(a.output);  // fail before the work
   const ThreadLimit limit(a.threads);
@@ -110,6 +123,8 @@ int main(int argc, char** argv) {
   app.add_flag("--keep-largest", args.keep_largest, "Keep the largest connected piece only");
   app.add_option("--method", args.method, "cross-slice | paper | taubin | laplacian | none")->capture_default_str();
   app.add_option("--iterations", args.iterations, "Smoothing iterations; -1: the method's default")
+      ->capture_default_str();
+  app.add_option("--creases", args.creases, "cross-slice: none | restore (sharpen the creases the blur rounded)")
       ->capture_default_str();
   app.add_option("--threads", args.threads, "Threads; 0: every core")->capture_default_str();
   try {

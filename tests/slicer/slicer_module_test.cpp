@@ -84,6 +84,30 @@ TEST_F(SlicerModule, DefaultMethodIsTheLibrarysDefault) {
   EXPECT_TRUE(summarize_topology(read_mesh(model)).closed);
 }
 
+// --creases restore refines the model around the box's ridge; Slicer passes --creases with every method,
+// so "none" goes with any, and "restore" with another method than cross-slice is refused before the work.
+TEST_F(SlicerModule, CreasesRestoreRefinesTheModelAndNeedsCrossSlice) {
+  const test::CliRun xml = run("--xml", dir_);
+  ASSERT_EQ(xml.code, 0) << xml.err;
+  EXPECT_NE(xml.out.find("<name>creases</name>"), std::string::npos);
+  const fs::path plain = dir_ / "plain.ply", restored = dir_ / "restored.ply";
+  const std::string box = (dir_ / "box.nrrd").string();
+  ASSERT_EQ(run("--threshold 520 --creases none " + box + " " + plain.string(), dir_).code, 0);
+  const test::CliRun r = run("--threshold 520 --creases restore " + box + " " + restored.string(), dir_);
+  ASSERT_EQ(r.code, 0) << r.err;
+  const Mesh a = read_mesh(plain), b = read_mesh(restored);
+  EXPECT_GT(b.num_vertices(), a.num_vertices());
+  EXPECT_TRUE(summarize_topology(b).closed);
+  const fs::path taubin = dir_ / "taubin.ply";
+  EXPECT_EQ(run("--threshold 520 --method taubin --creases none " + box + " " + taubin.string(), dir_).code, 0);
+  const fs::path refused = dir_ / "refused.ply";
+  const test::CliRun bad =
+      run("--threshold 520 --method taubin --creases restore " + box + " " + refused.string(), dir_);
+  EXPECT_EQ(bad.code, 2);
+  EXPECT_NE(bad.err.find("--creases restore needs the cross-slice method"), std::string::npos) << bad.err;
+  EXPECT_FALSE(fs::exists(refused));
+}
+
 TEST_F(SlicerModule, BadInputIsOneLineAndExitTwoWithNothingWritten) {
   const fs::path model = dir_ / "model.stl";
   const test::CliRun r = run("--threshold 5000 " + (dir_ / "box.nrrd").string() + " " + model.string(), dir_);
