@@ -27,4 +27,10 @@ grep -q '^broken,failed,.*not a readable image' out/cohort.csv || fail "the brok
 for c in ridge-box branch two-objects broken; do
   [ -s "out/cases/$c/thumbnail.png" ] || fail "no thumbnail for $c"
 done
-echo "cohort workflow: 3 meshes, broken case listed as failed, index with 4 thumbnails"
+# creases: "none" (the default) is not passed on; "restore" reaches contourmesh run.
+! grep -q '"--creases"' out/cases/ridge-box/summary.json || fail "--creases none was passed to contourmesh"
+python3 "$workflow/scripts/run_case.py" --contourmesh "$cli" --case rb --input "$work/scans/ridge-box.nii.gz" \
+  --mesh "$work/rb/mesh.stl" --summary "$work/rb/summary.json" --threshold 520 --creases restore > /dev/null
+grep -q '"status": "ok"' "$work/rb/summary.json" || fail "the case with --creases restore failed"
+grep -A1 '"--creases"' "$work/rb/summary.json" | grep -q '"restore"' || fail "--creases restore was not passed on"
+echo "cohort workflow: 3 meshes, broken case listed as failed, index with 4 thumbnails, creases passed on"

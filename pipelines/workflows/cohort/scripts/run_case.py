@@ -21,12 +21,15 @@ def main():
     p.add_argument("--threshold")
     p.add_argument("--label")
     p.add_argument("--method", default="cross-slice")
+    p.add_argument("--creases", default="none", help="none | restore (passed to contourmesh run unless none)")
     p.add_argument("--threads", default="1")
     a = p.parse_args()
 
     os.makedirs(os.path.dirname(a.mesh), exist_ok=True)
     cmd = [a.contourmesh, "run", a.input, "-o", a.mesh, "--json", "-q", "--threads", a.threads,
            "--method", a.method]
+    if a.creases != "none":  # contourmesh refuses --creases with a method it does not apply to
+        cmd += ["--creases", a.creases]
     if a.label:
         cmd += ["--label", a.label]
     elif a.threshold:
