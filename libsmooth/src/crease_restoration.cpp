@@ -40,6 +40,7 @@ void check(const Mesh& mesh, const std::vector<VertexLabel>& labels, const Creas
   if (!(o.min_angle_degrees > 0.0 && o.min_angle_degrees < 180.0)) fail("min angle must be in (0, 180) degrees");
   if (!(o.max_third_share >= 0.0 && o.max_third_share <= 1.0)) fail("max third share must be in [0, 1]");
   if (!(o.min_rounding >= 0.0 && std::isfinite(o.min_rounding))) fail("min rounding must be a finite number >= 0");
+  if (!(o.line_ratio >= 0.0 && o.line_ratio <= 1.0)) fail("line ratio must be in [0, 1]");
 }
 
 // The most vertices a ball gathers (detail::gather_ball's safeguard).
@@ -157,7 +158,9 @@ std::optional<Eigen::Vector3d> move_onto(const Planes& p, const Eigen::Vector3d&
   const int nearer = e[0] > e[1] ? 0 : 1;  // inside both: the nearer plane; outside both: the farther
   int k = nearer;
   Eigen::Vector3d move;
-  if (e[0] <= 0.0 && e[1] <= 0.0) {
+  if (e[0] <= 0.0 && e[1] <= 0.0 && std::max(e[0], e[1]) <= options.line_ratio * std::min(e[0], e[1])) {
+    move = to_line;  // inside both, about as deep below each: near the bisector, onto the line
+  } else if (e[0] <= 0.0 && e[1] <= 0.0) {
     move = -d[k] * p.m[k];
   } else if (e[0] > 0.0 && e[1] > 0.0) {
     move = to_line;

@@ -72,6 +72,29 @@ TEST(CreaseRestoration, RoundedCubeEdgesComeBackSharp) {
   EXPECT_LT(worst_near_edges(r.mesh), 0.05);  // within a seventh of the rounding
 }
 
+TEST(CreaseRestoration, VerticesOnTheBisectorMoveOntoTheCreaseLine) {
+  // The cube's edge vertices lie on the bisector of their two faces once rounded (as deep below each):
+  // they land on the edge line, not on one of the faces (with line_ratio 1 they would, 0.2 mm from it).
+  const Mesh cube = make_cube(40, kHalf);
+  const Mesh rounded = rounded_cube();
+  const RestoredCreases r = restore_creases(rounded, edge_labels(rounded));
+  CreaseRestorationOptions plane_only;
+  plane_only.line_ratio = 1.0;
+  const RestoredCreases p = restore_creases(rounded, edge_labels(rounded), plane_only);
+  std::size_t checked = 0;
+  double worst = 0.0, worst_plane_only = 0.0;
+  for (Index i = 0; i < cube.num_vertices(); ++i) {
+    const Eigen::Vector3d c = cube.positions.col(i);
+    if (to_edge(c) > 1e-9 || to_corner(c) < 4.0) continue;  // on an edge, away from the corners
+    worst = std::max(worst, to_edge(r.mesh.positions.col(i)));
+    worst_plane_only = std::max(worst_plane_only, to_edge(p.mesh.positions.col(i)));
+    ++checked;
+  }
+  ASSERT_GT(checked, 100u);
+  EXPECT_LT(worst, 0.05);
+  EXPECT_GT(worst_plane_only, 0.1);
+}
+
 TEST(CreaseRestoration, CornersWhereThreePlanesMeetDoNotMove) {
   // Every vertex within 1.5 mm of an edge labelled, corners included: a ball there holds three planes,
   // and a two-plane fit would throw its vertices onto one of them. None within 1.5 mm of a corner moves.
@@ -273,6 +296,9 @@ TEST(CreaseRestoration, BadInputIsRefused) {
   CreaseRestorationOptions rounding;
   rounding.min_rounding = -0.1;
   EXPECT_THROW((void)restore_creases(cube, labels, rounding), InvalidInputError);
+  CreaseRestorationOptions line;
+  line.line_ratio = 1.5;
+  EXPECT_THROW((void)restore_creases(cube, labels, line), InvalidInputError);
 }
 
 }  // namespace
