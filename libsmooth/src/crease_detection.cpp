@@ -2,6 +2,7 @@
 #include "contourmesh/smooth/crease_detection.h"
 
 #include "detail/parallel.h"
+#include "detail/slice_axis.h"
 #include "detail/vertex_ball.h"
 #include "contourmesh/smooth/contour_structure.h"
 #include "contourmesh/smooth/errors.h"
@@ -47,17 +48,6 @@ void check(const Mesh& mesh, const MeshAdjacency& adjacency, const CreaseOptions
   if (!(o.noise_factor >= 0.0 && std::isfinite(o.noise_factor))) fail("noise factor must be a finite number >= 0");
   if (!(o.steep_confirm_threshold > 0.0 && o.steep_confirm_threshold <= o.confirm_threshold)) {
     fail("steep confirm threshold must be in (0, confirm threshold]");
-  }
-}
-
-// The normal of the slice planes of a mesh with contour ids; nothing without ids or when its slices
-// do not span planes.
-std::optional<Eigen::Vector3d> axis_of_slices(const Mesh& mesh) {
-  if (!mesh.has_contour_ids()) return std::nullopt;
-  try {
-    return estimate_slice_axis(mesh);
-  } catch (const InvalidInputError&) {
-    return std::nullopt;
   }
 }
 
@@ -204,7 +194,7 @@ CreaseDetection detect_creases(const Mesh& mesh, const MeshAdjacency& adjacency,
   const double r2 = options.radius * options.radius;
   const std::optional<Eigen::Vector3d> slice_axis =
       options.confirm == CreaseConfirmation::Ball && options.sampling == CreaseSampling::SliceAware
-          ? axis_of_slices(mesh)
+          ? detail::slice_axis_if_any(mesh)
           : std::nullopt;
   const double relative_noise = options.noise.value_or(0.0) / options.confirm_radius;
   const double lift = options.noise_factor * relative_noise * relative_noise;

@@ -2,6 +2,7 @@
 #include "contourmesh/smooth/crease_restoration.h"
 
 #include "detail/parallel.h"
+#include "detail/slice_axis.h"
 #include "detail/vertex_ball.h"
 #include "contourmesh/smooth/adaptive_subdivision.h"
 #include "contourmesh/smooth/adjacency.h"
@@ -200,17 +201,6 @@ AreaNormals area_normals(const Mesh& m) {
   return a;
 }
 
-// The slice axis along which contour vertices must stay in their planes; none without ids, or where
-// the ids do not span planes (every vertex then moves freely).
-std::optional<Eigen::Vector3d> slice_axis_of(const Mesh& m) {
-  if (!m.has_contour_ids()) return std::nullopt;
-  try {
-    return estimate_slice_axis(m);
-  } catch (const InvalidInputError&) {
-    return std::nullopt;
-  }
-}
-
 // Step 2 for every vertex with `examine` set: its ball's two planes, where it fits them (in parallel;
 // each vertex writes only its own entries).
 std::vector<std::optional<Planes>> fit_balls(const Mesh& m, const MeshAdjacency& adjacency,
@@ -259,26 +249,35 @@ RestoredCreases restore_creases(const Mesh& mesh, const std::vector<VertexLabel>
   check(mesh, labels, options);
   RestoredCreases result;
   result.original_vertices = mesh.num_vertices();
-  result.mesh = mesh;
   // Step 2 on the input's edge vertices first: only those whose ball already fits two planes, with the
   // mesh rounded inside them, are refined (step 1) and examined again; elsewhere (gentle or noisy folds,
   // corners, creases already sharp) the mesh stays as it is.
   std::vector<std::uint8_t> selected(labels.size(), 0);
   for (std::size_t i = 0; i < labels.size(); ++i) selected[i] = labels[i] == VertexLabel::Edge ? 1 : 0;
-  if (std::find(selected.begin(), selected.end(), 1) == selected.end()) return result;
+  if (std::find(selected.begin(), selected.end(), 1) == selected.end()) {
+    result.mesh = mesh;
+    return result;
+  }
   const MeshAdjacency input_adjacency = build_adjacency(mesh);
   const std::vector<std::optional<Planes>> planes = fit_balls(mesh, input_adjacency, selected, options);
   const std::vector<std::uint8_t> fitted = rounded_creases(mesh, input_adjacency, planes, options);
-  if (std::find(fitted.begin(), fitted.end(), 1) == fitted.end()) return result;
+  if (std::find(fitted.begin(), fitted.end(), 1) == fitted.end()) {
+    result.mesh = mesh;
+    return result;
+  }
   if (options.levels > 0) {
     SubdivisionOptions subdivision;
     subdivision.max_levels = options.levels;
     subdivision.gamma = 0.0;  // every level bisects every spoke of a selected vertex
     result.mesh = subdivide_adaptively(mesh, fitted, subdivision).mesh;
+  } else {
+    result.mesh = mesh;
   }
   Mesh& m = result.mesh;
   const Index n = m.num_vertices();
-  const std::optional<Eigen::Vector3d> axis = slice_axis_of(m);
+  // Contour vertices stay in their slice planes; without ids, or ids that span no planes, every vertex
+  // moves freely.
+  const std::optional<Eigen::Vector3d> axis = detail::slice_axis_if_any(m);
   // Steps 2-4 again on the refined mesh, for the fitted input vertices and the new ones (without
   // refinement, the planes found); every move from the positions before any (Jacobi).
   std::vector<std::optional<Planes>> refined;
