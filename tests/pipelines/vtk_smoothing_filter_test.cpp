@@ -34,6 +34,17 @@ namespace {
 
 using namespace vtk_filter_test;
 
+// A filter's FeatureLabel array on an output that may have more points than its input: `labels` on the
+// input's points, which come first, then -1 on the points the filter added.
+void expect_labels_then_added(vtkPolyData* output, Index input_points, const std::vector<VertexLabel>& labels) {
+  const std::vector<int> got = int_array(output, "FeatureLabel");
+  ASSERT_EQ(got.size(), static_cast<std::size_t>(output->GetNumberOfPoints()));
+  for (Index i = 0; i < output->GetNumberOfPoints(); ++i) {
+    const int want = i < input_points ? static_cast<int>(labels[static_cast<std::size_t>(i)]) : -1;
+    ASSERT_EQ(got[static_cast<std::size_t>(i)], want) << "vertex " << i;
+  }
+}
+
 // (a) reader -> smoothing filter -> writer -> read back: bitwise the libsmooth result, for the default
 // (cross-slice smoothing) and the paper's method with every option at its default (so the filter's
 // defaults are the library's), and for Taubin.
@@ -119,12 +130,7 @@ TEST_F(VtkFilters, TwoSmoothingFiltersChainLikeTwoLibraryCalls) {
   EXPECT_EQ(out.slice_ids, expected.mesh.slice_ids);
   ASSERT_GT(out.num_vertices(), mesh.num_vertices()) << "the adaptive mesh adds vertices";
   // Labels: the input vertices' labels, then -1 for the vertices the subdivision added.
-  const std::vector<int> labels = int_array(b->GetOutput(), "FeatureLabel");
-  ASSERT_EQ(labels.size(), static_cast<std::size_t>(out.num_vertices()));
-  for (Index i = 0; i < out.num_vertices(); ++i) {
-    const int want = i < mesh.num_vertices() ? static_cast<int>(expected.detection.labels[i]) : -1;
-    ASSERT_EQ(labels[i], want) << "vertex " << i;
-  }
+  expect_labels_then_added(b->GetOutput(), mesh.num_vertices(), expected.detection.labels);
 }
 
 // Crease restoration: the filter's refined mesh is the library's, point for point, with the input's
@@ -145,12 +151,7 @@ TEST_F(VtkFilters, CreaseRestorationGivesTheLibrarysRefinedMesh) {
   EXPECT_EQ(max_difference(out.positions, expected.mesh.positions), 0.0);
   EXPECT_EQ(out.triangles, expected.mesh.triangles);
   EXPECT_EQ(out.slice_ids, expected.mesh.slice_ids);
-  const std::vector<int> labels = int_array(filter->GetOutput(), "FeatureLabel");
-  ASSERT_EQ(labels.size(), static_cast<std::size_t>(out.num_vertices()));
-  for (Index i = 0; i < out.num_vertices(); ++i) {
-    const int want = i < mesh.num_vertices() ? static_cast<int>(expected.labels[static_cast<std::size_t>(i)]) : -1;
-    ASSERT_EQ(labels[static_cast<std::size_t>(i)], want) << "vertex " << i;
-  }
+  expect_labels_then_added(filter->GetOutput(), mesh.num_vertices(), expected.labels);
 
   vtkNew<vtkContourFeatureSmoothingFilter> taubin;
   taubin->SetInputData(to_polydata(mesh));
