@@ -68,6 +68,17 @@ void filter_normals(const Workspace& w, const OffSliceFilterOptions& options, co
   // iteration computes everything.
   std::vector<std::uint8_t> changed(nl, 0), changes(nl, 0);
   std::vector<std::uint8_t> summed(nk, 0);  // per filtered face: its last sum was not zero (its normal set)
+  // Per neighbourhood entry: its spatial weight times its pair's range kernel, as the sum multiplies them,
+  // kept from the iteration that last summed the face (the kernels change only where the guidance is
+  // computed): the iterations in between stream it instead of looking up each pair's slot.
+  FillVector<double> coefficient(w.ring.size());
+  // Faces whose normal changed in the last iteration, counted per chunk. Where they are many (the normals
+  // of a real scan's thin walls never settle bit for bit), testing each neighbourhood for a change costs
+  // more than it saves, and every face is summed: the same bits as the tested sums, which are skipped only
+  // where they would repeat the last ones.
+  constexpr std::size_t kFaceChunk = 1024;
+  std::vector<std::size_t> chunk_changes((nk + kFaceChunk - 1) / kFaceChunk, 0);
+  std::size_t last_changes = nk;
   // Guidance: per local face, the compared normal and whether it changed since it was last computed. It
   // is computed every `guidance_interval` iterations; in between, it and the range kernels stay.
   const double min_cos = std::cos(options.sigma_angle_degrees * M_PI / 180.0);
@@ -114,7 +125,10 @@ void filter_normals(const Workspace& w, const OffSliceFilterOptions& options, co
         range[s] = std::exp(static_cast<float>(-dr * inv_r));
       }
     });
-    parallel_chunks(nk, 1024, [&](std::size_t, std::size_t begin, std::size_t end) {
+    // A face is summed again where its neighbourhood changed; without the test where most faces changed.
+    const bool dense = all || 4 * last_changes >= nk;
+    parallel_chunks(nk, kFaceChunk, [&](std::size_t chunk, std::size_t begin, std::size_t end) {
+      std::size_t count = 0;
       for (std::size_t k = begin; k < end; ++k) {
         const Index f = w.filtered[k];
         if (rim_only && !rim[k]) {  // not a rim face: its normal stays
@@ -122,7 +136,7 @@ void filter_normals(const Workspace& w, const OffSliceFilterOptions& options, co
           changes[static_cast<std::size_t>(f)] = 0;
           continue;
         }
-        bool stale = all || summed[k] == 0;  // a face whose last sum vanished is summed again
+        bool stale = dense || summed[k] == 0;  // a face whose last sum vanished is summed again
         for (Index r = w.ring_offsets[k]; r < w.ring_offsets[k + 1] && !stale; ++r) {
           const auto g = static_cast<std::size_t>(w.ring[static_cast<std::size_t>(r)]);
           stale = changed[g] != 0 || (patches && guided_changed[g] != 0);
@@ -133,17 +147,30 @@ void filter_normals(const Workspace& w, const OffSliceFilterOptions& options, co
           continue;
         }
         Eigen::Vector3d acc = Eigen::Vector3d::Zero();
-        for (Index r = w.ring_offsets[k]; r < w.ring_offsets[k + 1]; ++r) {
-          const auto ru = static_cast<std::size_t>(r);
-          const auto kernel = static_cast<double>(range[static_cast<std::size_t>(w.ring_slot[ru])]);
-          acc += w.ring_weights[ru] * kernel * normals.col(w.ring[ru]);
+        if (refresh) {  // new kernels: the coefficients of the face's neighbourhood again
+          for (Index r = w.ring_offsets[k]; r < w.ring_offsets[k + 1]; ++r) {
+            const auto ru = static_cast<std::size_t>(r);
+            const auto kernel = static_cast<double>(range[static_cast<std::size_t>(w.ring_slot[ru])]);
+            coefficient[ru] = w.ring_weights[ru] * kernel;
+            acc += coefficient[ru] * normals.col(w.ring[ru]);
+          }
+        } else {
+          for (Index r = w.ring_offsets[k]; r < w.ring_offsets[k + 1]; ++r) {
+            const auto ru = static_cast<std::size_t>(r);
+            acc += coefficient[ru] * normals.col(w.ring[ru]);
+          }
         }
         const double len = acc.norm();
         summed[k] = len > 0.0 ? 1 : 0;
         if (len > 0.0) next.col(f) = acc / len;
-        changes[static_cast<std::size_t>(f)] = same_bits(next.col(f), normals.col(f)) ? 0 : 1;
+        const bool moved = !same_bits(next.col(f), normals.col(f));
+        changes[static_cast<std::size_t>(f)] = moved ? 1 : 0;
+        count += moved ? 1 : 0;
       }
+      chunk_changes[chunk] = count;
     });
+    last_changes = 0;
+    for (std::size_t c : chunk_changes) last_changes += c;
     normals.swap(next);
     changed.swap(changes);
   }
@@ -158,33 +185,43 @@ void update_vertices(const ContourFrame& frame, const Workspace& w, const Eigen:
   const Eigen::Vector3d& axis = frame.axis;
   const std::size_t nk = w.filtered.size(), nm = w.moving.size();
   Eigen::Matrix3Xd centroids(3, static_cast<Index>(nk));
-  Eigen::Matrix3Xd updated(3, static_cast<Index>(nm));
+  // Jacobi steps into a second buffer, swapped with x after each iteration: the vertices that do not move
+  // are the same in both.
+  Eigen::Matrix3Xd other = x;
   // Only what changed is recomputed: a vertex's update reads the corners of its faces (through their
   // centroids) and fixed data. Where none of them moved, bit for bit, in the last iteration, the update is
   // the last one again, which is where the vertex is; a centroid whose corners stayed is the same too.
+  // Where most vertices moved (a real scan's caps and intermediate contours settle slowly), the tests cost
+  // more than they save and everything is recomputed, which gives the same bits.
   std::vector<std::uint8_t> moved(static_cast<std::size_t>(x.cols()), 0);  // per local vertex, last iteration
   std::vector<std::uint8_t> face_moved(nk, 0);  // per filtered face: a corner moved (its centroid is new)
+  constexpr std::size_t kVertexChunk = 2048;
+  std::vector<std::size_t> chunk_moves((nm + kVertexChunk - 1) / kVertexChunk, 0);
+  std::size_t last_moves = nm;
   const bool full = full_recompute();
   for (int it = 0; it < options.vertex_iterations; ++it) {
+    const bool dense = it == 0 || full || 4 * last_moves >= nm;
     parallel_chunks(nk, 4096, [&](std::size_t, std::size_t begin, std::size_t end) {
       for (std::size_t k = begin; k < end; ++k) {
         const Triangle& t = w.corners[k];
         const auto c0 = static_cast<std::size_t>(t[0]), c1 = static_cast<std::size_t>(t[1]),
                    c2 = static_cast<std::size_t>(t[2]);
-        face_moved[k] = it == 0 || full || moved[c0] || moved[c1] || moved[c2] ? 1 : 0;
+        face_moved[k] = dense || moved[c0] || moved[c1] || moved[c2] ? 1 : 0;
         if (face_moved[k]) centroids.col(static_cast<Index>(k)) = (x.col(t[0]) + x.col(t[1]) + x.col(t[2])) / 3.0;
       }
     });
-    parallel_chunks(nm, 2048, [&](std::size_t, std::size_t begin, std::size_t end) {
+    parallel_chunks(nm, kVertexChunk, [&](std::size_t chunk, std::size_t begin, std::size_t end) {
+      std::size_t count = 0;
       for (std::size_t m = begin; m < end; ++m) {
         const Index i = w.moving[m];
         const Index first = w.incident_offsets[m], last = w.incident_offsets[m + 1];
-        bool stale = false;
+        bool stale = dense;
         for (Index r = first; r < last && !stale; ++r) {
           stale = face_moved[static_cast<std::size_t>(w.incident[static_cast<std::size_t>(r)])] != 0;
         }
         if (!stale) {  // the last update again
-          updated.col(static_cast<Index>(m)) = x.col(i);
+          other.col(i) = x.col(i);
+          moved[static_cast<std::size_t>(i)] = 0;
           continue;
         }
         Eigen::Vector3d step = Eigen::Vector3d::Zero();
@@ -209,17 +246,16 @@ void update_vertices(const ContourFrame& frame, const Workspace& w, const Eigen:
           const double h = std::clamp(h0 + axis.dot(d), w.low[m], w.high[m]);
           d += axis * (h - h0 - axis.dot(d));
         }
-        updated.col(static_cast<Index>(m)) = x0 + d;
+        other.col(i) = x0 + d;
+        const bool moves = !same_bits(other.col(i), x.col(i));
+        moved[static_cast<std::size_t>(i)] = moves ? 1 : 0;
+        count += moves ? 1 : 0;
       }
+      chunk_moves[chunk] = count;
     });
-    parallel_chunks(nm, 4096, [&](std::size_t, std::size_t begin, std::size_t end) {
-      for (std::size_t m = begin; m < end; ++m) {
-        const Index i = w.moving[m];
-        const auto u = updated.col(static_cast<Index>(m));
-        moved[static_cast<std::size_t>(i)] = same_bits(u, x.col(i)) ? 0 : 1;
-        x.col(i) = u;
-      }
-    });
+    x.swap(other);
+    last_moves = 0;
+    for (std::size_t c : chunk_moves) last_moves += c;
   }
 }
 
