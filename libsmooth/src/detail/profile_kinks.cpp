@@ -1,7 +1,7 @@
 // SPDX-License-Identifier: BSD-3-Clause
 #include "detail/profile_kinks.h"
 
-#include <Eigen/Dense>
+#include <Eigen/Core>
 
 #include <algorithm>
 #include <cmath>
@@ -31,19 +31,24 @@ Kink find_kink(const Profile& p, const KinkTestOptions& o) {
   const int n = last - first + 1;
   const int k_begin = first + min_side, k_end = last - min_side;  // candidate hinges, inclusive
   if (n < 5 || k_begin > k_end) return kink;
-  // The null model: one parabola. Its normal matrix, inverse and residuals.
-  Eigen::Matrix3d normal = Eigen::Matrix3d::Zero();
-  Eigen::Vector3d rhs = Eigen::Vector3d::Zero();
+  // The null model: one parabola. Its normal matrix M = [[S0 S1 S2] [S1 S2 S3] [S2 S3 S4]] (S_p = sum x^p),
+  // its inverse from the cofactors (M is symmetric, and so is the inverse) and the coefficients.
+  double m[5] = {0, 0, 0, 0, 0}, t[3] = {0, 0, 0};
   for (int j = first; j <= last; ++j) {
-    const double x = p.x[static_cast<std::size_t>(j)], y = p.y[static_cast<std::size_t>(j)];
-    const Eigen::Vector3d row(1.0, x, x * x);
-    normal += row * row.transpose();
-    rhs += y * row;
+    const double x = p.x[static_cast<std::size_t>(j)], y = p.y[static_cast<std::size_t>(j)], x2 = x * x;
+    m[0] += 1.0, m[1] += x, m[2] += x2, m[3] += x2 * x, m[4] += x2 * x2;
+    t[0] += y, t[1] += x * y, t[2] += x2 * y;
   }
-  const Eigen::LDLT<Eigen::Matrix3d> ldlt(normal);
-  if (ldlt.info() != Eigen::Success || !(ldlt.vectorD().minCoeff() > 1e-9 * ldlt.vectorD().maxCoeff())) return kink;
-  const Eigen::Vector3d beta = ldlt.solve(rhs);
-  const Eigen::Matrix3d inverse = ldlt.solve(Eigen::Matrix3d::Identity());
+  const double a = m[0], b = m[1], c = m[2], d = m[3], e = m[4];
+  const double i00 = c * e - d * d, i01 = c * d - b * e, i02 = b * d - c * c;
+  const double i11 = a * e - c * c, i12 = b * c - a * d, i22 = a * c - b * b;
+  const double det = a * i00 + b * i01 + c * i02;
+  // Three distinct abscissae at least (n >= 5 distinct samples here): a well-posed parabola.
+  if (!(det > 1e-9 * std::max({a * c * e, b * b * e, 1e-300}))) return kink;
+  const double inv_det = 1.0 / det;
+  const Eigen::Matrix3d inverse =
+      (Eigen::Matrix3d() << i00, i01, i02, i01, i11, i12, i02, i12, i22).finished() * inv_det;
+  const Eigen::Vector3d beta = inverse * Eigen::Vector3d(t[0], t[1], t[2]);
   // Each hinge h = (x - x_k)_+: with the null residuals r orthogonal to the parabola's columns, adding h
   // lowers the residual sum of squares by (h . r)^2 / |h - P h|^2, |h - P h|^2 = h . h - (X^T h)^T M^-1 X^T h.
   // All three from sums over the samples beyond x_k of x^p (p <= 3), r and x r, grown from the last sample
