@@ -85,13 +85,6 @@ void filter_normals(const Workspace& w, const OffSliceFilterOptions& options, co
   // kept from the iteration that last summed the face (the kernels change only where the guidance is
   // computed): the iterations in between stream it instead of looking up each pair's slot.
   FillVector<float> coefficient(w.ring.size());
-  // Faces whose normal changed in the last iteration, counted per chunk. Where they are many (the normals
-  // of a real scan's thin walls never settle bit for bit), testing each neighbourhood for a change costs
-  // more than it saves, and every face is summed: the same bits as the tested sums, which are skipped only
-  // where they would repeat the last ones.
-  constexpr std::size_t kFaceChunk = 1024;
-  std::vector<std::size_t> chunk_changes((nk + kFaceChunk - 1) / kFaceChunk, 0);
-  std::size_t last_changes = nk;
   // Guidance: per local face, the compared normal and whether it changed since it was last computed. It
   // is computed every `guidance_interval` iterations; in between, it and the range kernels stay.
   const double min_cos = std::cos(options.sigma_angle_degrees * M_PI / 180.0);
@@ -138,10 +131,7 @@ void filter_normals(const Workspace& w, const OffSliceFilterOptions& options, co
         range[s] = std::exp(static_cast<float>(-dr * inv_r));
       }
     });
-    // A face is summed again where its neighbourhood changed; without the test where most faces changed.
-    const bool dense = all || 4 * last_changes >= nk;
-    parallel_chunks(nk, kFaceChunk, [&](std::size_t chunk, std::size_t begin, std::size_t end) {
-      std::size_t count = 0;
+    parallel_chunks(nk, 1024, [&](std::size_t, std::size_t begin, std::size_t end) {
       for (std::size_t k = begin; k < end; ++k) {
         const Index f = w.filtered[k];
         if (rim_only && !rim[k]) {  // not a rim face: its normal stays
@@ -150,7 +140,7 @@ void filter_normals(const Workspace& w, const OffSliceFilterOptions& options, co
           changes[static_cast<std::size_t>(f)] = 0;
           continue;
         }
-        bool stale = dense || summed[k] == 0;  // a face whose last sum vanished is summed again
+        bool stale = all || summed[k] == 0;  // a face whose last sum vanished is summed again
         for (Index r = w.ring_offsets[k]; r < w.ring_offsets[k + 1] && !stale; ++r) {
           const auto g = static_cast<std::size_t>(w.ring[static_cast<std::size_t>(r)]);
           stale = changed[g] != 0 || (patches && guided_changed[g] != 0);
@@ -182,14 +172,9 @@ void filter_normals(const Workspace& w, const OffSliceFilterOptions& options, co
           next.col(f) = acc / len;
           nextf.col(f) << next.col(f).cast<float>(), 0.0f;
         }
-        const bool moved = !same_bits(next.col(f), normals.col(f));
-        changes[static_cast<std::size_t>(f)] = moved ? 1 : 0;
-        count += moved ? 1 : 0;
+        changes[static_cast<std::size_t>(f)] = same_bits(next.col(f), normals.col(f)) ? 0 : 1;
       }
-      chunk_changes[chunk] = count;
     });
-    last_changes = 0;
-    for (std::size_t c : chunk_changes) last_changes += c;
     normals.swap(next);
     nf.swap(nextf);
     changed.swap(changes);
@@ -211,31 +196,25 @@ void update_vertices(const ContourFrame& frame, const Workspace& w, const Eigen:
   // Only what changed is recomputed: a vertex's update reads the corners of its faces (through their
   // centroids) and fixed data. Where none of them moved, bit for bit, in the last iteration, the update is
   // the last one again, which is where the vertex is; a centroid whose corners stayed is the same too.
-  // Where most vertices moved (a real scan's caps and intermediate contours settle slowly), the tests cost
-  // more than they save and everything is recomputed, which gives the same bits.
   std::vector<std::uint8_t> moved(static_cast<std::size_t>(x.cols()), 0);  // per local vertex, last iteration
   std::vector<std::uint8_t> face_moved(nk, 0);  // per filtered face: a corner moved (its centroid is new)
-  constexpr std::size_t kVertexChunk = 2048;
-  std::vector<std::size_t> chunk_moves((nm + kVertexChunk - 1) / kVertexChunk, 0);
-  std::size_t last_moves = nm;
   const bool full = full_recompute();
   for (int it = 0; it < options.vertex_iterations; ++it) {
-    const bool dense = it == 0 || full || 4 * last_moves >= nm;
+    const bool all = it == 0 || full;
     parallel_chunks(nk, 4096, [&](std::size_t, std::size_t begin, std::size_t end) {
       for (std::size_t k = begin; k < end; ++k) {
         const Triangle& t = w.corners[k];
         const auto c0 = static_cast<std::size_t>(t[0]), c1 = static_cast<std::size_t>(t[1]),
                    c2 = static_cast<std::size_t>(t[2]);
-        face_moved[k] = dense || moved[c0] || moved[c1] || moved[c2] ? 1 : 0;
+        face_moved[k] = all || moved[c0] || moved[c1] || moved[c2] ? 1 : 0;
         if (face_moved[k]) centroids.col(static_cast<Index>(k)) = (x.col(t[0]) + x.col(t[1]) + x.col(t[2])) / 3.0;
       }
     });
-    parallel_chunks(nm, kVertexChunk, [&](std::size_t chunk, std::size_t begin, std::size_t end) {
-      std::size_t count = 0;
+    parallel_chunks(nm, 2048, [&](std::size_t, std::size_t begin, std::size_t end) {
       for (std::size_t m = begin; m < end; ++m) {
         const Index i = w.moving[m];
         const Index first = w.incident_offsets[m], last = w.incident_offsets[m + 1];
-        bool stale = dense;
+        bool stale = false;
         for (Index r = first; r < last && !stale; ++r) {
           stale = face_moved[static_cast<std::size_t>(w.incident[static_cast<std::size_t>(r)])] != 0;
         }
@@ -267,15 +246,10 @@ void update_vertices(const ContourFrame& frame, const Workspace& w, const Eigen:
           d += axis * (h - h0 - axis.dot(d));
         }
         other.col(i) = x0 + d;
-        const bool moves = !same_bits(other.col(i), x.col(i));
-        moved[static_cast<std::size_t>(i)] = moves ? 1 : 0;
-        count += moves ? 1 : 0;
+        moved[static_cast<std::size_t>(i)] = same_bits(other.col(i), x.col(i)) ? 0 : 1;
       }
-      chunk_moves[chunk] = count;
     });
     x.swap(other);
-    last_moves = 0;
-    for (std::size_t c : chunk_moves) last_moves += c;
   }
 }
 
