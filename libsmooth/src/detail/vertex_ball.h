@@ -36,6 +36,8 @@ struct BallScratch {
       current = 1;
     }
   }
+  /// Whether j is a member of the current ball.
+  [[nodiscard]] bool has(Index j) const { return stamp[static_cast<std::size_t>(j)] == current; }
   /// Adds j unless it is a member; whether it was added.
   bool add(Index j) {
     std::uint32_t& s = stamp[static_cast<std::size_t>(j)];
@@ -85,7 +87,8 @@ inline void gather_ball(const Mesh& mesh, const MeshAdjacency& adjacency, Index 
   const std::vector<Index>& ball = scratch.ball;
   for (std::size_t b = 0; b < ball.size() && ball.size() < max_vertices; ++b) {
     for (Index j : adjacency.ring(ball[b])) {
-      if ((mesh.positions.col(j) - centre).squaredNorm() > r2) continue;
+      // A member already (most ring neighbours are, once the ball grows) before the distance.
+      if (scratch.has(j) || (mesh.positions.col(j) - centre).squaredNorm() > r2) continue;
       scratch.add(j);
     }
   }
