@@ -171,8 +171,10 @@ struct Grown {
   int half_width = 0;
   bool stopped = false;
 
-  // Offers the estimate of the window of half-width h; stops the kind when the intervals part.
-  void offer(double value_h, double variance_h, int h, const LpaIciOptions& o) {
+  // Offers the estimate of the window of half-width h; stops the kind when the intervals part. Inlined by
+  // request: called five times a step in the hottest loop of the smoothing, where the compiler's own choice
+  // varied with the rest of the unity build (out of line it cost lpa_ici 12 % more instructions).
+  [[gnu::always_inline]] void offer(double value_h, double variance_h, int h, const LpaIciOptions& o) {
     const double s = o.sigma * std::sqrt(variance_h);
     const double lo = std::max(lower, value_h - o.gamma * s), hi = std::min(upper, value_h + o.gamma * s);
     if (lo > hi) {
