@@ -2,56 +2,40 @@
 #include "detail/cap_refinement.h"
 
 #include "contourmesh/reconstruct/contours.h"
+#include "detail/edge_map.h"
 
 #include <algorithm>
 #include <cmath>
 #include <cstdint>
-#include <unordered_map>
-#include <unordered_set>
 
 namespace contourmesh::detail {
 
 namespace {
-
-// splitmix64 finaliser: edge keys are (u << 32 | v) with small u, v, which std::hash (the identity)
-// spreads poorly over the buckets.
-struct EdgeHash {
-  std::size_t operator()(std::uint64_t x) const {
-    x ^= x >> 30;
-    x *= 0xbf58476d1ce4e5b9ULL;
-    x ^= x >> 27;
-    x *= 0x94d049bb133111ebULL;
-    x ^= x >> 31;
-    return static_cast<std::size_t>(x);
-  }
-};
 
 class Triangulation {
  public:
   std::vector<Eigen::Vector2d> pos;
   std::vector<PolygonVertex> id;          // boundary id, or {-1, interior index}
   std::vector<std::array<int, 3>> tris;   // counter-clockwise; a dead triangle has tris[t][0] < 0
-  std::unordered_map<std::uint64_t, int, EdgeHash> edge_to_tri;  // directed edge (u, v) -> triangle
-  std::unordered_set<std::uint64_t, EdgeHash> constrained;        // undirected boundary edges
+  EdgeMap edge_to_tri;  // directed edge (u, v) -> triangle
+  EdgeMap constrained;  // undirected boundary edges (the values are not read)
 
-  static std::uint64_t key(int u, int v) {
-    return (static_cast<std::uint64_t>(static_cast<std::uint32_t>(u)) << 32) | static_cast<std::uint32_t>(v);
-  }
+  static std::uint64_t key(int u, int v) { return EdgeMap::key(u, v); }
   static std::uint64_t ukey(int u, int v) { return u < v ? key(u, v) : key(v, u); }
 
   int add(int a, int b, int c) {
     const int t = static_cast<int>(tris.size());
     tris.push_back({a, b, c});
-    edge_to_tri[key(a, b)] = t;
-    edge_to_tri[key(b, c)] = t;
-    edge_to_tri[key(c, a)] = t;
+    edge_to_tri.assign(key(a, b), t);
+    edge_to_tri.assign(key(b, c), t);
+    edge_to_tri.assign(key(c, a), t);
     return t;
   }
   void kill(int t) {
     const auto [a, b, c] = tris[t];
     for (auto k : {key(a, b), key(b, c), key(c, a)}) {
-      const auto it = edge_to_tri.find(k);
-      if (it != edge_to_tri.end() && it->second == t) edge_to_tri.erase(it);
+      const int* holder = edge_to_tri.find(k);
+      if (holder != nullptr && *holder == t) edge_to_tri.erase(k);
     }
     tris[t] = {-1, -1, -1};
   }
@@ -75,11 +59,11 @@ class Triangulation {
     while (!stack.empty() && guard++ < 1000000) {
       const auto [a, b] = stack.back();
       stack.pop_back();
-      if (constrained.count(ukey(a, b))) continue;
-      const auto i1 = edge_to_tri.find(key(a, b));
-      const auto i2 = edge_to_tri.find(key(b, a));
-      if (i1 == edge_to_tri.end() || i2 == edge_to_tri.end()) continue;
-      const int t1 = i1->second, t2 = i2->second;
+      if (constrained.contains(ukey(a, b))) continue;
+      const int* i1 = edge_to_tri.find(key(a, b));
+      const int* i2 = edge_to_tri.find(key(b, a));
+      if (i1 == nullptr || i2 == nullptr) continue;
+      const int t1 = *i1, t2 = *i2;
       const int c = third(t1, a, b), d = third(t2, b, a);
       if (!in_circle(a, b, c, d)) continue;
       // The quad a, d, b, c must be strictly convex for the flip to stay valid.
@@ -140,7 +124,7 @@ RefinedCap triangulate_refined(const Polygon& outer, const std::vector<Polygon>&
       tr.id.push_back({p, static_cast<int>(k)});
     }
     for (std::size_t k = 0; k < poly.size(); ++k) {
-      tr.constrained.insert(Triangulation::ukey(index_of[p][k], index_of[p][(k + 1) % poly.size()]));
+      tr.constrained.insert(Triangulation::ukey(index_of[p][k], index_of[p][(k + 1) % poly.size()]), 0);
     }
   };
   add_polygon(outer, 0);

@@ -1,13 +1,13 @@
 // SPDX-License-Identifier: BSD-3-Clause
 #include "detail/moved_face_flips.h"
 
+#include "detail/edge_map.h"
 #include "detail/face_shape.h"
 
 #include <algorithm>
 #include <cmath>
 #include <cstdint>
 #include <deque>
-#include <unordered_map>
 #include <utility>
 
 namespace contourmesh::detail {
@@ -33,8 +33,8 @@ class Flipper {
   // The face across edge k of face f (corner k to k + 1), -1 when none.
   [[nodiscard]] Index across(Index f, int k) const {
     const Triangle& t = face(f);
-    const auto it = edges_.find(key(t[(k + 1) % 3], t[k]));
-    return it == edges_.end() ? -1 : it->second;
+    const Index* g = edges_.find(key(t[(k + 1) % 3], t[k]));
+    return g == nullptr ? -1 : *g;
   }
 
   // The gain of flipping edge k of face f (0 when not allowed); flips when `apply`.
@@ -51,7 +51,7 @@ class Flipper {
     for (const Index v : face(g)) {
       if (v != a && v != b) d = v;
     }
-    if (d < 0 || c == d || edges_.count(key(c, d)) || edges_.count(key(d, c))) return 0.0;
+    if (d < 0 || c == d || edges_.contains(key(c, d)) || edges_.contains(key(d, c))) return 0.0;
     if (same_contour(a, b) || same_contour(c, d)) return 0.0;
     const Eigen::Vector3d &A = p(a), &B = p(b), &C = p(c), &D = p(d);
     const double before = std::max(sharpness(A, B, C), sharpness(B, A, D));
@@ -81,9 +81,7 @@ class Flipper {
   }
 
  private:
-  static std::uint64_t key(Index a, Index b) {
-    return (static_cast<std::uint64_t>(static_cast<std::uint32_t>(a)) << 32) | static_cast<std::uint32_t>(b);
-  }
+  static std::uint64_t key(Index a, Index b) { return EdgeMap::key(a, b); }
   [[nodiscard]] const Triangle& face(Index f) const { return mesh_.triangles[static_cast<std::size_t>(f)]; }
   [[nodiscard]] Eigen::Vector3d p(Index v) const { return mesh_.positions.col(v); }
   // Two vertices of one slice contour: an edge between them is the contour's or a chord in its plane.
@@ -104,9 +102,9 @@ class Flipper {
   // other side than `side`.
   [[nodiscard]] int folds(Index u, Index v, int side) const {
     if (side == 0) return 0;
-    const auto it = edges_.find(key(v, u));
-    if (it == edges_.end()) return 0;
-    const Triangle& t = face(it->second);
+    const Index* g = edges_.find(key(v, u));
+    if (g == nullptr) return 0;
+    const Triangle& t = face(*g);
     return side_of((p(t[1]) - p(t[0])).cross(p(t[2]) - p(t[0]))) == -side ? 1 : 0;
   }
   void unlink(Index f) {
@@ -115,7 +113,7 @@ class Flipper {
   }
   void link(Index f) {
     const Triangle& t = face(f);
-    for (int k = 0; k < 3; ++k) edges_[key(t[k], t[(k + 1) % 3])] = f;
+    for (int k = 0; k < 3; ++k) edges_.assign(key(t[k], t[(k + 1) % 3]), f);
   }
 
   Mesh& mesh_;
@@ -123,7 +121,7 @@ class Flipper {
   Eigen::Vector3d axis_;
   double max_deviation_;
   std::vector<std::uint8_t> inner_;
-  std::unordered_map<std::uint64_t, Index> edges_;
+  EdgeMap edges_;  // directed edge -> the face holding it
 };
 
 }  // namespace

@@ -2,6 +2,7 @@
 #include "detail/slab_remeshing.h"
 
 #include "contourmesh/internal/polygon2d.h"
+#include "detail/edge_map.h"
 #include "detail/face_shape.h"
 
 #include <algorithm>
@@ -55,7 +56,7 @@ class SurfacePatch {
     edges_.reserve(3 * faces_.size());
     for (std::size_t f = 0; f < faces_.size(); ++f) {
       for (int k = 0; k < 3; ++k) {
-        if (!edges_.emplace(key(faces_[f][k], faces_[f][(k + 1) % 3]), static_cast<int>(f)).second) valid_ = false;
+        if (!edges_.insert(key(faces_[f][k], faces_[f][(k + 1) % 3]), static_cast<int>(f))) valid_ = false;
       }
     }
   }
@@ -72,10 +73,9 @@ class SurfacePatch {
   // where the faces' roles differ.
   [[nodiscard]] int across(int f, int k, bool any_role = false) const {
     const auto& t = faces_[static_cast<std::size_t>(f)];
-    const auto it = edges_.find(key(t[(k + 1) % 3], t[k]));
-    if (it == edges_.end()) return -1;
-    return any_role || roles_[static_cast<std::size_t>(it->second)] == roles_[static_cast<std::size_t>(f)] ? it->second
-                                                                                                          : -1;
+    const int* g = edges_.find(key(t[(k + 1) % 3], t[k]));
+    if (g == nullptr) return -1;
+    return any_role || roles_[static_cast<std::size_t>(*g)] == roles_[static_cast<std::size_t>(f)] ? *g : -1;
   }
 
   // +1 or -1 when face f lies nearly in the slice planes (its normal within 30 degrees of +w or -w), else 0.
@@ -97,7 +97,7 @@ class SurfacePatch {
     const auto& tf = faces_[static_cast<std::size_t>(f)];
     const int a = tf[k], b = tf[(k + 1) % 3], c = tf[(k + 2) % 3];
     const int d = third(g, b, a);
-    if (c == d || edges_.count(key(c, d)) || edges_.count(key(d, c))) return 0.0;
+    if (c == d || edges_.contains(key(c, d)) || edges_.contains(key(d, c))) return 0.0;
     const Eigen::Vector3d &A = points_[a], &B = points_[b], &C = points_[c], &D = points_[d];
     const int side_f = level_side(f), side_g = level_side(g);
     // A chord between two vertices the tiler put on one plane would lie in that plane, across a contour;
@@ -151,8 +151,8 @@ class SurfacePatch {
   // than `side` (a face of that side holding the edge would fold against it), else 0.
   [[nodiscard]] int folds_outside(int u, int v, int side) const {
     if (side == 0) return 0;
-    const auto it = edges_.find(key(v, u));
-    return it != edges_.end() && level_side(it->second) == -side ? 1 : 0;
+    const int* g = edges_.find(key(v, u));
+    return g != nullptr && level_side(*g) == -side ? 1 : 0;
   }
 
   // Splits edge k of face f at its midpoint; returns the faces made or changed (empty when the edge is
@@ -272,9 +272,7 @@ class SurfacePatch {
   }
 
  private:
-  static std::uint64_t key(int a, int b) {
-    return (static_cast<std::uint64_t>(static_cast<std::uint32_t>(a)) << 32) | static_cast<std::uint32_t>(b);
-  }
+  static std::uint64_t key(int a, int b) { return EdgeMap::key(a, b); }
   int compact(VertexRef v) {
     const auto [it, inserted] = index_.emplace(v, static_cast<int>(points_.size()));
     if (inserted) {
@@ -296,7 +294,7 @@ class SurfacePatch {
   }
   void link(int f) {
     const auto& t = faces_[static_cast<std::size_t>(f)];
-    for (int k = 0; k < 3; ++k) edges_[key(t[k], t[(k + 1) % 3])] = f;
+    for (int k = 0; k < 3; ++k) edges_.assign(key(t[k], t[(k + 1) % 3]), f);
   }
 
   SlabMesh& mesh_;
@@ -306,7 +304,7 @@ class SurfacePatch {
   std::vector<std::array<int, 3>> faces_;
   std::vector<FaceRole> roles_;
   std::vector<int> origin_;  // the face of the slab mesh, -1 for a face a split added
-  std::unordered_map<std::uint64_t, int> edges_;
+  EdgeMap edges_;  // directed edge -> the face holding it
   int original_vertices_ = 0;
   bool valid_ = true;
 };
