@@ -3,6 +3,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdint>
 #include <limits>
 
 namespace contourmesh::detail {
@@ -238,6 +239,7 @@ class Ring {
     std::vector<std::array<PolygonVertex, 3>> out;
     int size = 1;
     for (int k = nodes_[start].next; k != start; k = nodes_[k].next) ++size;
+    build_grid(start, size);
     int cur = start;
     int stall = 0;
     while (size > 3) {
@@ -247,6 +249,7 @@ class Ring {
         out.push_back({nodes_[n.prev].id, n.id, nodes_[n.next].id});
         nodes_[n.prev].next = n.next;
         nodes_[n.next].prev = n.prev;
+        alive_[static_cast<std::size_t>(cur)] = 0;
         cur = n.prev;  // the neighbours may have become ears
         --size;
         stall = 0;
@@ -261,17 +264,75 @@ class Ring {
   }
 
  private:
-  bool is_ear(int b) const {
+  // The ring's nodes in a uniform grid over their bounding box (CSR by cell, about one node per cell), so
+  // that an ear test looks only at the nodes in its triangle's box instead of walking the whole ring.
+  void build_grid(int start, int size) {
+    alive_.assign(nodes_.size(), 0);
+    Eigen::AlignedBox2d box;
+    int k = start;
+    do {
+      alive_[static_cast<std::size_t>(k)] = 1;
+      box.extend(nodes_[k].p);
+      k = nodes_[k].next;
+    } while (k != start);
+    const int cells = std::max(1, static_cast<int>(std::sqrt(static_cast<double>(size))));
+    origin_ = box.min();
+    const Eigen::Vector2d extent = box.sizes();
+    nx_ = extent.x() > 0.0 ? cells : 1;
+    ny_ = extent.y() > 0.0 ? cells : 1;
+    inv_cell_ = Eigen::Vector2d(extent.x() > 0.0 ? nx_ / extent.x() : 0.0, extent.y() > 0.0 ? ny_ / extent.y() : 0.0);
+    cell_start_.assign(static_cast<std::size_t>(nx_) * static_cast<std::size_t>(ny_) + 1, 0);
+    k = start;
+    do {
+      ++cell_start_[cell_of(nodes_[k].p) + 1];
+      k = nodes_[k].next;
+    } while (k != start);
+    for (std::size_t c = 1; c < cell_start_.size(); ++c) cell_start_[c] += cell_start_[c - 1];
+    cell_nodes_.assign(static_cast<std::size_t>(size), -1);
+    std::vector<int> fill(cell_start_.begin(), cell_start_.end() - 1);
+    k = start;
+    do {
+      cell_nodes_[static_cast<std::size_t>(fill[cell_of(nodes_[k].p)]++)] = k;
+      k = nodes_[k].next;
+    } while (k != start);
+  }
+  // Column (x) or row (y) of a coordinate, clamped to the grid: monotonic, so that a point within a box
+  // lies in a cell between the cells of the box's corners.
+  [[nodiscard]] int axis_cell(double v, int d) const {
+    const int n = d == 0 ? nx_ : ny_;
+    const double t = (v - origin_[d]) * inv_cell_[d];
+    if (!(t > 0.0)) return 0;
+    return t >= n ? n - 1 : static_cast<int>(t);
+  }
+  [[nodiscard]] std::size_t cell_of(const Eigen::Vector2d& p) const {
+    return static_cast<std::size_t>(axis_cell(p.y(), 1)) * static_cast<std::size_t>(nx_) +
+           static_cast<std::size_t>(axis_cell(p.x(), 0));
+  }
+
+  // Whether the corner at b is an ear: strictly convex, and no vertex of the ring but its own three that
+  // is not strictly convex lies in its triangle (bridge duplicates of its corners aside; a convex vertex
+  // inside would bring a reflex one with it). Only the grid cells of the triangle's box can hold one.
+  [[nodiscard]] bool is_ear(int b) const {
     const Node& nb = nodes_[b];
     const Eigen::Vector2d& A = nodes_[nb.prev].p;
     const Eigen::Vector2d& B = nb.p;
     const Eigen::Vector2d& C = nodes_[nb.next].p;
     if (cross(A, B, C) <= 0.0) return false;
-    for (int k = nodes_[nb.next].next; k != nb.prev; k = nodes_[k].next) {
-      const Node& n = nodes_[k];
-      if (n.p == A || n.p == B || n.p == C) continue;  // bridge duplicates
-      if (cross(nodes_[n.prev].p, n.p, nodes_[n.next].p) > 0.0) continue;  // convex vertices cannot block
-      if (in_triangle(A, B, C, n.p)) return false;
+    const Eigen::Vector2d lo = A.cwiseMin(B).cwiseMin(C), hi = A.cwiseMax(B).cwiseMax(C);
+    const int i0 = axis_cell(lo.x(), 0), i1 = axis_cell(hi.x(), 0);
+    const int j0 = axis_cell(lo.y(), 1), j1 = axis_cell(hi.y(), 1);
+    for (int j = j0; j <= j1; ++j) {
+      for (int i = i0; i <= i1; ++i) {
+        const std::size_t c = static_cast<std::size_t>(j) * static_cast<std::size_t>(nx_) + static_cast<std::size_t>(i);
+        for (int e = cell_start_[c]; e < cell_start_[c + 1]; ++e) {
+          const int k = cell_nodes_[static_cast<std::size_t>(e)];
+          if (!alive_[static_cast<std::size_t>(k)] || k == nb.prev || k == b || k == nb.next) continue;
+          const Node& n = nodes_[k];
+          if (n.p == A || n.p == B || n.p == C) continue;  // bridge duplicates
+          if (cross(nodes_[n.prev].p, n.p, nodes_[n.next].p) > 0.0) continue;  // convex vertices cannot block
+          if (in_triangle(A, B, C, n.p)) return false;
+        }
+      }
     }
     return true;
   }
@@ -294,6 +355,11 @@ class Ring {
   }
 
   std::vector<Node> nodes_;
+  // Scratch of clip(): per node, whether it is still in the ring; the grid of the ring's nodes.
+  std::vector<std::uint8_t> alive_;
+  Eigen::Vector2d origin_ = Eigen::Vector2d::Zero(), inv_cell_ = Eigen::Vector2d::Zero();
+  int nx_ = 1, ny_ = 1;
+  std::vector<int> cell_start_, cell_nodes_;
 };
 
 }  // namespace
