@@ -26,32 +26,6 @@ void Profile::sort() {
 
 namespace {
 
-// Running sums of one window: S_p = sum x^p (p <= 4), T_a = sum x^a y (a <= 2).
-struct Moments {
-  double s[5] = {0, 0, 0, 0, 0};
-  double t[3] = {0, 0, 0};
-  int distinct = 0;  // samples added (profiles hold distinct x)
-  void add(double x, double y) {
-    const double x2 = x * x;
-    s[0] += 1.0;
-    s[1] += x;
-    s[2] += x2;
-    s[3] += x2 * x;
-    s[4] += x2 * x2;
-    t[0] += y;
-    t[1] += x * y;
-    t[2] += x2 * y;
-    ++distinct;
-  }
-  Moments operator+(const Moments& o) const {
-    Moments m = *this;
-    for (int k = 0; k < 5; ++k) m.s[k] += o.s[k];
-    for (int k = 0; k < 3; ++k) m.t[k] += o.t[k];
-    m.distinct += o.distinct;
-    return m;
-  }
-};
-
 // Least-squares parabola through the window, evaluated at 0: value and (M^-1)_00, the variance factor.
 inline bool fit_parabola(const Moments& m, double& value, double& variance) {
   if (m.distinct < 3) return false;

@@ -36,6 +36,34 @@ struct Profile {
   void sort();
 };
 
+/// Running sums of a window of samples for least-squares polynomials of degree <= 2 in x: S_p = sum x^p
+/// (p <= 4), T_a = sum x^a y (a <= 2); the normal matrix of a parabola is [[S0 S1 S2] [S1 S2 S3]
+/// [S2 S3 S4]]. Shared by the windows of lpa_ici and the null model of the kink test.
+struct Moments {
+  double s[5] = {0, 0, 0, 0, 0};
+  double t[3] = {0, 0, 0};
+  int distinct = 0;  ///< samples added (profiles hold distinct x)
+  void add(double x, double y) {
+    const double x2 = x * x;
+    s[0] += 1.0;
+    s[1] += x;
+    s[2] += x2;
+    s[3] += x2 * x;
+    s[4] += x2 * x2;
+    t[0] += y;
+    t[1] += x * y;
+    t[2] += x2 * y;
+    ++distinct;
+  }
+  Moments operator+(const Moments& o) const {
+    Moments m = *this;
+    for (int k = 0; k < 5; ++k) m.s[k] += o.s[k];
+    for (int k = 0; k < 3; ++k) m.t[k] += o.t[k];
+    m.distinct += o.distinct;
+    return m;
+  }
+};
+
 struct LpaIciOptions {
   double sigma = 0.0;  ///< noise standard deviation of y
   double gamma = 2.0;  ///< confidence-interval width, in standard deviations

@@ -31,15 +31,11 @@ Kink find_kink(const Profile& p, const KinkTestOptions& o) {
   const int n = last - first + 1;
   const int k_begin = first + min_side, k_end = last - min_side;  // candidate hinges, inclusive
   if (n < 5 || k_begin > k_end) return kink;
-  // The null model: one parabola. Its normal matrix M = [[S0 S1 S2] [S1 S2 S3] [S2 S3 S4]] (S_p = sum x^p),
-  // its inverse from the cofactors (M is symmetric, and so is the inverse) and the coefficients.
-  double m[5] = {0, 0, 0, 0, 0}, t[3] = {0, 0, 0};
-  for (int j = first; j <= last; ++j) {
-    const double x = p.x[static_cast<std::size_t>(j)], y = p.y[static_cast<std::size_t>(j)], x2 = x * x;
-    m[0] += 1.0, m[1] += x, m[2] += x2, m[3] += x2 * x, m[4] += x2 * x2;
-    t[0] += y, t[1] += x * y, t[2] += x2 * y;
-  }
-  const double a = m[0], b = m[1], c = m[2], d = m[3], e = m[4];
+  // The null model: one parabola. Its normal matrix (Moments), its inverse from the cofactors (the matrix
+  // is symmetric, and so is the inverse) and the coefficients.
+  Moments m;
+  for (int j = first; j <= last; ++j) m.add(p.x[static_cast<std::size_t>(j)], p.y[static_cast<std::size_t>(j)]);
+  const double a = m.s[0], b = m.s[1], c = m.s[2], d = m.s[3], e = m.s[4];
   const double i00 = c * e - d * d, i01 = c * d - b * e, i02 = b * d - c * c;
   const double i11 = a * e - c * c, i12 = b * c - a * d, i22 = a * c - b * b;
   const double det = a * i00 + b * i01 + c * i02;
@@ -48,7 +44,7 @@ Kink find_kink(const Profile& p, const KinkTestOptions& o) {
   const double inv_det = 1.0 / det;
   const Eigen::Matrix3d inverse =
       (Eigen::Matrix3d() << i00, i01, i02, i01, i11, i12, i02, i12, i22).finished() * inv_det;
-  const Eigen::Vector3d beta = inverse * Eigen::Vector3d(t[0], t[1], t[2]);
+  const Eigen::Vector3d beta = inverse * Eigen::Vector3d(m.t[0], m.t[1], m.t[2]);
   // Each hinge h = (x - x_k)_+: with the null residuals r orthogonal to the parabola's columns, adding h
   // lowers the residual sum of squares by (h . r)^2 / |h - P h|^2, |h - P h|^2 = h . h - (X^T h)^T M^-1 X^T h.
   // All three from sums over the samples beyond x_k of x^p (p <= 3), r and x r, grown from the last sample
