@@ -1,11 +1,14 @@
 // SPDX-License-Identifier: BSD-3-Clause
 #include "contourmesh/reconstruct/contour_deviation.h"
 
+#include "detail/cross_section.h"
+
 #include <contourmesh/smooth/errors.h>
 
 #include <Eigen/Geometry>
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <limits>
 
@@ -108,22 +111,27 @@ void measure(const std::vector<SectionSegment>& from, const SegmentGrid& to, dou
 
 }  // namespace
 
-std::vector<SectionSegment> cross_section(const Mesh& mesh, const ContourStack& frame, double w, bool just_above) {
+namespace detail {
+
+std::vector<SectionSegment> cross_section_of(const Mesh& mesh, const std::vector<Index>* faces,
+                                             const ContourStack& frame, double w, bool just_above) {
   std::vector<SectionSegment> out;
   const auto& P = mesh.positions;
   auto height = [&](Index i) { return (P.col(i) - frame.origin).dot(frame.axis_w) - w; };
   auto uv = [&](const Eigen::Vector3d& x) {
     return Eigen::Vector2d((x - frame.origin).dot(frame.axis_u), (x - frame.origin).dot(frame.axis_v));
   };
-  for (const Triangle& t : mesh.triangles) {
+  const std::size_t count = faces ? faces->size() : mesh.triangles.size();
+  for (std::size_t k = 0; k < count; ++k) {
+    const Triangle& t = mesh.triangles[faces ? static_cast<std::size_t>((*faces)[k]) : k];
     const std::array<double, 3> d{height(t[0]), height(t[1]), height(t[2])};
-    const auto up = [&](int k) { return just_above ? d[k] > 0.0 : d[k] >= 0.0; };
+    const auto up = [&](int j) { return just_above ? d[j] > 0.0 : d[j] >= 0.0; };
     const int above = up(0) + up(1) + up(2);
     if (above == 0 || above == 3) continue;
     std::array<Eigen::Vector3d, 2> ends;
     int found = 0;
-    for (int k = 0; k < 3; ++k) {
-      const int a = k, b = (k + 1) % 3;
+    for (int j = 0; j < 3; ++j) {
+      const int a = j, b = (j + 1) % 3;
       if (up(a) == up(b)) continue;
       const double s = d[a] / (d[a] - d[b]);
       ends[found++] = P.col(t[a]) + s * (P.col(t[b]) - P.col(t[a]));
@@ -136,6 +144,12 @@ std::vector<SectionSegment> cross_section(const Mesh& mesh, const ContourStack& 
     if ((seg[1] - seg[0]).squaredNorm() > 0.0) out.push_back(seg);
   }
   return out;
+}
+
+}  // namespace detail
+
+std::vector<SectionSegment> cross_section(const Mesh& mesh, const ContourStack& frame, double w, bool just_above) {
+  return detail::cross_section_of(mesh, nullptr, frame, w, just_above);
 }
 
 double section_area(const std::vector<SectionSegment>& section) {

@@ -8,6 +8,7 @@
 #include <contourmesh/smooth/errors.h>
 
 #include "contourmesh/internal/polygon2d.h"
+#include "detail/single_slice.h"
 
 #include <Eigen/Geometry>
 
@@ -118,112 +119,9 @@ void shear_back(Mesh& mesh, const ContourStack& stack, const std::vector<Eigen::
   }
 }
 
-// Appends `part` to `mesh`.
-void append(Mesh& mesh, const Mesh& part) {
-  const Index base = mesh.num_vertices();
-  mesh.positions.conservativeResize(3, base + part.num_vertices());
-  mesh.positions.rightCols(part.num_vertices()) = part.positions;
-  mesh.slice_ids.insert(mesh.slice_ids.end(), part.slice_ids.begin(), part.slice_ids.end());
-  mesh.contour_ids.insert(mesh.contour_ids.end(), part.contour_ids.begin(), part.contour_ids.end());
-  for (const Triangle& t : part.triangles) mesh.triangles.push_back({t[0] + base, t[1] + base, t[2] + base});
-}
-
-// A slab [w - below, w + above] around outer contour `c` of slice `s` and its holes: the contours
-// tiled between two copies capped in their planes; the drawn contour keeps its ids (s, c).
-Mesh slab(const ContourStack& stack, std::size_t s, std::size_t c, double below, double above,
-          const TilingOptions& tiling) {
-  const auto& cs = stack.slices[s].contours;
-  std::vector<Contour> group{cs[c]};
-  std::vector<std::int32_t> original{static_cast<std::int32_t>(c)};
-  group[0].parent = -1;
-  for (std::size_t h = 0; h < cs.size(); ++h) {
-    if (cs[h].is_hole && cs[h].parent == static_cast<int>(c)) {
-      group.push_back(cs[h]);
-      group.back().parent = 0;
-      original.push_back(static_cast<std::int32_t>(h));
-    }
-  }
-  ContourStack mini;
-  mini.origin = stack.origin;
-  mini.axis_u = stack.axis_u;
-  mini.axis_v = stack.axis_v;
-  mini.axis_w = stack.axis_w;
-  const double w = stack.slices[s].w;
-  mini.slices = {{w - below, group}, {w, group}, {w + above, group}};
-  TilingOptions o = tiling;
-  o.end_caps = EndCaps::AtEndSlice;
-  Mesh m = tile_contours(mini, o).mesh;
-  for (Index i = 0; i < m.num_vertices(); ++i) {
-    if (m.slice_ids[i] == 1 && m.contour_ids[i] >= 0) {
-      m.slice_ids[i] = static_cast<std::int32_t>(s);
-      m.contour_ids[i] = original[static_cast<std::size_t>(m.contour_ids[i])];
-    } else {
-      m.slice_ids[i] = kNoId;
-      m.contour_ids[i] = kNoId;
-    }
-  }
-  return m;
-}
-
-// A closed prism around hole `c` of slice `s`, oriented as a cavity (normals into the hole).
-Mesh cavity(const ContourStack& stack, std::size_t s, std::size_t c, double below, double above,
-            const TilingOptions& tiling) {
-  ContourStack one = stack;
-  for (std::size_t k = 0; k < one.slices.size(); ++k) one.slices[k].contours.clear();
-  Contour hole = stack.slices[s].contours[c];
-  hole.is_hole = false;
-  hole.parent = -1;
-  std::reverse(hole.points.begin(), hole.points.end());
-  one.slices[s].contours.push_back(hole);
-  Mesh m = slab(one, s, 0, below, above, tiling);
-  for (Index i = 0; i < m.num_vertices(); ++i) {
-    if (m.contour_ids[i] == 0) m.contour_ids[i] = static_cast<std::int32_t>(c);
-  }
-  for (Triangle& t : m.triangles) std::swap(t[1], t[2]);
-  return m;
-}
-
-bool segments_touch(const Eigen::Vector2d& a, const Eigen::Vector2d& b, const Eigen::Vector2d& c,
-                    const Eigen::Vector2d& d) {
-  const double o1 = detail::orient2d(a, b, c), o2 = detail::orient2d(a, b, d), o3 = detail::orient2d(c, d, a),
-               o4 = detail::orient2d(c, d, b);
-  return ((o1 >= 0.0) != (o2 >= 0.0) || o1 == 0.0 || o2 == 0.0) &&
-         ((o3 >= 0.0) != (o4 >= 0.0) || o3 == 0.0 || o4 == 0.0);
-}
-
-// Does the polygon lie strictly inside the region the section bounds (no segment meets it, and its
-// first point is inside by the even-odd rule)?
-bool inside_section(const Polygon& polygon, const std::vector<SectionSegment>& section) {
-  Eigen::AlignedBox2d box;
-  for (const auto& p : polygon) box.extend(p);
-  for (const auto& seg : section) {
-    Eigen::AlignedBox2d sb;
-    sb.extend(seg[0]);
-    sb.extend(seg[1]);
-    if (!sb.intersects(box)) continue;
-    for (std::size_t i = 0; i < polygon.size(); ++i) {
-      if (segments_touch(polygon[i], polygon[(i + 1) % polygon.size()], seg[0], seg[1])) return false;
-    }
-  }
-  const Eigen::Vector2d& p = polygon.front();
-  bool in = false;
-  for (const auto& seg : section) {
-    if (detail::crosses_ray(seg[0], seg[1], p)) in = !in;
-  }
-  return in;
-}
-
 }  // namespace
 
 namespace {
-
-// Half-gaps below and above slice s (an end slice reaches as far beyond as its one gap).
-std::pair<double, double> half_gaps(const ContourStack& stack, std::size_t s) {
-  const auto& sl = stack.slices;
-  const double below = s > 0 ? sl[s].w - sl[s - 1].w : sl[s + 1].w - sl[s].w;
-  const double above = s + 1 < sl.size() ? sl[s + 1].w - sl[s].w : below;
-  return {0.5 * below, 0.5 * above};
-}
 
 // Every contour in one plane: slabs of the given thickness, or an error.
 void one_slice(ContourReconstruction& out, std::size_t s, const std::string& what,
@@ -239,7 +137,7 @@ void one_slice(ContourReconstruction& out, std::size_t s, const std::string& wha
   out.mesh.positions.resize(3, 0);
   for (std::size_t c = 0; c < stack.slices[s].contours.size(); ++c) {
     if (stack.slices[s].contours[c].is_hole) continue;
-    append(out.mesh, slab(stack, s, c, half, half, options.tiling));
+    detail::append_part(out.mesh, detail::single_slice_slab(stack, s, c, half, half, options.tiling));
     ++out.report.slabs;
   }
   out.report.warnings.push_back(what + ": every contour lies in one slice: made a slab " + mm(options.slab_thickness) +
@@ -270,63 +168,51 @@ void tile(ContourReconstruction& out, const ContourReconstructionOptions& option
   if (out.report.aligned_gaps > 0) shear_back(out.mesh, stack, offset);
 }
 
-// A hollow slab for hole c of slice s, thinner (1/2, 1/4, 1/10) where the full one would cross the
-// surface around it (the material narrowing towards the next slice); nothing when none fits.
-std::optional<Mesh> fitting_cavity(const Mesh& surface, const ContourStack& stack, std::size_t s, std::size_t c,
-                                   const TilingOptions& tiling, bool& thinned) {
-  const auto [below, above] = half_gaps(stack, s);
-  const double w = stack.slices[s].w;
-  for (const double f : {1.0, 0.5, 0.25, 0.1}) {
-    bool fits = true;
-    for (const double at : {w - 0.998 * f * below, w - 0.5 * f * below, w + 0.5 * f * above, w + 0.998 * f * above}) {
-      fits = fits && inside_section(stack.slices[s].contours[c].points, cross_section(surface, stack, at));
-    }
-    if (!fits) continue;
-    thinned = f < 1.0;
-    return cavity(stack, s, c, f * below, f * above, tiling);
-  }
-  return std::nullopt;
-}
-
 // Contours the tiler dropped (no partner on either adjacent slice): slabs, hollow slabs for holes, or
 // a warning naming them.
 void single_slice_contours(ContourReconstruction& out, const std::string& what,
                            const ContourReconstructionOptions& options) {
   const ContourStack& stack = out.contours;
   ContourReconstructionReport& report = out.report;
-  std::set<std::pair<std::int32_t, std::int32_t>> meshed;
-  for (Index i = 0; i < out.mesh.num_vertices(); ++i) meshed.insert({out.mesh.slice_ids[i], out.mesh.contour_ids[i]});
-  auto is_meshed = [&](std::size_t s, int c) { return meshed.count({static_cast<std::int32_t>(s), c}) != 0; };
   const bool make_slabs =
       options.single_slice == SingleSliceContours::Slab && options.tiling.end_caps == EndCaps::HalfSpacing;
+  const auto unmeshed = detail::unmeshed_contours(out.mesh, stack);
+  std::set<std::pair<std::size_t, std::size_t>> left(unmeshed.begin(), unmeshed.end());
   std::size_t dropped = 0, cavities = 0, thinned = 0;
   std::string names;
-  std::vector<Mesh> cavity_parts;  // appended after the checks, which cut the tiled surface
-  for (std::size_t s = 0; s < stack.slices.size(); ++s) {
-    const auto& cs = stack.slices[s].contours;
-    for (std::size_t c = 0; c < cs.size(); ++c) {
-      if (is_meshed(s, static_cast<int>(c))) continue;
-      if (make_slabs && !cs[c].is_hole) {
-        const auto [below, above] = half_gaps(stack, s);
-        append(out.mesh, slab(stack, s, c, below, above, options.tiling));
-        ++report.slabs;
-        continue;
-      }
-      if (make_slabs && !is_meshed(s, cs[c].parent)) continue;  // a hole of a slab: inside it
-      if (make_slabs) {
-        bool thin = false;
-        if (auto part = fitting_cavity(out.mesh, stack, s, c, options.tiling, thin)) {
-          cavity_parts.push_back(std::move(*part));
-          ++cavities;
-          thinned += thin ? 1 : 0;
-          continue;
-        }
-      }
-      ++dropped;
-      if (dropped <= 5) names += (names.empty() ? "" : ", ") + std::to_string(c) + " of slice " + std::to_string(s);
+  auto drop = [&](std::size_t s, std::size_t c) {
+    ++dropped;
+    if (dropped <= 5) names += (names.empty() ? "" : ", ") + std::to_string(c) + " of slice " + std::to_string(s);
+  };
+  // Outer contours first, as slabs (with their holes); then holes inside the surface as it then is.
+  std::vector<std::pair<std::size_t, std::size_t>> holes;
+  for (const auto& [s, c] : unmeshed) {
+    const Contour& contour = stack.slices[s].contours[c];
+    if (!make_slabs) {
+      drop(s, c);
+    } else if (!contour.is_hole) {
+      const auto [below, above] = detail::half_gaps(stack, s);
+      detail::append_part(out.mesh, detail::single_slice_slab(stack, s, c, below, above, options.tiling));
+      ++report.slabs;
+    } else if (!left.count({s, static_cast<std::size_t>(contour.parent)})) {
+      holes.emplace_back(s, c);  // a hole of a slab is inside it
     }
   }
-  for (const Mesh& part : cavity_parts) append(out.mesh, part);
+  std::vector<TilingResult> cavity_parts;  // appended after the checks, which cut the surface
+  if (!holes.empty()) {
+    const auto near = detail::faces_near_slices(out.mesh, stack);
+    for (const auto& [s, c] : holes) {
+      bool thin = false;
+      if (auto part = detail::fitting_cavity(out.mesh, near[s], stack, s, c, options.tiling, thin)) {
+        cavity_parts.push_back(std::move(*part));
+        ++cavities;
+        thinned += thin ? 1 : 0;
+      } else {
+        drop(s, c);
+      }
+    }
+  }
+  for (const auto& part : cavity_parts) detail::append_part(out.mesh, part);
   report.slabs += cavities;
   if (report.slabs > 0) {
     std::string text = what + ": " + std::to_string(report.slabs) + " contour" + (report.slabs == 1 ? "" : "s") +

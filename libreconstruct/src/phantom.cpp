@@ -19,7 +19,7 @@ using detail::Box3;
 using detail::ShapeBuild;
 using detail::Vec3;
 
-constexpr std::array<std::pair<PhantomShape, std::string_view>, 10> kShapeNames = {{
+constexpr std::array<std::pair<PhantomShape, std::string_view>, 11> kShapeNames = {{
     {PhantomShape::RidgeBox, "ridge-box"},
     {PhantomShape::Femur, "femur"},
     {PhantomShape::Pelvis, "pelvis"},
@@ -30,6 +30,7 @@ constexpr std::array<std::pair<PhantomShape, std::string_view>, 10> kShapeNames 
     {PhantomShape::TiltedBox, "tilted-box"},
     {PhantomShape::InSliceRidge, "in-slice-ridge"},
     {PhantomShape::EndFaceOnSlice, "end-face-on-slice"},
+    {PhantomShape::SkullDiploe, "skull-diploe"},
 }};
 
 
@@ -53,9 +54,13 @@ PhantomShape parse_phantom_shape(std::string_view name) {
 
 std::vector<PhantomShape> all_phantom_shapes() {
   std::vector<PhantomShape> shapes;
-  for (const auto& entry : kShapeNames) shapes.push_back(entry.first);
+  for (const auto& entry : kShapeNames) {
+    if (entry.first != PhantomShape::SkullDiploe) shapes.push_back(entry.first);
+  }
   return shapes;
 }
+
+std::vector<PhantomShape> extra_phantom_shapes() { return {PhantomShape::SkullDiploe}; }
 
 Phantom make_phantom(PhantomShape shape) {
   ShapeBuild s;
@@ -89,6 +94,9 @@ Phantom make_phantom(PhantomShape shape) {
       break;
     case PhantomShape::EndFaceOnSlice:
       s = detail::build_end_face_on_slice();
+      break;
+    case PhantomShape::SkullDiploe:
+      s = detail::build_skull_diploe();
       break;
     default:
       throw InvalidInputError("make_phantom: unknown shape " + std::to_string(static_cast<int>(shape)));

@@ -2,12 +2,15 @@
 #include "contourmesh/reconstruct/reconstruction.h"
 
 #include "detail/moved_face_flips.h"
+#include "detail/single_slice.h"
 
 #include <contourmesh/smooth/errors.h>
+#include <contourmesh/smooth/metrics.h>
 #include <contourmesh/smooth/topology.h>
 
 #include <algorithm>
 #include <chrono>
+#include <optional>
 #include <sstream>
 
 namespace contourmesh {
@@ -68,6 +71,64 @@ Mesh drop_small_components(Mesh mesh, std::vector<FaceRole>& roles, double min_v
   return kept;
 }
 
+// A contour on one slice only whose region the regions of an adjacent slice cover by more than this share
+// is left out (it touches a piece there, which the tiler did not join it to): a small tongue of a piece at
+// its end, as the femur phantom's intercondylar notch at its apex.
+constexpr double kMaxSlabCover = 0.01;
+
+// Outer contours of one slice only become slabs (appended to `mesh`, before the off-slice heights place
+// their caps); returns the holes of one slice only whose outer contour is part of the tiled surface.
+std::vector<std::pair<std::size_t, std::size_t>> add_single_slice_slabs(Mesh& mesh, std::vector<FaceRole>& roles,
+                                                                        const ContourStack& stack,
+                                                                        const ReconstructionOptions& options,
+                                                                        ReconstructionReport& report) {
+  const auto unmeshed = detail::unmeshed_contours(mesh, stack);
+  std::vector<std::pair<std::size_t, std::size_t>> holes;
+  if (unmeshed.empty()) return holes;
+  if (options.single_slice != SingleSliceContours::Slab || options.tiling.end_caps != EndCaps::HalfSpacing) {
+    for (const auto& [s, c] : unmeshed) report.single_slice_filled += stack.slices[s].contours[c].is_hole ? 1 : 0;
+    return holes;
+  }
+  std::vector<std::vector<std::uint8_t>> unmeshed_of(stack.slices.size());
+  for (std::size_t s = 0; s < stack.slices.size(); ++s) unmeshed_of[s].assign(stack.slices[s].contours.size(), 0);
+  for (const auto& [s, c] : unmeshed) unmeshed_of[s][c] = 1;
+  for (const auto& [s, c] : unmeshed) {
+    const Contour& contour = stack.slices[s].contours[c];
+    if (!contour.is_hole) {
+      // Overlapping a region next to it, it belongs to that piece: a slab would float beside it.
+      if (detail::covered_by_adjacent_slices(stack, s, c) > kMaxSlabCover) continue;
+      const auto [below, above] = detail::half_gaps(stack, s);
+      detail::append_part(mesh, detail::single_slice_slab(stack, s, c, below, above, options.tiling), &roles);
+      ++report.single_slice_slabs;
+    } else if (contour.parent < 0 || !unmeshed_of[s][static_cast<std::size_t>(contour.parent)]) {
+      holes.emplace_back(s, c);  // (a hole of a slab is part of it)
+    }
+  }
+  return holes;
+}
+
+// Holes of one slice only inside the finished surface: hollow slabs where they fit and enclose at least
+// `min_volume`, else filled.
+void add_single_slice_cavities(Mesh& mesh, std::vector<FaceRole>& roles, const ContourStack& stack,
+                               const std::vector<std::pair<std::size_t, std::size_t>>& holes,
+                               const TilingOptions& tiling, double min_volume, ReconstructionReport& report) {
+  if (holes.empty()) return;
+  const auto near = detail::faces_near_slices(mesh, stack);
+  std::vector<TilingResult> parts;  // appended after every check, which cut the surface as it was
+  for (const auto& [s, c] : holes) {
+    bool thin = false;
+    std::optional<TilingResult> part = detail::fitting_cavity(mesh, near[s], stack, s, c, tiling, thin);
+    if (part && -enclosed_volume(part->mesh) >= min_volume) {
+      parts.push_back(std::move(*part));
+      ++report.single_slice_cavities;
+      report.single_slice_thinned += thin ? 1 : 0;
+    } else {
+      ++report.single_slice_filled;
+    }
+  }
+  for (const TilingResult& part : parts) detail::append_part(mesh, part, &roles);
+}
+
 }  // namespace
 
 Reconstruction reconstruct(const CtImage& image, const ReconstructionOptions& options,
@@ -115,6 +176,8 @@ Reconstruction reconstruct(const CtImage& image, const ReconstructionOptions& op
   if (tiled.mesh.num_faces() == 0) {
     throw InvalidInputError("no contour continues into an adjacent slice: nothing to tile (slices too far apart?)");
   }
+  const auto single_slice_holes =
+      add_single_slice_slabs(tiled.mesh, tiled.face_roles, seg.stack, options, out.report);
   t0 = std::chrono::steady_clock::now();
   OffSliceResult placed = fit_off_slice_heights(std::move(tiled.mesh), seg.smoothed_image ? *seg.smoothed_image : image,
                                                 seg.threshold, options.off_slice, tiled.face_roles);
@@ -133,6 +196,8 @@ Reconstruction reconstruct(const CtImage& image, const ReconstructionOptions& op
   out.report.off_slice = placed.report;
   out.report.seconds_off_slice = seconds_since(t0);
   const double min_volume = options.min_component_voxels * spacing[0] * spacing[1] * spacing[2];
+  add_single_slice_cavities(tiled.mesh, tiled.face_roles, seg.stack, single_slice_holes, options.tiling, min_volume,
+                            out.report);
   out.face_roles = std::move(tiled.face_roles);
   out.mesh = drop_small_components(std::move(tiled.mesh), out.face_roles, min_volume, out.report.dropped_components);
   if (out.mesh.num_faces() == 0) {

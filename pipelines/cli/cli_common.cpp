@@ -194,6 +194,7 @@ void check_contour_noise(double contour_noise) {
 std::string phantom_shape_names(const std::string& separator) {
   std::string names;
   for (PhantomShape s : all_phantom_shapes()) names += (names.empty() ? "" : separator) + std::string(to_string(s));
+  for (PhantomShape s : extra_phantom_shapes()) names += separator + std::string(to_string(s));
   return names;
 }
 

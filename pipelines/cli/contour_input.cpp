@@ -65,13 +65,21 @@ void add_contour_options(CLI::App* cmd, ContourArgs& args) {
                   "Contours: centroids (tile a drifting single contour in centroid-aligned slices) | none")
       ->capture_default_str();
   cmd->add_option("--single-slice", args.single_slice,
-                  "Contours: a contour with no partner on an adjacent slice becomes a slab | is dropped")
+                  "A contour with no partner on an adjacent slice (drawn on one slice, or an object or cavity "
+                  "thinner than the slice spacing): slab (half-way to the adjacent slices; hollow for a hole) | "
+                  "drop")
       ->capture_default_str();
   cmd->add_option("--slab-thickness", args.slab_thickness,
                   "Contours all in one slice: slab thickness, mm (default for a structure set: its slice spacing)");
   cmd->add_option("--planarity-tolerance", args.planarity_tolerance,
                   "Contours: largest distance of a contour point from its slice plane, mm")
       ->capture_default_str();
+}
+
+SingleSliceContours parse_single_slice(const std::string& name) {
+  if (name == "slab") return SingleSliceContours::Slab;
+  if (name == "drop") return SingleSliceContours::Drop;
+  throw InvalidInputError("--single-slice must be slab or drop, got '" + name + "'");
 }
 
 void reject_options(const CLI::App* command, const std::vector<std::string>& names, const std::string& why) {
@@ -158,9 +166,7 @@ ContourReconstructionOptions contour_options(const ContourArgs& args, const Cont
   if (args.align == "centroids") o.alignment = DriftAlignment::Centroids;
   else if (args.align == "none") o.alignment = DriftAlignment::None;
   else throw InvalidInputError("--align must be centroids or none, got '" + args.align + "'");
-  if (args.single_slice == "slab") o.single_slice = SingleSliceContours::Slab;
-  else if (args.single_slice == "drop") o.single_slice = SingleSliceContours::Drop;
-  else throw InvalidInputError("--single-slice must be slab or drop, got '" + args.single_slice + "'");
+  o.single_slice = parse_single_slice(args.single_slice);
   if (args.slab_thickness && !(*args.slab_thickness > 0.0)) throw InvalidInputError("--slab-thickness must be > 0 mm");
   o.slab_thickness = args.slab_thickness.value_or(input.default_slab_thickness);
   o.tiling = tiling;

@@ -48,6 +48,8 @@ struct ContourArgs {
 
 /// Registers --roi and the contour options on `command`.
 void add_contour_options(CLI::App* command, ContourArgs& args);
+/// --single-slice's value: slab | drop (InvalidInputError otherwise). It applies to volumes too.
+[[nodiscard]] SingleSliceContours parse_single_slice(const std::string& name);
 
 /// Throws InvalidInputError when an option of the image route was given for contour input (or the
 /// reverse): `names` are the options of the other route, looked up on `command`.

@@ -62,7 +62,7 @@ struct ReconstructArgs {
 const std::vector<std::string> kVolumeOptions{"--threshold", "--otsu",   "--smoothing", "--keep",       "--min-area",
                                               "--fill-holes", "--label", "--labels",    "--series",     "--list-series",
                                               "--off-slice",  "--flat-crossings"};
-const std::vector<std::string> kContourOptions{"--roi", "--align", "--single-slice", "--slab-thickness",
+const std::vector<std::string> kContourOptions{"--roi", "--align", "--slab-thickness",
                                                "--planarity-tolerance", "--sampling-tolerance"};
 
 ImageSmoothing parse_smoothing(const std::string& s) {
@@ -149,6 +149,7 @@ int run_reconstruct(const ReconstructArgs& a) {
     return kUsage;
   }
   ReconstructionOptions options;
+  options.single_slice = parse_single_slice(a.contour.single_slice);
   auto& seg = options.segmentation;
   seg.threshold = a.threshold;
   seg.threshold_method = a.otsu ? ThresholdMethod::Otsu : ThresholdMethod::Fixed;
@@ -238,6 +239,10 @@ int run_reconstruct(const ReconstructArgs& a) {
     j["caps"] = r.report.tiling.caps;
     j["dropped_contours"] = r.report.tiling.dropped_contours;
     j["dropped_components"] = r.report.dropped_components;
+    j["single_slice_slabs"] = r.report.single_slice_slabs;
+    j["single_slice_cavities"] = r.report.single_slice_cavities;
+    j["single_slice_thinned"] = r.report.single_slice_thinned;
+    j["single_slice_filled"] = r.report.single_slice_filled;
     j["vertices"] = r.mesh.num_vertices();
     j["faces"] = r.mesh.num_faces();
     j["components"] = topo.components;
@@ -272,6 +277,11 @@ int run_reconstruct(const ReconstructArgs& a) {
             << "  tiling     " << r.report.tiling.intermediate_contours << " intermediate contours, "
             << r.report.tiling.refined_bands << " bands refined, " << r.report.tiling.composites << " composites, "
             << r.report.tiling.partings << " partings\n"
+            << "  one slice  " << r.report.tiling.dropped_contours
+            << " contours with no partner on an adjacent slice: " << r.report.single_slice_slabs << " slabs, "
+            << r.report.single_slice_cavities << " hollow (" << r.report.single_slice_thinned << " thinner), "
+            << r.report.single_slice_filled << " holes filled; " << r.report.dropped_components
+            << " specks dropped\n"
             << "  off-slice  " << r.report.off_slice.fitted << " of " << r.report.off_slice.candidates
             << " vertices between the slices placed from the image (" << r.report.off_slice.damped << " damped)\n"
             << "  mesh       " << r.mesh.num_vertices() << " vertices, " << r.mesh.num_faces() << " triangles, "

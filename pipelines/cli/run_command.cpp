@@ -200,7 +200,7 @@ struct LabelJob {
   const LabelMap* map = nullptr;
   Label label;
 };
-const std::vector<std::string> kContourOnly{"--roi", "--align", "--single-slice", "--slab-thickness",
+const std::vector<std::string> kContourOnly{"--roi", "--align", "--slab-thickness",
                                             "--planarity-tolerance", "--sampling-tolerance", "--sampling"};
 
 // The chain on one volume, or on one label when `job` is set, written to `output` (and `labels_out`).
@@ -270,6 +270,7 @@ int run_run(const RunArgs& a, const std::string& output, const std::string& labe
   // 2. Reconstruct.
   ReconstructionOptions ro;
   ro.tiling = tiling_options(a.tiling);
+  ro.single_slice = parse_single_slice(a.contour.single_slice);
   ro.off_slice.placement = off_slice_placement(a.volume);
   ro.segmentation.flat_crossings = flat_crossings(a.volume);
   // A phantom is segmented at its partial-volume iso-level, real CT at the bone default.

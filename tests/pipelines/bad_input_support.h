@@ -24,6 +24,7 @@
 #include <string>
 
 #include "cli_runner.h"
+#include "reconstruct/partial_volume.h"
 #include "test_support.h"
 
 namespace contourmesh::bad_input_test {
@@ -56,18 +57,7 @@ class BadInput : public ::testing::Test {
 
   fs::path write_volume_file(const std::string& name, std::array<int, 3> n, const Eigen::Vector3d& spacing,
                              const std::function<float(int, int, int)>& hu) const {
-    auto image = CtImage::New();
-    CtImage::RegionType region;
-    region.SetSize({{static_cast<itk::SizeValueType>(n[0]), static_cast<itk::SizeValueType>(n[1]),
-                     static_cast<itk::SizeValueType>(n[2])}});
-    image->SetRegions(region);
-    image->SetSpacing(spacing.data());
-    image->Allocate();
-    for (int k = 0; k < n[2]; ++k) {
-      for (int j = 0; j < n[1]; ++j) {
-        for (int i = 0; i < n[0]; ++i) image->SetPixel({{i, j, k}}, hu(i, j, k));
-      }
-    }
+    const auto image = test::pixel_volume(n, spacing, hu);
     const fs::path p = dir_ / name;
     write_volume(image, p);
     return p;

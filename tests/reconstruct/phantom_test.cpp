@@ -139,6 +139,12 @@ TEST(PhantomNames, RoundTripAndErrors) {
     EXPECT_EQ(std::string(to_string(shapes[i])), names[i]);
     EXPECT_EQ(parse_phantom_shape(names[i]), shapes[i]);
   }
+  // The extra shapes are reachable by name but are not part of `all`.
+  ASSERT_EQ(extra_phantom_shapes().size(), 1u);
+  EXPECT_EQ(extra_phantom_shapes()[0], PhantomShape::SkullDiploe);
+  EXPECT_EQ(std::string(to_string(PhantomShape::SkullDiploe)), "skull-diploe");
+  EXPECT_EQ(parse_phantom_shape("skull-diploe"), PhantomShape::SkullDiploe);
+  EXPECT_EQ(std::find(shapes.begin(), shapes.end(), PhantomShape::SkullDiploe), shapes.end());
   try {
     (void)parse_phantom_shape("sphere");
     FAIL() << "expected InvalidInputError";
@@ -410,6 +416,25 @@ TEST(Phantom, KnownCreasesAreSampled) {
 TEST(Phantom, DistanceToFeaturesWithoutFeaturesIsInfinite) {
   const Phantom empty;
   EXPECT_TRUE(std::isinf(distance_to_features(empty, Vec3::Zero())));
+}
+
+// The skull with a diploe is the skull less 120 disjoint balls of radius 1.5 mm inside its wall: the
+// volumes differ by theirs, each ball is a surface of its own, and the balls' centres are outside.
+TEST(Phantom, TheDiploeIsTheSkullLessItsCavities) {
+  const Phantom& skull = phantom_of(PhantomShape::Skull);
+  const Phantom& diploe = phantom_of(PhantomShape::SkullDiploe);
+  const int cavities = diploe.surface_components - 1;
+  EXPECT_EQ(cavities, 120);
+  EXPECT_EQ(diploe.euler_characteristic, skull.euler_characteristic + 2 * cavities);
+  const double balls = cavities * 4.0 / 3.0 * std::numbers::pi * 1.5 * 1.5 * 1.5;
+  // Both volumes are integrated to about 3e-4 of the skull's (the balls' own share of the error is larger:
+  // 2.5 % of their volume, at leaves of 0.5 mm on balls 3 mm across).
+  EXPECT_NEAR(skull.volume - diploe.volume, balls, 5e-4 * skull.volume);
+  EXPECT_EQ(diploe.feature_points.size(), skull.feature_points.size());
+  // Outside the wall (in the cranial cavity, beyond the outer table) both fields agree.
+  for (const Vec3& p : {Vec3(0, 0, -15), Vec3(0, 0, 45), Vec3(60, 0, 0), Vec3(0, -70, 0)}) {
+    EXPECT_DOUBLE_EQ(diploe.sdf(p), skull.sdf(p));
+  }
 }
 
 }  // namespace

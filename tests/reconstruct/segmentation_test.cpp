@@ -8,6 +8,8 @@
 
 #include <gtest/gtest.h>
 
+#include "reconstruct/partial_volume.h"
+
 #include <cmath>
 #include <functional>
 #include <numbers>
@@ -23,29 +25,18 @@ namespace {
 CtImage::Pointer make_volume(const std::array<int, 3>& n, const Eigen::Vector3d& spacing, const Eigen::Vector3d& origin,
                              const std::function<double(const Eigen::Vector3d&)>& sdf, float inside_hu = 1000.0f,
                              float outside_hu = 0.0f) {
-  auto image = CtImage::New();
-  CtImage::RegionType region;
-  region.SetSize({{static_cast<itk::SizeValueType>(n[0]), static_cast<itk::SizeValueType>(n[1]),
-                   static_cast<itk::SizeValueType>(n[2])}});
-  image->SetRegions(region);
-  image->SetSpacing(spacing.data());
-  image->SetOrigin(origin.data());
-  image->Allocate();
-  for (int k = 0; k < n[2]; ++k) {
-    for (int j = 0; j < n[1]; ++j) {
-      for (int i = 0; i < n[0]; ++i) {
-        int inside = 0;
-        for (int a = 0; a < 4; ++a) {
-          for (int b = 0; b < 4; ++b) {
-            const Eigen::Vector3d p = origin + Eigen::Vector3d((i - 0.375 + 0.25 * a) * spacing.x(),
-                                                              (j - 0.375 + 0.25 * b) * spacing.y(), k * spacing.z());
-            inside += sdf(p) < 0.0;
-          }
-        }
-        image->SetPixel({{i, j, k}}, outside_hu + (inside_hu - outside_hu) * inside / 16.0f);
+  const auto image = test::pixel_volume(n, spacing, [&](int i, int j, int k) {
+    int inside = 0;
+    for (int a = 0; a < 4; ++a) {
+      for (int b = 0; b < 4; ++b) {
+        const Eigen::Vector3d p = origin + Eigen::Vector3d((i - 0.375 + 0.25 * a) * spacing.x(),
+                                                          (j - 0.375 + 0.25 * b) * spacing.y(), k * spacing.z());
+        inside += sdf(p) < 0.0;
       }
     }
-  }
+    return outside_hu + (inside_hu - outside_hu) * static_cast<float>(inside) / 16.0f;
+  });
+  image->SetOrigin(origin.data());
   return image;
 }
 
@@ -122,23 +113,7 @@ TEST(Segmentation, ResamplingNeverMakesTheContoursOfASliceMeet) {
   EXPECT_NO_THROW(tile_contours(r.stack));
 }
 
-// A volume from a per-pixel function of (i, j, k), spacing `spacing`, origin 0.
-CtImage::Pointer pixel_volume(const std::array<int, 3>& n, const Eigen::Vector3d& spacing,
-                              const std::function<float(int, int, int)>& value) {
-  auto image = CtImage::New();
-  CtImage::RegionType region;
-  region.SetSize({{static_cast<itk::SizeValueType>(n[0]), static_cast<itk::SizeValueType>(n[1]),
-                   static_cast<itk::SizeValueType>(n[2])}});
-  image->SetRegions(region);
-  image->SetSpacing(spacing.data());
-  image->Allocate();
-  for (int k = 0; k < n[2]; ++k) {
-    for (int j = 0; j < n[1]; ++j) {
-      for (int i = 0; i < n[0]; ++i) image->SetPixel({{i, j, k}}, value(i, j, k));
-    }
-  }
-  return image;
-}
+using test::pixel_volume;
 
 // Sub-pixel position: on a ramp of 100 HU per pixel, the contour crosses each row where the linear
 // interpolation of the two pixel values meets the threshold.

@@ -33,4 +33,7 @@ ShapeBuild build_tilted_box();
 ShapeBuild build_in_slice_ridge();
 ShapeBuild build_end_face_on_slice();
 
+// The skull with a diploe (phantom_diploe.cpp).
+ShapeBuild build_skull_diploe();
+
 }  // namespace contourmesh::detail

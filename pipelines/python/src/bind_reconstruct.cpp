@@ -39,6 +39,9 @@ py::dict report_dict(const ReconstructionReport& r) {
   d["branchings"] = r.tiling.branchings;
   d["caps"] = r.tiling.caps;
   d["dropped_contours"] = r.tiling.dropped_contours;
+  d["single_slice_slabs"] = r.single_slice_slabs;
+  d["single_slice_cavities"] = r.single_slice_cavities;
+  d["single_slice_filled"] = r.single_slice_filled;
   d["seconds_segment"] = r.seconds_segment;
   d["seconds_tile"] = r.seconds_tile;
   return d;
@@ -172,8 +175,10 @@ void bind_reconstruct(py::module_& m) {
   m.def("phantom_shapes", [] {
     std::vector<std::string> names;
     for (PhantomShape s : all_phantom_shapes()) names.emplace_back(to_string(s));
+    for (PhantomShape s : extra_phantom_shapes()) names.emplace_back(to_string(s));
     return names;
-  }, "The names of the built-in phantoms, in the order of `contourmesh phantom --shape`.");
+  }, "The names of the built-in phantoms, in the order of `contourmesh phantom --shape` (the ten of "
+     "`--phantom all`, then the extra ones).");
 
   m.def(
       "_render_phantom",

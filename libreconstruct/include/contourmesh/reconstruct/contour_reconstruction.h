@@ -28,16 +28,6 @@ enum class DriftAlignment {
   None,
 };
 
-/// What happens to a contour with no partner in either adjacent slice.
-enum class SingleSliceContours {
-  /// A slab reaching half-way to the adjacent slice planes (the radiotherapy convention for a
-  /// structure drawn on one slice), closed with the tiler's caps. With EndCaps::AtEndSlice the slab
-  /// would have no thickness: dropped. Default.
-  Slab,
-  /// Dropped (the tiler's behaviour, right for segmentation specks).
-  Drop,
-};
-
 struct ContourReconstructionOptions {
   TilingOptions tiling;
   /// Largest distance between contour points, mm (resample_drawn_stack); 0 tiles the points as drawn.

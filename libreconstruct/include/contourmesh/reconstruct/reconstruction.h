@@ -22,6 +22,10 @@ struct ReconstructionOptions {
   /// Heights of the vertices the tiler puts between the slices (caps, intermediate contours): from the
   /// image by default (off_slice_heights.h).
   OffSliceOptions off_slice;
+  /// Contours found on one slice only (no partner on either adjacent slice), which the tiler leaves out:
+  /// slabs half-way to the adjacent slices, hollow for holes, by default; specks among them then go
+  /// with `min_component_voxels`, and holes whose hollow slab would enclose less are filled.
+  SingleSliceContours single_slice = SingleSliceContours::Slab;
 };
 
 struct ReconstructionReport {
@@ -32,6 +36,14 @@ struct ReconstructionReport {
   double threshold = 0.0;          ///< the threshold used (HU or raw units)
   std::size_t dropped_regions = 0;
   std::size_t dropped_components = 0;  ///< mesh components below min_component_voxels
+  /// Contours on one slice only (ReconstructionOptions::single_slice): outer contours made slabs (specks
+  /// among them are counted again in dropped_components), holes made hollow slabs (thinned: of them,
+  /// thinner than half-way to the adjacent slices), and holes filled (their hollow slab would enclose less
+  /// than min_component_voxels, would not fit in the surface around, or single_slice is Drop).
+  std::size_t single_slice_slabs = 0;
+  std::size_t single_slice_cavities = 0;
+  std::size_t single_slice_thinned = 0;
+  std::size_t single_slice_filled = 0;
   TilingStats tiling;
   double seconds_segment = 0.0;
   double seconds_tile = 0.0;

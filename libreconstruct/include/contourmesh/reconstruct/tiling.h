@@ -114,6 +114,21 @@ struct TilingStats {
   TilingStats& operator+=(const TilingStats& o);
 };
 
+/// What happens to a contour with no partner in either adjacent slice, which tile_contours leaves out (it
+/// would be a sheet of no thickness): a structure drawn on one slice, or one thinner than the slice
+/// spacing that a CT stack catches on one slice only (a small fragment, a cavity between two slices).
+/// reconstruct() and reconstruct_from_contours() apply it after tiling (docs/reconstruction.md,
+/// "Contours on one slice").
+enum class SingleSliceContours {
+  /// A slab reaching half-way to the adjacent slice planes (the radiotherapy convention for a structure
+  /// drawn on one slice, and the voxel route's one voxel of thickness), closed with the tiler's caps; a
+  /// hole inside material that continues becomes a hollow slab, thinner where the full one would meet
+  /// the surface around it. With EndCaps::AtEndSlice the slab would have no thickness: dropped. Default.
+  Slab,
+  /// Dropped.
+  Drop,
+};
+
 /// What a face of a tiled mesh closes or joins, for quality reports and renders.
 enum class FaceRole : std::uint8_t {
   Band,    ///< between two contour levels (slice contours, intermediate contours or end copies)
