@@ -134,12 +134,16 @@ void composite_band(const DeferredBand& d, const TilingOptions& options, SlabMes
 
 }  // namespace
 
+// How far beyond its plane a pocket over a hole of the other level is closed, as a share of the slab.
+constexpr double kOverHoleCap = 0.25;
+
 void tile_composite(const Level& lower, const Level& upper, const TilingOptions& options, SlabMesh& out,
                     std::vector<DeferredBand>* deferred) {
   const Correspondence links = correspond(lower, upper, options);
   const std::size_t na = lower.contours.size(), nb = upper.contours.size();
   const double w0 = lower.w, w1 = upper.w;
   const double extension = options.end_caps == EndCaps::HalfSpacing ? 0.5 * (w1 - w0) : 0.0;
+  const double pocket_extension = options.end_caps == EndCaps::HalfSpacing ? kOverHoleCap * (w1 - w0) : 0.0;
   UnionFind<> groups(na + nb);
   for (std::size_t i = 0; i < na; ++i) {
     for (int j : links.up[i]) groups.unite(i, na + static_cast<std::size_t>(j));
@@ -149,13 +153,13 @@ void tile_composite(const Level& lower, const Level& upper, const TilingOptions&
   for (std::size_t i = 0; i < na; ++i) {
     const LevelContour& c = lower.contours[i];
     if (!links.up[i].empty()) lower_of[groups.find(i)].push_back(static_cast<int>(i));
-    else if (links.opens_up[i])
+    else if (links.opens_up[i] && !links.over_hole_up[i])
       lower_of[groups.find(static_cast<std::size_t>(c.parent))].push_back(static_cast<int>(i));
   }
   for (std::size_t j = 0; j < nb; ++j) {
     const LevelContour& c = upper.contours[j];
     if (!links.down[j].empty()) upper_of[groups.find(na + j)].push_back(static_cast<int>(j));
-    else if (links.opens_down[j]) {
+    else if (links.opens_down[j] && !links.over_hole_down[j]) {
       upper_of[groups.find(na + static_cast<std::size_t>(c.parent))].push_back(static_cast<int>(j));
     }
   }
@@ -199,12 +203,20 @@ void tile_composite(const Level& lower, const Level& upper, const TilingOptions&
                    nullptr);
   }
   // Ends: outer contours with no partner (with their holes), and holes that end inside a continuing
-  // outer contour.
+  // outer contour. A pocket over a hole of the other level is closed near its own plane (kOverHoleCap of
+  // the slab beyond it), above the other cavity's roof, which the band between that cavity's contours
+  // lays across the slab: a cavity of its own, not one bridged across the wall to the outside.
   auto close_ends = [&](const Level& level, const std::vector<std::vector<int>>& partners,
-                        const std::vector<std::uint8_t>& opens, bool upward) {
+                        const std::vector<std::uint8_t>& opens, const std::vector<std::uint8_t>& over_hole,
+                        bool upward) {
     for (std::size_t c = 0; c < level.contours.size(); ++c) {
       const LevelContour& k = level.contours[c];
-      if (!partners[c].empty() || opens[c]) continue;
+      if (!partners[c].empty()) continue;
+      if (over_hole[c]) {
+        cap_hole_end(k, level.w, pocket_extension, upward, options, out);
+        continue;
+      }
+      if (opens[c]) continue;
       if (!k.is_hole) {
         std::vector<const LevelContour*> holes;
         for (const LevelContour& h : level.contours) {
@@ -216,8 +228,8 @@ void tile_composite(const Level& lower, const Level& upper, const TilingOptions&
       }
     }
   };
-  close_ends(lower, links.up, links.opens_up, true);
-  close_ends(upper, links.down, links.opens_down, false);
+  close_ends(lower, links.up, links.opens_up, links.over_hole_up, true);
+  close_ends(upper, links.down, links.opens_down, links.over_hole_down, false);
 }
 
 void finish_composite(const std::vector<DeferredBand>& deferred, const TilingOptions& options, SlabMesh& out) {

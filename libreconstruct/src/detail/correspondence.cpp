@@ -21,18 +21,24 @@ bool overlaps(const LevelContour& a, const LevelContour& b, double of_smaller, d
   return overlap_area(a.points, b.points) > needed;
 }
 
-// Share of hole `h` covered by the regions of `outers` of `other` (their holes excluded).
-double covered_fraction(const LevelContour& h, const Level& other, const std::vector<int>& outers) {
-  double covered = 0.0;
+// Shares of hole `h` that the regions of `outers` of `other` cover (their holes excluded), and that
+// their holes cover.
+struct Coverage {
+  double material = 1.0;
+  double holes = 0.0;
+};
+Coverage covered_fractions(const LevelContour& h, const Level& other, const std::vector<int>& outers) {
+  double outlines = 0.0, holes = 0.0;
   for (int o : outers) {
     const LevelContour& outer = other.contours[static_cast<std::size_t>(o)];
     if (!outer.box.intersects(h.box)) continue;
-    covered += overlap_area(h.points, outer.points);
+    outlines += overlap_area(h.points, outer.points);
     for (const LevelContour& g : other.contours) {
-      if (g.is_hole && g.parent == o && g.box.intersects(h.box)) covered -= overlap_area(h.points, g.points);
+      if (g.is_hole && g.parent == o && g.box.intersects(h.box)) holes += overlap_area(h.points, g.points);
     }
   }
-  return h.area > 0.0 ? covered / h.area : 1.0;
+  if (!(h.area > 0.0)) return {};
+  return {(outlines - holes) / h.area, holes / h.area};
 }
 
 }  // namespace
@@ -70,16 +76,22 @@ Correspondence correspond(const Level& lower, const Level& upper, double of_smal
     }
   }
   // A hole with no partner whose outer continues either ends (the material on the other side covers it)
-  // or opens (its region is background there).
+  // or opens (its region is background there): to the outside, or over a hole of the other side.
+  c.over_hole_up.assign(a.size(), 0);
+  c.over_hole_down.assign(b.size(), 0);
   for (std::size_t i = 0; i < a.size(); ++i) {
     if (a[i].is_hole && a[i].parent >= 0 && c.up[i].empty() && !c.up[static_cast<std::size_t>(a[i].parent)].empty()) {
-      c.opens_up[i] = covered_fraction(a[i], upper, c.up[static_cast<std::size_t>(a[i].parent)]) < 0.5;
+      const Coverage k = covered_fractions(a[i], upper, c.up[static_cast<std::size_t>(a[i].parent)]);
+      c.opens_up[i] = k.material < 0.5;
+      c.over_hole_up[i] = c.opens_up[i] && k.holes >= 0.5;
     }
   }
   for (std::size_t j = 0; j < b.size(); ++j) {
     if (b[j].is_hole && b[j].parent >= 0 && c.down[j].empty() &&
         !c.down[static_cast<std::size_t>(b[j].parent)].empty()) {
-      c.opens_down[j] = covered_fraction(b[j], lower, c.down[static_cast<std::size_t>(b[j].parent)]) < 0.5;
+      const Coverage k = covered_fractions(b[j], lower, c.down[static_cast<std::size_t>(b[j].parent)]);
+      c.opens_down[j] = k.material < 0.5;
+      c.over_hole_down[j] = c.opens_down[j] && k.holes >= 0.5;
     }
   }
   return c;

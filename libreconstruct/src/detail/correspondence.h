@@ -18,6 +18,13 @@ struct Correspondence {
   /// other level: the cavity opens to the outside there (as the inside of a skull through an orbit).
   std::vector<std::uint8_t> opens_up;    ///< per lower contour
   std::vector<std::uint8_t> opens_down;  ///< per upper contour
+  /// Of the opening holes, those whose region on the other level lies mostly in the holes of their outer
+  /// contour's partners rather than outside them: a pocket in a wall above (or below) a large cavity, as
+  /// the diploe over the cranial cavity where the skull's roof is nearly flat. The slices cannot tell
+  /// whether the two cavities meet between them; joined to the outer contour's composite, the pocket's
+  /// bridge would cross the whole wall.
+  std::vector<std::uint8_t> over_hole_up;    ///< per lower contour
+  std::vector<std::uint8_t> over_hole_down;  ///< per upper contour
 };
 
 /// Two outer contours correspond when their filled regions overlap by more than `of_smaller` of the

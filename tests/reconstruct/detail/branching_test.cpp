@@ -233,6 +233,51 @@ TEST(Branching, AnOpeningHoleIsBridgedWhereTheContourAboveRunsIntoIt) {
   EXPECT_TRUE(t.closed && t.manifold) << t.problems;
 }
 
+// A pocket in a wide wall over the other level's cavity (a diploe cavity over the cranial cavity under a
+// flat roof) is a cavity of its own, closed a quarter of the slab beyond its plane: no bridge, nothing
+// reaches across the wall to the outside, and the surface is closed.
+TEST(Branching, APocketOverTheOtherLevelsCavityIsClosedNearItsPlane) {
+  test::TestStack stack;
+  const Level lower{0.0,
+                    {stack.contour(circle_points(0, 0, 30, 120), 0.0),
+                     stack.contour(circle_points(0, 0, 20, 100, true), 0.0, true, 0)}};
+  const Level upper{
+      2.0,
+      {stack.contour(circle_points(0, 0, 30, 120), 2.0), stack.contour(circle_points(0, 0, 12, 70, true), 2.0, true, 0),
+       stack.contour(circle_points(17, 0, 2, 12, true), 2.0, true, 0)}};
+  SlabMesh out = stack.slab();
+  tile_composite(lower, upper, TilingOptions{}, out);
+  EXPECT_TRUE(bridges_of(out).angles.empty());
+  // Every vertex of the pocket's closure lies within its disc and between z = 1.5 and 2.
+  std::size_t pocket = 0;
+  for (std::size_t f = 0; f < out.triangles.size(); ++f) {
+    if (out.roles[f] != FaceRole::Cap) continue;
+    for (int k = 0; k < 3; ++k) {
+      const Eigen::Vector3d p = out.position(out.triangles[f][k]);
+      EXPECT_LT(std::hypot(p.x() - 17.0, p.y()), 2.0 + 1e-9);
+      EXPECT_GE(p.z(), 1.5 - 1e-9);
+      ++pocket;
+    }
+  }
+  EXPECT_GT(pocket, 0u);
+  // Every face at the pocket's contour stays at the pocket (joined to the outer wall, 11 mm away, a face
+  // would cross the wall).
+  for (const Triangle& t : out.triangles) {
+    bool at_pocket = false;
+    for (int k = 0; k < 3; ++k) {
+      const Eigen::Vector3d p = out.position(t[k]);
+      at_pocket = at_pocket || (p.z() == 2.0 && std::abs(std::hypot(p.x() - 17.0, p.y()) - 2.0) < 0.1);
+    }
+    if (!at_pocket) continue;
+    for (int k = 0; k < 3; ++k) {
+      const Eigen::Vector3d p = out.position(t[k]);
+      EXPECT_LT(std::hypot(p.x() - 17.0, p.y()), 2.0 + 1e-6);
+    }
+  }
+  const test::Topology t = test::topology_of(closed(stack, lower, upper, out));
+  EXPECT_TRUE(t.closed && t.manifold) << t.problems;
+}
+
 TEST(Branching, AnOpeningHoleIsBridgedWhereTheWallIsOpenAbove) {
   // A ring below a ring wall with one slit at angle 2 rad: the composite of outer contour and hole is
   // bridged across the wall at the slit, so that the band above follows the wall.

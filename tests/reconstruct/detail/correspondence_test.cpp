@@ -81,6 +81,37 @@ TEST(Correspondence, AHoleOpensWhereTheOtherLevelHasNoWallAndEndsWhereItIsCovere
   EXPECT_EQ(classify_group(contour_groups(ring, disc, covered)[0], ring, disc, covered), GroupChange::Topology);
 }
 
+// A pocket in a wide wall whose region lies, on the other level, inside the wall's large cavity (a diploe
+// cavity over the cranial cavity where the skull's roof is nearly flat): it opens, but over a hole.
+TEST(Correspondence, APocketOverTheOtherLevelsCavityOpensOverAHole) {
+  test::TestStack stack;
+  // Below: a disc of radius 30 with a cavity of radius 20; above: the same disc with a smaller cavity
+  // (radius 10) and a pocket (radius 2 at x = 15) over the cavity below (under 1 % of it: no link).
+  Level below{0.0,
+              {stack.contour(circle_points(0, 0, 30, 120), 0.0),
+               stack.contour(circle_points(0, 0, 20, 100, true), 0.0, true, 0)}};
+  Level above{
+      2.0,
+      {stack.contour(circle_points(0, 0, 30, 120), 2.0), stack.contour(circle_points(0, 0, 10, 60, true), 2.0, true, 0),
+       stack.contour(circle_points(15, 0, 2, 12, true), 2.0, true, 0)}};
+  const Correspondence c = correspond(below, above, 0.05, 0.01);
+  EXPECT_TRUE(c.down[2].empty());
+  EXPECT_TRUE(c.opens_down[2]);
+  EXPECT_TRUE(c.over_hole_down[2]);
+  EXPECT_FALSE(c.over_hole_down[1]);
+  // Over the outside instead (the wall below ends at radius 14): it opens, not over a hole.
+  Level narrow{
+      0.0,
+      {stack.contour(circle_points(0, 0, 14, 80), 0.0), stack.contour(circle_points(0, 0, 8, 60, true), 0.0, true, 0)}};
+  Level wide{
+      2.0,
+      {stack.contour(circle_points(0, 0, 30, 120), 2.0), stack.contour(circle_points(0, 0, 8, 60, true), 2.0, true, 0),
+       stack.contour(circle_points(20, 0, 2, 12, true), 2.0, true, 0)}};
+  const Correspondence d = correspond(narrow, wide, 0.05, 0.01);
+  EXPECT_TRUE(d.opens_down[2]);
+  EXPECT_FALSE(d.over_hole_down[2]);
+}
+
 TEST(Correspondence, ASpeckInsideALargeContourDoesNotContinueIt) {
   // A 1 mm^2 speck wholly inside a 300 mm^2 disc: all of the speck overlaps, but under 1 % of the disc.
   test::TestStack stack;
