@@ -96,6 +96,8 @@ int vtkCtImageToContourSurfaceFilter::RequestData(vtkInformation*, vtkInformatio
     o.off_slice.placement = this->OffSlicePlacement == OFF_SLICE_TILED ? contourmesh::OffSlicePlacement::Tiled
                                                                        : contourmesh::OffSlicePlacement::ImageCrossing;
     o.min_component_voxels = this->MinComponentVoxels;
+    o.single_slice = this->SingleSliceContours == SINGLE_SLICE_DROP ? contourmesh::SingleSliceContours::Drop
+                                                                    : contourmesh::SingleSliceContours::Slab;
 
     filter_detail::StageProgress stages(
         this, [](vtkAlgorithm* a) { return static_cast<vtkCtImageToContourSurfaceFilter*>(a)->AbortRequested(); });
@@ -134,6 +136,8 @@ void vtkCtImageToContourSurfaceFilter::PrintSelf(ostream& os, vtkIndent indent) 
   os << indent << "Sampling: " << this->Sampling << (this->Sampling > 0.0 ? "" : " (pixel spacing)") << "\n";
   os << indent << "MinContourLength: " << this->MinContourLength << "\n";
   os << indent << "FlatCrossings: " << (this->FlatCrossings == FLAT_CROSSINGS_PER_PIXEL ? "PerPixel" : "Patches")
+     << "\n";
+  os << indent << "SingleSliceContours: " << (this->SingleSliceContours == SINGLE_SLICE_DROP ? "Drop" : "Slab")
      << "\n";
   os << indent << "OffSlicePlacement: " << (this->OffSlicePlacement == OFF_SLICE_TILED ? "Tiled" : "ImageCrossing")
      << "\n";

@@ -22,6 +22,8 @@
 
 #include <gtest/gtest.h>
 
+#include "reconstruct/partial_volume.h"
+
 #include <vtkCommand.h>
 #include <vtkImageData.h>
 #include <vtkNew.h>
@@ -117,6 +119,12 @@ TEST_F(VtkFilters, NonDefaultReconstructionOptionsReachTheLibrary) {
   const CtImage::Pointer pelvis = render_phantom(make_phantom(PhantomShape::Pelvis), vo);
   vo.noise = 160.0;
   const CtImage::Pointer cavity = render_phantom(make_phantom(PhantomShape::Cavity), vo);
+  // A block with a cavity that only the slice at z = 6 sees.
+  const CtImage::Pointer pocket = test::pixel_volume({32, 32, 8}, {1.0, 1.0, 2.0}, [](int i, int j, int k) {
+    const bool block = i >= 4 && i < 28 && j >= 4 && j < 28 && k >= 1 && k < 7;
+    const bool hole = k == 3 && (i - 16) * (i - 16) + (j - 16) * (j - 16) <= 25;
+    return block && !hole ? 1000.0f : 0.0f;
+  });
   ReconstructionOptions base;  // keep the specks, so that the options that drop them matter
   base.segmentation.threshold = 350.0;
   base.segmentation.min_region_area = 0.0;
@@ -180,6 +188,8 @@ TEST_F(VtkFilters, NonDefaultReconstructionOptionsReachTheLibrary) {
         [](Filter* f) { f->SetCapRefinementToEarClipping(); });
   check("flat crossings", two, [](auto& o) { o.segmentation.flat_crossings = FlatCrossings::PerPixel; },
         [](Filter* f) { f->SetFlatCrossingsToPerPixel(); });
+  check("single-slice contours", pocket, [](auto& o) { o.single_slice = SingleSliceContours::Drop; },
+        [](Filter* f) { f->SetSingleSliceContoursToDrop(); });
   check("off-slice placement", cavity, [](auto& o) { o.off_slice.placement = OffSlicePlacement::Tiled; },
         [](Filter* f) { f->SetOffSlicePlacementToTiled(); });
   check("min overlap", pelvis, [](auto& o) { o.tiling.min_overlap_fraction = 0.9; },

@@ -184,6 +184,22 @@ def test_flat_crossings_reach_the_library():
         cm.reconstruct(two.volume, two.spacing, two.origin, threshold=520, flat_crossings="whole")
 
 
+def test_single_slice_cavities_reach_the_library():
+    """A cavity that one slice alone sees (a hole on slice 3 of a block) stays hollow by default and is
+    filled with single_slice="drop"."""
+    volume = np.zeros((8, 32, 32), dtype=np.float32)
+    volume[1:7, 4:28, 4:28] = 1000.0
+    k, j, i = np.mgrid[0:8, 0:32, 0:32]
+    volume[(k == 3) & ((j - 16) ** 2 + (i - 16) ** 2 <= 25)] = 0.0
+    kept = cm.reconstruct(volume, (1.0, 1.0, 2.0), threshold=500)
+    dropped = cm.reconstruct(volume, (1.0, 1.0, 2.0), threshold=500, single_slice="drop")
+    assert kept.report["single_slice_cavities"] == 1
+    assert dropped.report["single_slice_cavities"] == 0
+    assert len(kept.points) > len(dropped.points)
+    with pytest.raises(cm.InvalidInputError, match="single_slice"):
+        cm.reconstruct(volume, (1.0, 1.0, 2.0), threshold=500, single_slice="keep")
+
+
 def test_errors_are_typed():
     with pytest.raises(cm.InvalidInputError) as e:
         cm.smooth(np.zeros((3, 3)), [[0, 1, 5]])

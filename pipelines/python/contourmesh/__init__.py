@@ -51,8 +51,8 @@ _MAX_VERTICES = 50_000_000
 
 def reconstruct(volume, spacing=(1.0, 1.0, 1.0), origin=(0.0, 0.0, 0.0), direction=None, *, threshold=300.0,
                 otsu=False, label=None, sampling=0.0, smoothing="none", keep="all", min_area=2.0, fill_holes=False,
-                end_caps="half-spacing", flat_crossings="patches", max_vertices=_MAX_VERTICES, threads=0,
-                progress=None):
+                end_caps="half-spacing", flat_crossings="patches", single_slice="slab", max_vertices=_MAX_VERTICES,
+                threads=0, progress=None):
     """Segments a volume and tiles its contours into a closed mesh with contour ids.
 
     ``threshold`` (HU, voxels >= it are foreground) or ``otsu=True``; or ``label=N`` (a value, or a
@@ -61,7 +61,8 @@ def reconstruct(volume, spacing=(1.0, 1.0, 1.0), origin=(0.0, 0.0, 0.0), directi
     """
     return Reconstruction(*_core._reconstruct(
         volume, spacing, origin, direction, float(threshold), bool(otsu), label, float(sampling), smoothing, keep,
-        float(min_area), bool(fill_holes), end_caps, flat_crossings, int(max_vertices), int(threads), progress))
+        float(min_area), bool(fill_holes), end_caps, flat_crossings, single_slice, int(max_vertices), int(threads),
+        progress))
 
 
 def smooth(points, triangles, slice_ids=None, contour_ids=None, method=None, *, progress=None, threads=0,

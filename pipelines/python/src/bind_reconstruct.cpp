@@ -56,7 +56,7 @@ py::tuple reconstruct_py(const py::object& volume, const py::object& spacing, co
                          const py::object& direction, double threshold, bool otsu, const py::object& label,
                          double sampling, const std::string& smoothing, const std::string& keep, double min_area,
                          bool fill_holes, const std::string& end_caps, const std::string& flat_crossings,
-                         Index max_vertices, int threads,
+                         const std::string& single_slice, Index max_vertices, int threads,
                          const py::object& progress) {
   const CtImage::Pointer image = image_from_array(volume, spacing, origin, direction);
   ReconstructionOptions options;
@@ -76,6 +76,9 @@ py::tuple reconstruct_py(const py::object& volume, const py::object& spacing, co
   if (flat_crossings == "patches") seg.flat_crossings = FlatCrossings::Patches;
   else if (flat_crossings == "per-pixel") seg.flat_crossings = FlatCrossings::PerPixel;
   else throw InvalidInputError("flat_crossings must be 'patches' or 'per-pixel', got '" + flat_crossings + "'");
+  if (single_slice == "slab") options.single_slice = SingleSliceContours::Slab;
+  else if (single_slice == "drop") options.single_slice = SingleSliceContours::Drop;
+  else throw InvalidInputError("single_slice must be 'slab' or 'drop', got '" + single_slice + "'");
   if (max_vertices < 1) throw InvalidInputError("max_vertices must be >= 1");
   options.tiling.limits.max_vertices = max_vertices;
   std::optional<std::string> label_spec;
@@ -115,7 +118,8 @@ void bind_reconstruct(py::module_& m) {
   m.def("_reconstruct", &reconstruct_py, py::arg("volume"), py::arg("spacing"), py::arg("origin"),
         py::arg("direction"), py::arg("threshold"), py::arg("otsu"), py::arg("label"), py::arg("sampling"),
         py::arg("smoothing"), py::arg("keep"), py::arg("min_area"), py::arg("fill_holes"), py::arg("end_caps"),
-        py::arg("flat_crossings"), py::arg("max_vertices"), py::arg("threads"), py::arg("progress"));
+        py::arg("flat_crossings"), py::arg("single_slice"), py::arg("max_vertices"), py::arg("threads"),
+        py::arg("progress"));
 
   m.def(
       "_read_volume",

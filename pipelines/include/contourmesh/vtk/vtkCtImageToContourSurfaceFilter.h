@@ -48,6 +48,10 @@ class vtkCtImageToContourSurfaceFilter : public vtkContourTilingAlgorithm {
                                    ///< (default)
     FLAT_CROSSINGS_PER_PIXEL = 1,  ///< each pixel by its own value
   };
+  enum SingleSliceContoursType {
+    SINGLE_SLICE_SLAB = 0,  ///< a slab half-way to the adjacent slices, hollow for a hole (default)
+    SINGLE_SLICE_DROP = 1,
+  };
   enum OffSlicePlacementType {
     OFF_SLICE_IMAGE_CROSSING = 0,  ///< vertices between the slices where the image crosses the threshold (default)
     OFF_SLICE_TILED = 1,           ///< where the tiler put them (caps half a spacing beyond the last contour)
@@ -125,6 +129,16 @@ class vtkCtImageToContourSurfaceFilter : public vtkContourTilingAlgorithm {
   ///@}
 
   ///@{
+  /// Contours found on one slice only (a fragment or cavity thinner than the slice spacing): slabs reaching
+  /// half-way to the adjacent slices, hollow for holes (default), or dropped (docs/reconstruction.md,
+  /// "Contours on one slice").
+  vtkSetClampMacro(SingleSliceContours, int, SINGLE_SLICE_SLAB, SINGLE_SLICE_DROP);
+  vtkGetMacro(SingleSliceContours, int);
+  void SetSingleSliceContoursToSlab() { this->SetSingleSliceContours(SINGLE_SLICE_SLAB); }
+  void SetSingleSliceContoursToDrop() { this->SetSingleSliceContours(SINGLE_SLICE_DROP); }
+  ///@}
+
+  ///@{
   /// Heights of the vertices between the slices (end caps, intermediate contours): from the image
   /// (default) or as tiled.
   vtkSetClampMacro(OffSlicePlacement, int, OFF_SLICE_IMAGE_CROSSING, OFF_SLICE_TILED);
@@ -160,6 +174,7 @@ class vtkCtImageToContourSurfaceFilter : public vtkContourTilingAlgorithm {
   double Sampling = 0.0;
   double MinContourLength = 3.0;
   int FlatCrossings = FLAT_CROSSINGS_PATCHES;
+  int SingleSliceContours = SINGLE_SLICE_SLAB;
   int OffSlicePlacement = OFF_SLICE_IMAGE_CROSSING;
   double MinComponentVoxels = 4.0;
 
