@@ -7,7 +7,7 @@
 
 #include <algorithm>
 #include <array>
-#include <set>
+#include <cstdint>
 
 namespace contourmesh::detail {
 
@@ -51,12 +51,17 @@ double axial(const Mesh& mesh, const ContourStack& stack, Index i) {
 }  // namespace
 
 std::vector<std::pair<std::size_t, std::size_t>> unmeshed_contours(const Mesh& mesh, const ContourStack& stack) {
-  std::set<std::pair<std::int32_t, std::int32_t>> meshed;
-  for (Index i = 0; i < mesh.num_vertices(); ++i) meshed.insert({mesh.slice_ids[i], mesh.contour_ids[i]});
+  std::vector<std::vector<std::uint8_t>> meshed(stack.slices.size());
+  for (std::size_t s = 0; s < stack.slices.size(); ++s) meshed[s].assign(stack.slices[s].contours.size(), 0);
+  for (Index i = 0; i < mesh.num_vertices(); ++i) {
+    const auto s = static_cast<std::size_t>(mesh.slice_ids[i]), c = static_cast<std::size_t>(mesh.contour_ids[i]);
+    if (mesh.slice_ids[i] >= 0 && mesh.contour_ids[i] >= 0 && s < meshed.size() && c < meshed[s].size())
+      meshed[s][c] = 1;
+  }
   std::vector<std::pair<std::size_t, std::size_t>> out;
-  for (std::size_t s = 0; s < stack.slices.size(); ++s) {
-    for (std::size_t c = 0; c < stack.slices[s].contours.size(); ++c) {
-      if (!meshed.count({static_cast<std::int32_t>(s), static_cast<std::int32_t>(c)})) out.emplace_back(s, c);
+  for (std::size_t s = 0; s < meshed.size(); ++s) {
+    for (std::size_t c = 0; c < meshed[s].size(); ++c) {
+      if (!meshed[s][c]) out.emplace_back(s, c);
     }
   }
   return out;
