@@ -122,7 +122,9 @@ TEST(MeshFiles, StlAndPlyCarryTheLpsTagAsSlicerReadsIt) {
   mesh.positions = Eigen::Matrix3Xd::Identity(3, 3);
   mesh.triangles = {{0, 1, 2}};
   for (const char* name : {"m.stl", "m.ply"}) write_mesh(mesh, tmp.path() / name);
-  write_mesh(mesh, tmp.path() / "a.stl", MeshWriteOptions{MeshFormat::StlAscii, {}, {}});
+  MeshWriteOptions ascii;
+  ascii.format = MeshFormat::StlAscii;
+  write_mesh(mesh, tmp.path() / "a.stl", ascii);
   EXPECT_NE(read_file(tmp.path() / "m.stl").substr(0, 80).find("SPACE=LPS"), std::string::npos);
   EXPECT_EQ(read_file(tmp.path() / "a.stl").rfind("solid ContourMesh output. SPACE=LPS", 0), 0u);
   const std::string ply = read_file(tmp.path() / "m.ply");

@@ -241,7 +241,9 @@ TEST(FeatureDetection, BoxCornersGoToTheVoteAndAreCornersBetweenFeatures) {
       feature_neighbours += d.labels[j] == VertexLabel::Edge || d.labels[j] == VertexLabel::Corner;
       noise_neighbours += d.labels[j] == VertexLabel::Noise;
     }
-    if (feature_neighbours == 3 && noise_neighbours == 0) EXPECT_EQ(d.labels[v], VertexLabel::Corner) << v;
+    if (feature_neighbours == 3 && noise_neighbours == 0) {
+      EXPECT_EQ(d.labels[v], VertexLabel::Corner) << v;
+    }
     labelled_corner += d.labels[v] == VertexLabel::Corner;
   }
   EXPECT_EQ(labelled_corner, 8);
