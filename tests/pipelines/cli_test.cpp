@@ -315,6 +315,31 @@ TEST_F(Cli, TilingOptionsReachTheTilerOnBothRoutes) {
   }
 }
 
+// --single-slice applies to volumes: the diploe phantom's cavities that one slice alone sees are hollow
+// slabs by default and left out with `drop`; a bad value exits 2 naming the option, writing nothing.
+TEST_F(Cli, SingleSliceReachesTheVolumeRoute) {
+  const fs::path volume = dir_ / "diploe.nrrd";
+  ASSERT_EQ(run_cli("phantom --shape skull-diploe -o " + volume.string() + " -q", dir_).code, 0);
+  auto report = [&](const std::string& options) {
+    const CliRun r = run_cli(
+        "reconstruct " + volume.string() + " --threshold 520 -o " + (dir_ / "out.vtp").string() + " --json " + options,
+        dir_);
+    EXPECT_EQ(r.code, 0) << options << ": " << r.err;
+    return r.code == 0 ? nlohmann::json::parse(r.out) : nlohmann::json{};
+  };
+  const auto kept = report(""), dropped = report("--single-slice drop");
+  ASSERT_FALSE(kept.is_null() || dropped.is_null());
+  EXPECT_GT(kept["single_slice_cavities"].get<int>(), 50);
+  EXPECT_EQ(dropped["single_slice_cavities"].get<int>(), 0);
+  EXPECT_EQ(kept["dropped_contours"], dropped["dropped_contours"]);
+  EXPECT_GT(kept["components"].get<int>(), dropped["components"].get<int>() + 50);
+  const CliRun bad =
+      run_cli("reconstruct " + volume.string() + " -o " + (dir_ / "bad.vtp").string() + " --single-slice keep", dir_);
+  EXPECT_EQ(bad.code, 2);
+  EXPECT_NE(bad.err.find("--single-slice"), std::string::npos) << bad.err;
+  EXPECT_FALSE(fs::exists(dir_ / "bad.vtp"));
+}
+
 // --contour-noise reaches the volume on phantom and run, is range-checked (exit 2), and is refused
 // next to an input volume (exit 1), which it could not change.
 TEST_F(Cli, ContourNoiseOption) {
