@@ -38,7 +38,8 @@ namespace {
 
 using namespace contourmesh;
 
-constexpr double kAngle = 10.0;  // degrees: slivers and shelves
+constexpr double kAngle = 10.0;      // degrees: slivers and shelves
+constexpr double kFoldTurn = 120.0;  // degrees: folds (pleats, teeth, spikes)
 
 struct Row {
   std::string name;
@@ -50,6 +51,7 @@ struct Row {
   double shelf_area = 0.0;
   std::optional<double> true_shelf_area;
   MeshQuality quality;
+  double fold_area_share = 0.0;  // faces at edges turning by more than kFoldTurn
   std::size_t vertices = 0;
   std::size_t branchings = 0, refined_bands = 0, composites = 0;
   double seconds_segment = 0.0, seconds_tile = 0.0;
@@ -75,6 +77,7 @@ Row row_of(const std::string& name, const CtImage& image, const Reconstruction& 
   const Eigen::Vector3d axis(d[0][2], d[1][2], d[2][2]);
   row.slice_spacing = image.GetSpacing()[2];
   row.quality = measure(r, axis);
+  row.fold_area_share = fold_area_share(r.mesh.positions, r.mesh.triangles, kFoldTurn);
   row.shelf_area = row.quality.shelf_area;
   row.vertices = static_cast<std::size_t>(r.mesh.num_vertices());
   row.branchings = r.report.tiling.branchings;
@@ -127,10 +130,11 @@ std::string fixed(double v, int digits) {
 }
 
 void print_markdown(const std::vector<Row>& rows) {
-  std::cout << "| mesh | closed, manifold | Euler (truth) | Hausdorff / slice spacing, mm | RMS, mm | shelf: "
-               "non-cap area within 10 deg / truth's, mm^2 | sliver area | vertices without ids | vertices | "
-               "branchings, refined bands, composites |\n"
-               "| --- | --- | --- | --- | --- | --- | --- | --- | --- | --- |\n";
+  std::cout
+      << "| mesh | closed, manifold | Euler (truth) | Hausdorff / slice spacing, mm | RMS, mm | shelf: "
+         "non-cap area within 10 deg / truth's, mm^2 | sliver area | fold area | vertices without ids | vertices | "
+         "branchings, refined bands, composites |\n"
+         "| --- | --- | --- | --- | --- | --- | --- | --- | --- | --- | --- |\n";
   for (const Row& r : rows) {
     std::cout << "| " << r.name << " | " << (r.topology.closed ? "yes" : "NO") << ", "
               << (r.topology.manifold ? "yes" : "NO") << " | " << r.topology.euler_characteristic;
@@ -146,8 +150,9 @@ void print_markdown(const std::vector<Row>& rows) {
       std::cout << " (" << fixed(100.0 * r.quality.shelf_area_share, 2) << " % of the area)";
     }
     std::cout << " | " << fixed(100.0 * r.quality.sliver_area_share, 2) << " % | "
-              << fixed(100.0 * r.quality.share_without_ids, 1) << " % | " << r.vertices << " | " << r.branchings
-              << ", " << r.refined_bands << ", " << r.composites << " |\n";
+              << fixed(100.0 * r.fold_area_share, 2) << " % | " << fixed(100.0 * r.quality.share_without_ids, 1)
+              << " % | " << r.vertices << " | " << r.branchings << ", " << r.refined_bands << ", " << r.composites
+              << " |\n";
   }
 }
 
@@ -166,6 +171,7 @@ void print_json(const std::vector<Row>& rows) {
               << ", \"rms\": " << opt(r.rms) << ", \"shelf_area\": " << fixed(r.shelf_area, 3)
               << ", \"true_shelf_area\": " << opt(r.true_shelf_area)
               << ", \"sliver_area_share\": " << fixed(r.quality.sliver_area_share, 6)
+              << ", \"fold_area_share\": " << fixed(r.fold_area_share, 6)
               << ", \"share_without_ids\": " << fixed(r.quality.share_without_ids, 6)
               << ", \"vertices\": " << r.vertices << ", \"branchings\": " << r.branchings
               << ", \"refined_bands\": " << r.refined_bands << ", \"composites\": " << r.composites
@@ -190,6 +196,7 @@ int main(int argc, char** argv) {
   try {
     std::vector<Row> rows;
     for (PhantomShape shape : all_phantom_shapes()) rows.push_back(phantom_row(shape, contour_noise));
+    for (PhantomShape shape : extra_phantom_shapes()) rows.push_back(phantom_row(shape, contour_noise));
     if (!phantoms_only && !data.empty()) {
       const std::filesystem::path root(data);
       rows.push_back(scan_row(root / "dicom_series_headneck", "dicom_series_headneck (300 HU)", 300.0));

@@ -87,6 +87,43 @@ TEST(MeshQuality, AreaFacingTheAxisOfASphereIsItsPolarCaps) {
   EXPECT_NEAR(area_facing_axis(s.positions, s.triangles, Eigen::Vector3d::UnitZ(), a) / expected, 1.0, 0.03);
 }
 
+// A roof of two unit squares (four triangles) meeting along a ridge: each half folded `turn` degrees from
+// the plane, so the surface turns by 2 turn across the ridge. Area 4 x 0.5 = 2, all at the ridge.
+Mesh roof(double turn_degrees) {
+  const double h = std::sin(turn_degrees * pi / 360.0), w = std::cos(turn_degrees * pi / 360.0);
+  Mesh m;
+  m.positions.resize(3, 6);
+  m.positions.col(0) << 0, 0, 0;  // the ridge: vertices 0 and 1
+  m.positions.col(1) << 0, 1, 0;
+  m.positions.col(2) << -w, 0, -h;
+  m.positions.col(3) << -w, 1, -h;
+  m.positions.col(4) << w, 0, -h;
+  m.positions.col(5) << w, 1, -h;
+  m.triangles = {{0, 2, 3}, {0, 3, 1}, {0, 1, 5}, {0, 5, 4}};
+  return m;
+}
+
+TEST(MeshQuality, FoldShareIsTheAreaOfFacesAtSharpTurns) {
+  // Across the ridge the surface turns by 2 x 70 = 140 degrees: the two faces at the ridge's edge fold (the
+  // diagonals inside each half are flat); at 2 x 50 = 100 degrees nothing does.
+  const Mesh sharp = roof(140.0), blunt = roof(100.0);
+  EXPECT_NEAR(fold_area_share(sharp.positions, sharp.triangles), 0.5, 1e-12);
+  EXPECT_EQ(fold_area_share(blunt.positions, blunt.triangles), 0.0);
+  EXPECT_NEAR(fold_area_share(blunt.positions, blunt.triangles, 90.0), 0.5, 1e-12);
+  // A cube turns by 90 degrees at its edges, a fine sphere by almost nothing.
+  const Mesh cube = make_cube(3, 1.0), sphere = make_icosphere(3);
+  EXPECT_EQ(fold_area_share(cube.positions, cube.triangles), 0.0);
+  const double edges = fold_area_share(cube.positions, cube.triangles, 89.0);  // the faces along the cube's edges
+  EXPECT_GT(edges, 0.2);
+  EXPECT_LT(edges, 0.8);
+  EXPECT_EQ(fold_area_share(sphere.positions, sphere.triangles, 30.0), 0.0);
+  EXPECT_EQ(fold_area_share(Eigen::Matrix3Xd(3, 0), {}), 0.0);
+  EXPECT_THROW((void)fold_area_share(cube.positions, cube.triangles, 181.0), InvalidInputError);
+  std::vector<Triangle> bad = cube.triangles;
+  bad.push_back({0, 1, 999});
+  EXPECT_THROW((void)fold_area_share(cube.positions, bad), InvalidInputError);
+}
+
 TEST(MeshQuality, ShareWithoutIds) {
   Mesh m = good_and_thin();
   EXPECT_EQ(share_without_ids(m), 1.0);  // no ids at all

@@ -37,6 +37,15 @@ namespace contourmesh {
                                       const Eigen::Vector3d& axis, double max_angle_degrees,
                                       std::span<const std::uint8_t> skip = {});
 
+/// Share of the surface area, in [0, 1], held by faces that share an edge with a face whose normal is more
+/// than `min_turn_degrees` (in [0, 180]) from theirs: folds, where the surface doubles back on itself (the
+/// pleats and teeth of a tiling, a spike). A cube's edges turn by 90 degrees; the default 120 counts only
+/// sharper turns. Zero-area faces count for nothing and fold nothing; edges shared by other than two
+/// faces are skipped. 0 for a mesh of zero area. Throws InvalidInputError for an angle outside [0, 180] or
+/// a triangle index outside the positions. Sorts the edges: O(F log F), unlike the one-pass measures.
+[[nodiscard]] double fold_area_share(const Eigen::Matrix3Xd& positions, const std::vector<Triangle>& triangles,
+                                     double min_turn_degrees = 120.0);
+
 /// Share of the vertices, in [0, 1], that lie on no input contour: slice id kNoId (cap interiors,
 /// intermediate contours, subdivision vertices). 1 for a non-empty mesh without ids, 0 for an empty one.
 [[nodiscard]] double share_without_ids(const Mesh& mesh);
