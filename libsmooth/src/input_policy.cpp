@@ -5,6 +5,8 @@
 #include "contourmesh/smooth/contour_structure.h"
 #include "contourmesh/smooth/errors.h"
 
+#include "detail/edge_uses.h"
+
 #include <Eigen/Eigenvalues>
 #include <Eigen/Geometry>
 
@@ -13,7 +15,6 @@
 #include <cstdint>
 #include <numeric>
 #include <sstream>
-#include <tuple>
 #include <utility>
 
 namespace contourmesh {
@@ -32,40 +33,9 @@ namespace {
 
 // ----- Orientation ------------------------------------------------------------------------------------
 
-// The triangles' directed edges, sorted by undirected edge, so that the triangles of an edge are adjacent.
-struct EdgeUse {
-  std::uint64_t key;  // (min << 32) | max
-  Index face;
-  bool forward;  // traversed from the smaller to the larger index
-};
-
-std::vector<EdgeUse> sorted_edge_uses(const Mesh& mesh) {
-  std::vector<EdgeUse> uses;
-  uses.reserve(3 * static_cast<std::size_t>(mesh.num_faces()));
-  for (Index f = 0; f < mesh.num_faces(); ++f) {
-    const Triangle& t = mesh.triangles[f];
-    for (int k = 0; k < 3; ++k) {
-      const Index a = t[k], b = t[(k + 1) % 3];
-      const auto lo = static_cast<std::uint64_t>(std::min(a, b)), hi = static_cast<std::uint64_t>(std::max(a, b));
-      uses.push_back({(lo << 32) | hi, f, a < b});
-    }
-  }
-  std::sort(uses.begin(), uses.end(), [](const EdgeUse& x, const EdgeUse& y) {
-    return std::tie(x.key, x.face) < std::tie(y.key, y.face);
-  });
-  return uses;
-}
-
-// Calls visit(first, count) for each run of uses of one edge.
-template <typename Visit>
-void for_each_edge(const std::vector<EdgeUse>& uses, Visit visit) {
-  for (std::size_t k = 0; k < uses.size();) {
-    std::size_t e = k + 1;
-    while (e < uses.size() && uses[e].key == uses[k].key) ++e;
-    visit(k, e - k);
-    k = e;
-  }
-}
+using detail::EdgeUse;
+using detail::for_each_edge;
+using detail::sorted_edge_uses;
 
 double signed_volume_term(const Mesh& mesh, const Triangle& t) {
   return mesh.positions.col(t[0]).dot(mesh.positions.col(t[1]).cross(mesh.positions.col(t[2]))) / 6.0;
@@ -288,7 +258,7 @@ void refuse_unusable(const Mesh& mesh) {
 }  // namespace
 
 std::optional<std::pair<Index, Index>> find_orientation_conflict(const Mesh& mesh) {
-  const std::vector<EdgeUse> uses = sorted_edge_uses(mesh);
+  const std::vector<EdgeUse> uses = sorted_edge_uses(mesh.triangles);
   std::optional<std::pair<Index, Index>> conflict;
   for_each_edge(uses, [&](std::size_t k, std::size_t count) {
     if (!conflict && count == 2 && uses[k].forward == uses[k + 1].forward) {
@@ -315,7 +285,7 @@ struct TriangleLinks {
 
 TriangleLinks link_triangles(const Mesh& mesh) {
   const Index nf = mesh.num_faces();
-  const std::vector<EdgeUse> uses = sorted_edge_uses(mesh);
+  const std::vector<EdgeUse> uses = sorted_edge_uses(mesh.triangles);
   TriangleLinks t;
   t.offsets.assign(static_cast<std::size_t>(nf) + 1, 0);
   t.open.assign(static_cast<std::size_t>(nf), 0);

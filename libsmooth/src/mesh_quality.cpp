@@ -3,6 +3,8 @@
 
 #include "contourmesh/smooth/errors.h"
 
+#include "detail/edge_uses.h"
+
 #include <algorithm>
 #include <cstdint>
 #include <cmath>
@@ -156,34 +158,14 @@ double fold_area_share(const Eigen::Matrix3Xd& positions, const std::vector<Tria
     total += areas[f];
   }
   if (!(total > 0.0)) return 0.0;
-  // Every edge as (smaller vertex, larger vertex, face), sorted: the faces of an edge are adjacent.
-  struct Side {
-    Index a, b;
-    std::uint32_t face;
-  };
-  std::vector<Side> sides;
-  sides.reserve(3 * nf);
-  for (std::size_t f = 0; f < nf; ++f) {
-    const Triangle& t = triangles[f];
-    for (int k = 0; k < 3; ++k) {
-      const Index u = t[static_cast<std::size_t>(k)], v = t[static_cast<std::size_t>((k + 1) % 3)];
-      sides.push_back({std::min(u, v), std::max(u, v), static_cast<std::uint32_t>(f)});
-    }
-  }
-  std::sort(sides.begin(), sides.end(), [](const Side& x, const Side& y) {
-    return x.a != y.a ? x.a < y.a : x.b != y.b ? x.b < y.b : x.face < y.face;
-  });
   const double max_cosine = std::cos(min_turn_degrees / kDegrees);
   std::vector<std::uint8_t> folded(nf, 0);
-  for (std::size_t i = 0; i < sides.size();) {
-    std::size_t j = i + 1;
-    while (j < sides.size() && sides[j].a == sides[i].a && sides[j].b == sides[i].b) ++j;
-    if (j == i + 2) {
-      const std::uint32_t f = sides[i].face, g = sides[i + 1].face;
-      if (areas[f] > 0.0 && areas[g] > 0.0 && normals[f].dot(normals[g]) < max_cosine) folded[f] = folded[g] = 1;
-    }
-    i = j;
-  }
+  const std::vector<detail::EdgeUse> uses = detail::sorted_edge_uses(triangles);
+  detail::for_each_edge(uses, [&](std::size_t k, std::size_t count) {
+    if (count != 2) return;
+    const auto f = static_cast<std::size_t>(uses[k].face), g = static_cast<std::size_t>(uses[k + 1].face);
+    if (areas[f] > 0.0 && areas[g] > 0.0 && normals[f].dot(normals[g]) < max_cosine) folded[f] = folded[g] = 1;
+  });
   double area = 0.0;
   for (std::size_t f = 0; f < nf; ++f) area += folded[f] ? areas[f] : 0.0;
   return area / total;
