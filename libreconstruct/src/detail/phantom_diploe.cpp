@@ -17,11 +17,11 @@ namespace contourmesh::detail {
 
 namespace {
 
-// The skull's ellipsoids and orbits (build_skull in phantom_shapes.cpp; the same numbers).
-const Ellipsoid kOuter(Vec3(0.0, 0.0, -15.0), Vec3(54.0, 60.0, 56.0));
-const Ellipsoid kInner(Vec3(0.0, 0.0, -15.0), Vec3(48.0, 54.0, 50.0));
-constexpr double kCut = -35.0;
-constexpr double kOrbitRadius = 9.0, kOrbitZ = -5.0, kOrbitX = 22.0;
+// The skull's ellipsoids and orbits.
+const Ellipsoid kOuter = SkullGeometry::outer(), kInner = SkullGeometry::inner();
+constexpr double kCut = SkullGeometry::kCut;
+constexpr double kOrbitRadius = SkullGeometry::kOrbitRadius, kOrbitZ = SkullGeometry::kOrbitZ,
+                 kOrbitX = SkullGeometry::kOrbitX;
 
 constexpr double kCavityRadius = 1.5;  // mm: a hole of 2.2-3 mm across on one or two 2 mm slices
 constexpr double kMinWall =

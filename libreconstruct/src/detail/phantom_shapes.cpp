@@ -107,11 +107,11 @@ ShapeBuild build_pelvis() {
 ShapeBuild build_skull() {
   // A 6 mm ellipsoidal shell, cut open by the plane z = -35, with two orbits drilled through the front
   // (-y): cylinders of radius 9 along y that end inside the cranial cavity.
-  const Ellipsoid outer(Vec3(0.0, 0.0, -15.0), Vec3(54.0, 60.0, 56.0));
-  const Ellipsoid inner(Vec3(0.0, 0.0, -15.0), Vec3(48.0, 54.0, 50.0));
-  constexpr double kCut = -35.0;
-  constexpr double kOrbitRadius = 9.0, kOrbitZ = -5.0, kOrbitX = 22.0;
-  constexpr double kOrbitYMid = -47.5, kOrbitHalf = 27.5;  // y in [-75, -20]
+  const Ellipsoid outer = SkullGeometry::outer(), inner = SkullGeometry::inner();
+  constexpr double kCut = SkullGeometry::kCut;
+  constexpr double kOrbitRadius = SkullGeometry::kOrbitRadius, kOrbitZ = SkullGeometry::kOrbitZ,
+                   kOrbitX = SkullGeometry::kOrbitX;
+  constexpr double kOrbitYMid = SkullGeometry::kOrbitYMid, kOrbitHalf = SkullGeometry::kOrbitHalf;
   auto orbit = [=](const Vec3& p, double x) {
     return sd_extrude(length2(p.x() - x, p.z() - kOrbitZ) - kOrbitRadius, p.y() - kOrbitYMid, kOrbitHalf);
   };
