@@ -17,7 +17,6 @@
 #include <cmath>
 #include <iomanip>
 #include <optional>
-#include <set>
 #include <sstream>
 #include <utility>
 
@@ -176,8 +175,7 @@ void single_slice_contours(ContourReconstruction& out, const std::string& what,
   ContourReconstructionReport& report = out.report;
   const bool make_slabs =
       options.single_slice == SingleSliceContours::Slab && options.tiling.end_caps == EndCaps::HalfSpacing;
-  const auto unmeshed = detail::unmeshed_contours(out.mesh, stack);
-  std::set<std::pair<std::size_t, std::size_t>> left(unmeshed.begin(), unmeshed.end());
+  const detail::UnmeshedContours unmeshed = detail::unmeshed_contours(out.mesh, stack);
   std::size_t dropped = 0, cavities = 0, thinned = 0;
   std::string names;
   auto drop = [&](std::size_t s, std::size_t c) {
@@ -186,7 +184,7 @@ void single_slice_contours(ContourReconstruction& out, const std::string& what,
   };
   // Outer contours first, as slabs (with their holes); then holes inside the surface as it then is.
   std::vector<std::pair<std::size_t, std::size_t>> holes;
-  for (const auto& [s, c] : unmeshed) {
+  for (const auto& [s, c] : unmeshed.list) {
     const Contour& contour = stack.slices[s].contours[c];
     if (!make_slabs) {
       drop(s, c);
@@ -194,7 +192,7 @@ void single_slice_contours(ContourReconstruction& out, const std::string& what,
       const auto [below, above] = detail::half_gaps(stack, s);
       detail::append_part(out.mesh, detail::single_slice_slab(stack, s, c, below, above, options.tiling));
       ++report.slabs;
-    } else if (!left.count({s, static_cast<std::size_t>(contour.parent)})) {
+    } else if (!unmeshed.contains(s, contour.parent)) {
       holes.emplace_back(s, c);  // a hole of a slab is inside it
     }
   }

@@ -82,17 +82,14 @@ std::vector<std::pair<std::size_t, std::size_t>> add_single_slice_slabs(Mesh& me
                                                                         const ContourStack& stack,
                                                                         const ReconstructionOptions& options,
                                                                         ReconstructionReport& report) {
-  const auto unmeshed = detail::unmeshed_contours(mesh, stack);
+  const detail::UnmeshedContours unmeshed = detail::unmeshed_contours(mesh, stack);
   std::vector<std::pair<std::size_t, std::size_t>> holes;
-  if (unmeshed.empty()) return holes;
+  if (unmeshed.list.empty()) return holes;
   if (options.single_slice != SingleSliceContours::Slab || options.tiling.end_caps != EndCaps::HalfSpacing) {
-    for (const auto& [s, c] : unmeshed) report.single_slice_filled += stack.slices[s].contours[c].is_hole ? 1 : 0;
+    for (const auto& [s, c] : unmeshed.list) report.single_slice_filled += stack.slices[s].contours[c].is_hole ? 1 : 0;
     return holes;
   }
-  std::vector<std::vector<std::uint8_t>> unmeshed_of(stack.slices.size());
-  for (std::size_t s = 0; s < stack.slices.size(); ++s) unmeshed_of[s].assign(stack.slices[s].contours.size(), 0);
-  for (const auto& [s, c] : unmeshed) unmeshed_of[s][c] = 1;
-  for (const auto& [s, c] : unmeshed) {
+  for (const auto& [s, c] : unmeshed.list) {
     const Contour& contour = stack.slices[s].contours[c];
     if (!contour.is_hole) {
       // Overlapping a region next to it, it belongs to that piece: a slab would float beside it.
@@ -100,7 +97,7 @@ std::vector<std::pair<std::size_t, std::size_t>> add_single_slice_slabs(Mesh& me
       const auto [below, above] = detail::half_gaps(stack, s);
       detail::append_part(mesh, detail::single_slice_slab(stack, s, c, below, above, options.tiling), &roles);
       ++report.single_slice_slabs;
-    } else if (contour.parent < 0 || !unmeshed_of[s][static_cast<std::size_t>(contour.parent)]) {
+    } else if (!unmeshed.contains(s, contour.parent)) {
       holes.emplace_back(s, c);  // (a hole of a slab is part of it)
     }
   }

@@ -50,18 +50,18 @@ double axial(const Mesh& mesh, const ContourStack& stack, Index i) {
 
 }  // namespace
 
-std::vector<std::pair<std::size_t, std::size_t>> unmeshed_contours(const Mesh& mesh, const ContourStack& stack) {
-  std::vector<std::vector<std::uint8_t>> meshed(stack.slices.size());
-  for (std::size_t s = 0; s < stack.slices.size(); ++s) meshed[s].assign(stack.slices[s].contours.size(), 0);
+UnmeshedContours unmeshed_contours(const Mesh& mesh, const ContourStack& stack) {
+  UnmeshedContours out;
+  out.flags.resize(stack.slices.size());
+  for (std::size_t s = 0; s < stack.slices.size(); ++s) out.flags[s].assign(stack.slices[s].contours.size(), 1);
   for (Index i = 0; i < mesh.num_vertices(); ++i) {
     const auto s = static_cast<std::size_t>(mesh.slice_ids[i]), c = static_cast<std::size_t>(mesh.contour_ids[i]);
-    if (mesh.slice_ids[i] >= 0 && mesh.contour_ids[i] >= 0 && s < meshed.size() && c < meshed[s].size())
-      meshed[s][c] = 1;
+    if (mesh.slice_ids[i] >= 0 && mesh.contour_ids[i] >= 0 && s < out.flags.size() && c < out.flags[s].size())
+      out.flags[s][c] = 0;
   }
-  std::vector<std::pair<std::size_t, std::size_t>> out;
-  for (std::size_t s = 0; s < meshed.size(); ++s) {
-    for (std::size_t c = 0; c < meshed[s].size(); ++c) {
-      if (!meshed[s][c]) out.emplace_back(s, c);
+  for (std::size_t s = 0; s < out.flags.size(); ++s) {
+    for (std::size_t c = 0; c < out.flags[s].size(); ++c) {
+      if (out.flags[s][c]) out.list.emplace_back(s, c);
     }
   }
   return out;

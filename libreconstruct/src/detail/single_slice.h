@@ -8,16 +8,24 @@
 #include "contourmesh/reconstruct/tiling.h"
 
 #include <cstddef>
+#include <cstdint>
 #include <optional>
 #include <utility>
 #include <vector>
 
 namespace contourmesh::detail {
 
-/// The (slice, contour) indices of the contours of `stack` that no vertex of `mesh` carries: those the
-/// tiler left out, in slice then contour order.
-[[nodiscard]] std::vector<std::pair<std::size_t, std::size_t>> unmeshed_contours(const Mesh& mesh,
-                                                                                 const ContourStack& stack);
+/// The contours of a stack that no vertex of a mesh carries: those the tiler left out.
+struct UnmeshedContours {
+  std::vector<std::pair<std::size_t, std::size_t>> list;  ///< (slice, contour), in slice then contour order
+  std::vector<std::vector<std::uint8_t>> flags;           ///< per slice and contour: 1 when left out
+  /// Whether contour c of slice s was left out (false for indices outside the stack, such as parent -1).
+  [[nodiscard]] bool contains(std::size_t s, int c) const {
+    return s < flags.size() && c >= 0 && static_cast<std::size_t>(c) < flags[s].size() &&
+           flags[s][static_cast<std::size_t>(c)] != 0;
+  }
+};
+[[nodiscard]] UnmeshedContours unmeshed_contours(const Mesh& mesh, const ContourStack& stack);
 
 /// Half the gaps below and above slice `s` (an end slice reaches as far beyond as its one gap), mm.
 [[nodiscard]] std::pair<double, double> half_gaps(const ContourStack& stack, std::size_t s);
