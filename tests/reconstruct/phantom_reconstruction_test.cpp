@@ -61,19 +61,17 @@ TEST_P(PhantomReconstruction, ClosedManifoldAccurateWithConsistentIds) {
   }
 }
 
-INSTANTIATE_TEST_SUITE_P(ExtraShapes, PhantomReconstruction, ::testing::ValuesIn(extra_phantom_shapes()),
-                         [](const ::testing::TestParamInfo<PhantomShape>& shape_info) {
-                           std::string name(to_string(shape_info.param));
-                           for (char& c : name) c = c == '-' ? '_' : c;
-                           return name;
-                         });
+// The test name of a shape: its CLI name with '_' for '-'.
+std::string shape_test_name(const ::testing::TestParamInfo<PhantomShape>& shape_info) {
+  std::string name(to_string(shape_info.param));
+  for (char& c : name) c = c == '-' ? '_' : c;
+  return name;
+}
 
+INSTANTIATE_TEST_SUITE_P(ExtraShapes, PhantomReconstruction, ::testing::ValuesIn(extra_phantom_shapes()),
+                         shape_test_name);
 INSTANTIATE_TEST_SUITE_P(AllShapes, PhantomReconstruction, ::testing::ValuesIn(all_phantom_shapes()),
-                         [](const ::testing::TestParamInfo<PhantomShape>& shape_info) {
-                           std::string name(to_string(shape_info.param));
-                           for (char& c : name) c = c == '-' ? '_' : c;
-                           return name;
-                         });
+                         shape_test_name);
 
 TEST(PhantomReconstructionCounts, BranchTwoObjectsAndCavity) {
   PhantomVolumeOptions vo;

@@ -38,7 +38,7 @@ enum class PhantomShape {
   /// "end-face-on-slice": a cylinder whose flat end faces (z = -15 and 13) lie exactly on slice centres,
   /// beside a box whose end faces (z = +-20) lie half-way between slices
   EndFaceOnSlice,
-  /// "skull-diploe": the skull with 120 closed spherical cavities (radius 1.6 mm) in its wall, as the diploe
+  /// "skull-diploe": the skull with 120 closed spherical cavities (radius 1.5 mm) in its wall, as the diploe
   /// between a real skull's two tables: every slab holds holes that start or end while the wall's ring
   /// hardly changes (the condition of real head scans)
   SkullDiploe,
