@@ -11,6 +11,7 @@
 #include <algorithm>
 #include <chrono>
 #include <optional>
+#include <set>
 #include <sstream>
 
 namespace contourmesh {
@@ -85,18 +86,29 @@ std::vector<std::pair<std::size_t, std::size_t>> add_single_slice_slabs(Mesh& me
   const detail::UnmeshedContours unmeshed = detail::unmeshed_contours(mesh, stack);
   std::vector<std::pair<std::size_t, std::size_t>> holes;
   if (unmeshed.list.empty()) return holes;
-  if (options.single_slice != SingleSliceContours::Slab || options.tiling.end_caps != EndCaps::HalfSpacing) {
-    for (const auto& [s, c] : unmeshed.list) report.single_slice_filled += stack.slices[s].contours[c].is_hole ? 1 : 0;
-    return holes;
+  const bool make_slabs =
+      options.single_slice == SingleSliceContours::Slab && options.tiling.end_caps == EndCaps::HalfSpacing;
+  // Outer contours first: whether each became a slab decides what its holes are.
+  std::set<std::pair<std::size_t, std::size_t>> left_out;
+  for (const auto& [s, c] : unmeshed.list) {
+    if (stack.slices[s].contours[c].is_hole) continue;
+    // Overlapping a region next to it, it belongs to that piece: a slab would float beside it.
+    if (!make_slabs || detail::covered_by_adjacent_slices(stack, s, c) > kMaxSlabCover) {
+      left_out.emplace(s, c);
+      continue;
+    }
+    const auto [below, above] = detail::half_gaps(stack, s);
+    detail::append_part(mesh, detail::single_slice_slab(stack, s, c, below, above, options.tiling), &roles);
+    ++report.single_slice_slabs;
   }
+  report.single_slice_left_out += left_out.size();
   for (const auto& [s, c] : unmeshed.list) {
     const Contour& contour = stack.slices[s].contours[c];
-    if (!contour.is_hole) {
-      // Overlapping a region next to it, it belongs to that piece: a slab would float beside it.
-      if (detail::covered_by_adjacent_slices(stack, s, c) > kMaxSlabCover) continue;
-      const auto [below, above] = detail::half_gaps(stack, s);
-      detail::append_part(mesh, detail::single_slice_slab(stack, s, c, below, above, options.tiling), &roles);
-      ++report.single_slice_slabs;
+    if (!contour.is_hole) continue;
+    if (left_out.count({s, static_cast<std::size_t>(contour.parent)}) > 0) {
+      ++report.single_slice_left_out;  // inside a contour left out
+    } else if (!make_slabs) {
+      ++report.single_slice_filled;  // its outer contour is meshed without it
     } else if (!unmeshed.contains(s, contour.parent)) {
       holes.emplace_back(s, c);  // (a hole of a slab is part of it)
     }

@@ -243,6 +243,7 @@ int run_reconstruct(const ReconstructArgs& a) {
     j["single_slice_cavities"] = r.report.single_slice_cavities;
     j["single_slice_thinned"] = r.report.single_slice_thinned;
     j["single_slice_filled"] = r.report.single_slice_filled;
+    j["single_slice_left_out"] = r.report.single_slice_left_out;
     j["vertices"] = r.mesh.num_vertices();
     j["faces"] = r.mesh.num_faces();
     j["components"] = topo.components;
@@ -280,7 +281,8 @@ int run_reconstruct(const ReconstructArgs& a) {
             << "  one slice  " << r.report.tiling.dropped_contours
             << " contours with no partner on an adjacent slice: " << r.report.single_slice_slabs << " slabs, "
             << r.report.single_slice_cavities << " hollow (" << r.report.single_slice_thinned << " thinner), "
-            << r.report.single_slice_filled << " holes filled; " << r.report.dropped_components
+            << r.report.single_slice_filled << " holes filled, " << r.report.single_slice_left_out
+            << " left out; " << r.report.dropped_components
             << " specks dropped\n"
             << "  off-slice  " << r.report.off_slice.fitted << " of " << r.report.off_slice.candidates
             << " vertices between the slices placed from the image (" << r.report.off_slice.damped << " damped)\n"

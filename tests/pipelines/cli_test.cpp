@@ -331,6 +331,9 @@ TEST_F(Cli, SingleSliceReachesTheVolumeRoute) {
   ASSERT_FALSE(kept.is_null() || dropped.is_null());
   EXPECT_GT(kept["single_slice_cavities"].get<int>(), 50);
   EXPECT_EQ(dropped["single_slice_cavities"].get<int>(), 0);
+  // Dropped, every contour of one slice is either a hole filled or left out (with the holes inside it).
+  EXPECT_EQ(dropped["single_slice_filled"].get<int>() + dropped["single_slice_left_out"].get<int>(),
+            dropped["dropped_contours"].get<int>());
   EXPECT_EQ(kept["dropped_contours"], dropped["dropped_contours"]);
   EXPECT_GT(kept["components"].get<int>(), dropped["components"].get<int>() + 50);
   const CliRun bad =

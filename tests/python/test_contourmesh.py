@@ -195,6 +195,8 @@ def test_single_slice_cavities_reach_the_library():
     dropped = cm.reconstruct(volume, (1.0, 1.0, 2.0), threshold=500, single_slice="drop")
     assert kept.report["single_slice_cavities"] == 1
     assert dropped.report["single_slice_cavities"] == 0
+    assert dropped.report["single_slice_filled"] == 1
+    assert kept.report["single_slice_thinned"] + kept.report["single_slice_left_out"] == 0
     assert len(kept.points) > len(dropped.points)
     with pytest.raises(cm.InvalidInputError, match="single_slice"):
         cm.reconstruct(volume, (1.0, 1.0, 2.0), threshold=500, single_slice="keep")

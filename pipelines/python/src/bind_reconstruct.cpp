@@ -41,7 +41,9 @@ py::dict report_dict(const ReconstructionReport& r) {
   d["dropped_contours"] = r.tiling.dropped_contours;
   d["single_slice_slabs"] = r.single_slice_slabs;
   d["single_slice_cavities"] = r.single_slice_cavities;
+  d["single_slice_thinned"] = r.single_slice_thinned;
   d["single_slice_filled"] = r.single_slice_filled;
+  d["single_slice_left_out"] = r.single_slice_left_out;
   d["seconds_segment"] = r.seconds_segment;
   d["seconds_tile"] = r.seconds_tile;
   return d;

@@ -79,7 +79,10 @@ TEST(SingleSliceContours, APlateSeenOnOneSliceBecomesASlab) {
   EXPECT_TRUE(t.manifold) << t.problems;
   EXPECT_EQ(t.components, 2);
   EXPECT_EQ(kept.report.single_slice_slabs, 1u);
-  EXPECT_EQ(test::topology_of(reconstruct(*image, options(SingleSliceContours::Drop)).mesh).components, 1);
+  const Reconstruction dropped = reconstruct(*image, options(SingleSliceContours::Drop));
+  EXPECT_EQ(test::topology_of(dropped.mesh).components, 1);
+  EXPECT_EQ(dropped.report.single_slice_left_out, 1u);
+  EXPECT_EQ(kept.report.single_slice_left_out, 0u);
   // The plate's part: every vertex with x > 15 lies between the slab's faces, z in [5, 7].
   for (Index v = 0; v < kept.mesh.num_vertices(); ++v) {
     if (kept.mesh.positions(0, v) < 15.0) continue;
@@ -100,6 +103,7 @@ TEST(SingleSliceContours, AKnobOnAPieceIsNotMadeAFloatingSlab) {
   const Reconstruction r = reconstruct(*image, options(SingleSliceContours::Slab));
   ASSERT_GT(r.report.tiling.dropped_contours, 0u) << "the knob's contour must be one the tiler leaves out";
   EXPECT_EQ(r.report.single_slice_slabs, 0u);
+  EXPECT_EQ(r.report.single_slice_left_out, r.report.tiling.dropped_contours) << "the report must say it left the knob out";
   EXPECT_EQ(test::topology_of(r.mesh).components, 1);
 }
 

@@ -39,11 +39,15 @@ struct ReconstructionReport {
   /// Contours on one slice only (ReconstructionOptions::single_slice): outer contours made slabs (specks
   /// among them are counted again in dropped_components), holes made hollow slabs (thinned: of them,
   /// thinner than half-way to the adjacent slices), and holes filled (their hollow slab would enclose less
-  /// than min_component_voxels, would not fit in the surface around, or single_slice is Drop).
+  /// than min_component_voxels, would not fit in the surface around, or single_slice is Drop). Left out:
+  /// outer contours not meshed (single_slice is Drop, end caps are not HalfSpacing, or a region of an
+  /// adjacent slice covers more than 1 % of the contour's region: a tongue of a piece there, which the
+  /// tiler did not join it to) and the holes inside them. A slab's holes are part of it and not counted.
   std::size_t single_slice_slabs = 0;
   std::size_t single_slice_cavities = 0;
   std::size_t single_slice_thinned = 0;
   std::size_t single_slice_filled = 0;
+  std::size_t single_slice_left_out = 0;
   TilingStats tiling;
   double seconds_segment = 0.0;
   double seconds_tile = 0.0;
