@@ -103,7 +103,8 @@ TEST(SingleSliceContours, AKnobOnAPieceIsNotMadeAFloatingSlab) {
   const Reconstruction r = reconstruct(*image, options(SingleSliceContours::Slab));
   ASSERT_GT(r.report.tiling.dropped_contours, 0u) << "the knob's contour must be one the tiler leaves out";
   EXPECT_EQ(r.report.single_slice_slabs, 0u);
-  EXPECT_EQ(r.report.single_slice_left_out, r.report.tiling.dropped_contours) << "the report must say it left the knob out";
+  EXPECT_EQ(r.report.single_slice_left_out, r.report.tiling.dropped_contours)
+      << "the report must say it left the knob out";
   EXPECT_EQ(test::topology_of(r.mesh).components, 1);
 }
 
