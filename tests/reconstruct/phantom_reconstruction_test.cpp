@@ -35,10 +35,11 @@ TEST_P(PhantomReconstruction, ClosedManifoldAccurateWithConsistentIds) {
   EXPECT_GT(volume, 0.0) << "outward orientation";
   EXPECT_NEAR(volume / phantom.volume, 1.0, 0.03) << "volume " << volume << " vs analytic " << phantom.volume;
 
-  // Every vertex within one voxel diagonal of the true surface.
-  const double diagonal = vo.spacing.norm();
+  // Every vertex within three quarters of a slice spacing of the true surface (1.5 mm; the largest, 1.26
+  // mm, on the diploe phantom). A composite whose bridges join its pieces in another order than the other
+  // level's composite lays a sheet across the wall: the skull's orbits put one 2 mm off (until 2026-12-06).
   const DistanceStats d = distance_to_surface(m.positions, phantom.sdf);
-  EXPECT_LT(d.max, diagonal);
+  EXPECT_LT(d.max, 0.75 * vo.spacing.z());
 
   // Ids: same-slice edges stay within one contour; other edges join adjacent slices (or mid-plane copies).
   const MeshAdjacency adj = build_adjacency(m);

@@ -188,6 +188,40 @@ std::vector<std::pair<int, int>> nearest_copy_points(const std::vector<LevelCont
   return result;
 }
 
+// Runs of at most this many guide points nearest to one copy, between two runs nearest to another, are
+// taken for the other's: where two copies are about equally near (at a bridge of the guide's own composite,
+// or where a copy's end faces another), the nearest copy flickers for a point or two, and the passages it
+// adds would hide the one passage the guide makes from piece to piece (guided_bridge).
+constexpr std::size_t kMaxGuideFlicker = 4;
+
+// `labels` with the flickers above replaced by the label of the point before each.
+void smooth_guide_labels(std::vector<std::pair<int, int>>& labels) {
+  const std::size_t n = labels.size();
+  if (n < 3 * (kMaxGuideFlicker + 1)) return;
+  // Start at a change of copy, so that no run wraps round the end of the ring.
+  std::size_t start = 0;
+  while (start < n && labels[start].first == labels[(start + n - 1) % n].first) ++start;
+  if (start == n) return;                                 // one copy throughout
+  std::vector<std::pair<std::size_t, std::size_t>> runs;  // (first point, length), from `start` on
+  for (std::size_t k = 0; k < n;) {
+    const int c = labels[(start + k) % n].first;
+    std::size_t len = 1;
+    while (k + len < n && labels[(start + k + len) % n].first == c) ++len;
+    runs.emplace_back((start + k) % n, len);
+    k += len;
+  }
+  const std::size_t m = runs.size();
+  if (m < 3) return;
+  for (std::size_t r = 0; r < m; ++r) {
+    const auto [first, len] = runs[r];
+    const int before = labels[(runs[(r + m - 1) % m].first + runs[(r + m - 1) % m].second - 1) % n].first;
+    const int after = labels[runs[(r + 1) % m].first].first;
+    if (len > kMaxGuideFlicker || before != after || before < 0) continue;
+    const std::pair<int, int> fill = labels[(first + n - 1) % n];
+    for (std::size_t k = 0; k < len; ++k) labels[(first + k) % n] = fill;
+  }
+}
+
 // How many guide points either side of its passage from the composite to a copy a guided bridge may end at.
 constexpr std::size_t kGuideReach = 8;
 
@@ -282,7 +316,10 @@ Composite make_composite(const std::vector<LevelContour>& copies, const Level& o
   comp.ring = copies[0];
   for (std::size_t i = 0; i < copies[0].points.size(); ++i) comp.origin.emplace_back(0, static_cast<int>(i));
   std::vector<std::pair<int, int>> labels;
-  if (guide && clear_bridges && !guide->empty()) labels = nearest_copy_points(copies, *guide);
+  if (guide && clear_bridges && !guide->empty()) {
+    labels = nearest_copy_points(copies, *guide);
+    smooth_guide_labels(labels);
+  }
   std::vector<bool> used(copies.size(), false);
   used[0] = true;
   const bool opening = std::any_of(copies.begin(), copies.end(), [](const LevelContour& c) { return c.is_hole; });
