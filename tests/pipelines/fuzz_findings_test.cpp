@@ -283,6 +283,16 @@ TEST_F(FuzzFindings, VtpDataEndingBeforeACompressionHeaderIsReportedWithoutALeak
                   "ends before its compression header (truncated file?)");
 }
 
+// With the AppendedData element's name damaged, VTK read a compressed array's header from the start of the
+// file as base64 text and allocated 7 GB for the block sizes it announced (found by fuzz_read_vtp).
+TEST_F(FuzzFindings, VtpOffsetsWithoutAppendedDataAreRejected) {
+  std::string vtp = compressed_vtp();
+  const std::size_t at = vtp.find("<AppendedData");
+  ASSERT_NE(at, std::string::npos);
+  vtp.replace(at, 13, "<AppendedDatacndo");
+  expect_rejected(write("no_appended.vtp", vtp), "has an offset but the file has no AppendedData (corrupt file)");
+}
+
 // The points a file announces are checked against the vertex limit before VTK allocates for them.
 TEST_F(FuzzFindings, VtpAnnouncedPointsAreLimitedBeforeVtkAllocates) {
   std::string vtp = compressed_vtp();
