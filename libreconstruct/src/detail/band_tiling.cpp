@@ -16,16 +16,17 @@ namespace contourmesh::detail {
 
 namespace {
 
-// Above this many point pairs the programme first solves every k-th point and then the full rings in a
-// corridor around that path.
 // The span weight that breaks ties in untwisted_band. Between two nearly congruent contours (a cylinder's,
 // traced through pixels, on two slices) many ways across have the least area to within rounding, and the
 // programme drifted along straight stretches of the rings into fans of slivers; with a hundredth of a
 // percent of a square millimetre per square millimetre of span added, the shortest way across wins the
-// ties. (Not on flat bands, whose triangulations all have the same area: there it would decide every
-// choice, and the heights read from the image on a gently tilted face got worse.)
+// ties. The first band gets it only where it has slivers between contours less than the gap apart (not on
+// flat bands, whose triangulations all have the same area: there it would decide every choice, and the
+// heights read from the image on a gently tilted face got worse); a twisted band's other starts always.
 constexpr double kTieSpanWeight = 1e-4;
 
+// Above this many point pairs the programme first solves every k-th point and then the full rings in a
+// corridor around that path.
 constexpr double kCoarseToFineCells = 90'000.0;
 constexpr double kCoarseCells = 40'000.0;
 // Programmes smaller than this are not checked against the available memory.
@@ -335,12 +336,18 @@ double contour_distance(const Polygon& a, const Polygon& b) {
   return std::max(directed_distance(a, b), directed_distance(b, a));
 }
 
+namespace {
+
+// band_is_twisted, with the contours' distance in the plane (contour_distance) and the planes' gap given.
+bool twisted_apart(const BandQuality& quality, double apart, double gap, double spacing) {
+  return quality.longest_cross_edge > 2.0 * std::hypot(apart, gap) + 2.0 * spacing;
+}
+
+}  // namespace
+
 bool band_is_twisted(const Polygon& lower, double wl, const Polygon& upper, double wu, const BandQuality& quality,
                      double spacing) {
-  // Cheap bound first: no edge across can be longer than what the curves' distance allows.
-  const double gap = wu - wl;
-  const double apart = std::hypot(contour_distance(lower, upper), gap);
-  return quality.longest_cross_edge > 2.0 * apart + 2.0 * spacing;
+  return twisted_apart(quality, contour_distance(lower, upper), wu - wl, spacing);
 }
 
 std::vector<BandTriangle> untwisted_band(const Polygon& lower, double wl, const Polygon& upper, double wu,
@@ -358,7 +365,7 @@ std::vector<BandTriangle> untwisted_band(const Polygon& lower, double wl, const 
     }
   }
   if (twisted) *twisted = false;
-  if (!(q.longest_cross_edge > 2.0 * std::hypot(apart, gap) + 2.0 * spacing)) return first;  // band_is_twisted
+  if (!twisted_apart(q, apart, gap, spacing)) return first;
   // Other starts, and the least area plus the squared lengths across (which keeps the band from jumping
   // along a crack narrower than the spacing, whose two sides the least area alone cannot tell apart).
   std::vector<BandTriangle> best = std::move(first), untwisted;
@@ -371,7 +378,7 @@ std::vector<BandTriangle> untwisted_band(const Polygon& lower, double wl, const 
         k < 4 ? minimum_area_band(lower, wl, upper, wu, options, (k + 1) * m / 4 % m, kTieSpanWeight)
               : minimum_area_band(lower, wl, upper, wu, options, 0, 1.0);
     q = band_quality(lower, wl, upper, wu, band);
-    if (!band_is_twisted(lower, wl, upper, wu, q, spacing)) {
+    if (!twisted_apart(q, apart, gap, spacing)) {  // the same contours: their distance once
       if (q.area < untwisted_area) {
         untwisted_area = q.area;
         untwisted = std::move(band);

@@ -34,9 +34,9 @@ using BandTriangle = std::array<BandCorner, 3>;
 
 /// The least-area band (where it has slivers between contours less than the gap apart, nearly congruent,
 /// its ties broken by the shorter edges across: span weight 1e-4); when it is twisted (band_is_twisted),
-/// also from starts a quarter, half and three
-/// quarters round and with span_weight 1: the untwisted one of least area, else the one with the
-/// shortest longest edge across (`twisted` then says so).
+/// also from starts a quarter, half and three quarters round (ties broken the same way) and with
+/// span_weight 1: the untwisted one of least area, else the one with the shortest longest edge across
+/// (`twisted` then says so).
 [[nodiscard]] std::vector<BandTriangle> untwisted_band(const Polygon& lower, double wl, const Polygon& upper,
                                                        double wu, const TilingOptions& options, double spacing,
                                                        bool* twisted = nullptr);
