@@ -9,6 +9,7 @@
 
 #include "contourmesh/internal/polygon2d.h"
 #include "detail/single_slice.h"
+#include "detail/slab_tiling.h"
 
 #include <Eigen/Geometry>
 
@@ -161,7 +162,7 @@ void tile(ContourReconstruction& out, const ContourReconstructionOptions& option
       to_tile = &aligned;
     }
   }
-  TilingResult tiled = tile_contours(*to_tile, options.tiling, progress);
+  TilingResult tiled = detail::tile_contours_judged(*to_tile, options.tiling, progress, offset);
   out.report.tiling = tiled.stats;
   out.mesh = std::move(tiled.mesh);
   if (out.report.aligned_gaps > 0) shear_back(out.mesh, stack, offset);

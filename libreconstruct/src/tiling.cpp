@@ -103,7 +103,16 @@ void run_in_order(std::size_t count, unsigned threads, const Task& task, const P
 }  // namespace
 
 TilingResult tile_contours(const ContourStack& stack, const TilingOptions& options, const ProgressCallback& progress) {
+  return detail::tile_contours_judged(stack, options, progress, {});
+}
+
+TilingResult detail::tile_contours_judged(const ContourStack& stack, const TilingOptions& options,
+                                          const ProgressCallback& progress,
+                                          const std::vector<Eigen::Vector2d>& judged_offsets) {
   check_options(options);
+  if (!judged_offsets.empty() && judged_offsets.size() != stack.slices.size()) {
+    throw InvalidInputError("tiling: one judged offset per slice expected");
+  }
   const std::vector<std::vector<Contour>> slices = detail::prepare_stack(stack);
   const std::size_t S = slices.size();
   TilingResult result;
@@ -200,6 +209,7 @@ TilingResult tile_contours(const ContourStack& stack, const TilingOptions& optio
         } else {
           lower = &tiled[k - 1];
           upper = &tiled[k];
+          if (!judged_offsets.empty()) out.shear = (judged_offsets[k] - judged_offsets[k - 1]) / (upper->w - lower->w);
         }
         detail::tile_slab(*lower, *upper, options, out);
       },

@@ -282,12 +282,14 @@ std::vector<BandTriangle> minimum_area_band(const Polygon& lower, double wl, con
 }
 
 BandQuality band_quality(const Polygon& lower, double wl, const Polygon& upper, double wu,
-                         const std::vector<BandTriangle>& band) {
+                         const std::vector<BandTriangle>& band, const Eigen::Vector2d& shear) {
   BandQuality q;
   auto point = [&](const BandCorner& c) {
     const Eigen::Vector2d& p =
         c.ring == 0 ? lower[static_cast<std::size_t>(c.index)] : upper[static_cast<std::size_t>(c.index)];
-    return Eigen::Vector3d(p.x(), p.y(), c.ring == 0 ? wl : wu);
+    const double w = c.ring == 0 ? wl : wu;
+    const Eigen::Vector2d judged = p + shear * w;
+    return Eigen::Vector3d(judged.x(), judged.y(), w);
   };
   for (const BandTriangle& t : band) {
     const Eigen::Vector3d a = point(t[0]), b = point(t[1]), c = point(t[2]);

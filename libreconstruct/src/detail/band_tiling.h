@@ -48,8 +48,10 @@ struct BandQuality {
   double longest_cross_edge = 0.0;  ///< longest edge joining the two contours (3-D, mm)
   [[nodiscard]] double sliver_share() const { return area > 0.0 ? sliver_area / area : 0.0; }
 };
+/// `shear`: the band is judged at (u, v) + shear * w (SlabMesh::shear).
 [[nodiscard]] BandQuality band_quality(const Polygon& lower, double wl, const Polygon& upper, double wu,
-                                       const std::vector<BandTriangle>& band);
+                                       const std::vector<BandTriangle>& band,
+                                       const Eigen::Vector2d& shear = Eigen::Vector2d::Zero());
 
 /// Hausdorff distance between the point sets of two contours (2-D, mm): how far apart the curves are
 /// at worst. Exact for the points, with the early break of Taha and Hanbury (2015).

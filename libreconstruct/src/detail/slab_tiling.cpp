@@ -195,6 +195,13 @@ struct Span {
   double t1 = 1.0;
 };
 
+// The points moved by shear * w (SlabMesh::shear).
+Polygon sheared(const Polygon& points, double w, const Eigen::Vector2d& shear) {
+  Polygon out = points;
+  for (Eigen::Vector2d& p : out) p += shear * w;
+  return out;
+}
+
 class SlabTiler {
  public:
   explicit SlabTiler(const TilingOptions& options) : options_(options) {}
@@ -257,9 +264,18 @@ class SlabTiler {
       const LevelContour& lo = lower.contours[static_cast<std::size_t>(a)];
       const LevelContour& hi = upper.contours[static_cast<std::size_t>(b)];
       bool pair_twisted = false;
-      const std::vector<BandTriangle> band = untwisted_band(lo.points, lower.w, hi.points, upper.w, options_,
-                                                            0.5 * (lo.spacing() + hi.spacing()), &pair_twisted);
-      const BandQuality q = band_quality(lo.points, lower.w, hi.points, upper.w, band);
+      // Inside a refinement of a sheared slab (SlabMesh::shear), whose intermediate contours are a few
+      // spacings apart once sheared, the band is solved as it will be: as tiled, the programme would join
+      // points straight across, which the shear leans into slivers.
+      const bool judged = !refine && !out.shear.isZero();
+      const Polygon lo_points = judged ? sheared(lo.points, lower.w, out.shear) : Polygon{};
+      const Polygon hi_points = judged ? sheared(hi.points, upper.w, out.shear) : Polygon{};
+      const Polygon& lp = judged ? lo_points : lo.points;
+      const Polygon& hp = judged ? hi_points : hi.points;
+      const std::vector<BandTriangle> band =
+          untwisted_band(lp, lower.w, hp, upper.w, options_, 0.5 * (lo.spacing() + hi.spacing()), &pair_twisted);
+      const BandQuality q =
+          band_quality(lp, lower.w, hp, upper.w, band, judged ? Eigen::Vector2d::Zero() : out.shear);
       emit_band(lo, hi, band, direct);
       quality.area += q.area;
       quality.sliver_area += q.sliver_area;

@@ -21,4 +21,13 @@ namespace contourmesh::detail {
 /// refined groups of this slab (not of the halves), every intermediate contour, composite and cap.
 void tile_slab(const Level& lower, const Level& upper, const TilingOptions& options, SlabMesh& out);
 
+/// tile_contours, with the faces of each slab judged as they will be once slice s is moved in its plane
+/// by judged_offsets[s] (one per slice of `stack`, or none: as tiled), the mesh sheared linearly between
+/// the slices (the drift alignment, docs/contours.md): the slab between slices s and s + 1 is judged with
+/// SlabMesh::shear = (judged_offsets[s + 1] - judged_offsets[s]) / its gap, so that a band which stands
+/// straight as tiled but leans once sheared back is refined through intermediate contours.
+[[nodiscard]] TilingResult tile_contours_judged(const ContourStack& stack, const TilingOptions& options,
+                                                const ProgressCallback& progress,
+                                                const std::vector<Eigen::Vector2d>& judged_offsets);
+
 }  // namespace contourmesh::detail

@@ -55,6 +55,7 @@ SlabMesh SlabMesh::scratch() const {
   child.stack_vertices = stack_vertices;
   child.vertex_budget = vertex_budget;
   child.vertex_limit = vertex_limit;
+  child.shear = shear;
   child.first_local_ = first_local_ + vertices.size();
   child.parent_ = this;
   return child;
@@ -95,7 +96,8 @@ TilingDefects measure_defects(const SlabMesh& mesh) {
   const double cos_flat = std::cos(10.0 * std::numbers::pi / 180.0);
   for (std::size_t f = 0; f < mesh.triangles.size(); ++f) {
     const Triangle& t = mesh.triangles[f];
-    const Eigen::Vector3d a = mesh.position(t[0]), b = mesh.position(t[1]), c = mesh.position(t[2]);
+    const Eigen::Vector3d a = mesh.judged_position(t[0]), b = mesh.judged_position(t[1]),
+                          c = mesh.judged_position(t[2]);
     const Eigen::Vector3d n = (b - a).cross(c - a);
     d.longest_edge = std::max({d.longest_edge, (b - a).norm(), (c - b).norm(), (a - c).norm()});
     const double twice = n.norm();

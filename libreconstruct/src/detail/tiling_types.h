@@ -65,6 +65,11 @@ struct SlabMesh {
   /// the error names.
   Index vertex_budget = kDefaultMaxVertices;
   Index vertex_limit = kDefaultMaxVertices;
+  /// How faces are judged (measure_defects, band_quality): at (u, v) + shear * w instead of (u, v). The
+  /// drift alignment tiles a slab with its upper slice moved to the lower one's centroid and shears the
+  /// mesh back after; judged so, the faces are measured as they will be (zero: as tiled). Copied to
+  /// scratch meshes.
+  Eigen::Vector2d shear = Eigen::Vector2d::Zero();
 
   VertexRef add_vertex(const Eigen::Vector2d& uv, double w);
   void add_triangle(VertexRef a, VertexRef b, VertexRef c, FaceRole role) {
@@ -73,6 +78,12 @@ struct SlabMesh {
   }
   /// Position (u, v, w) of any vertex this mesh may refer to.
   [[nodiscard]] Eigen::Vector3d position(VertexRef v) const;
+  /// position(v) as faces are judged (see `shear`).
+  [[nodiscard]] Eigen::Vector3d judged_position(VertexRef v) const {
+    Eigen::Vector3d p = position(v);
+    p.head<2>() += shear * p.z();
+    return p;
+  }
   /// An empty mesh whose local vertices follow this one's. Nothing may be added to this mesh while the
   /// scratch mesh lives.
   [[nodiscard]] SlabMesh scratch() const;
@@ -102,6 +113,7 @@ struct TilingDefects {
   /// counting twice.
   [[nodiscard]] double score() const { return flat_area + sliver_area; }
 };
+/// Judged at the mesh's judged positions (SlabMesh::shear).
 [[nodiscard]] TilingDefects measure_defects(const SlabMesh& mesh);
 
 }  // namespace contourmesh::detail
