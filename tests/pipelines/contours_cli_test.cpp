@@ -7,8 +7,10 @@
 #include <gtest/gtest.h>
 #include <nlohmann/json.hpp>
 
+#include <cmath>
 #include <filesystem>
 #include <fstream>
+#include <numbers>
 
 #include "cli_runner.h"
 #include "reconstruct/rtstruct_writer.h"
@@ -165,6 +167,27 @@ TEST_F(ContoursCli, RunSmoothsAnRoiAndReportsTheInPlaneDeviation) {
   EXPECT_EQ(all.code, 2);
   EXPECT_TRUE(fs::exists(dir_ / "smoothed" / "GTV_1.stl"));
   EXPECT_TRUE(fs::exists(dir_ / "smoothed" / "Cord_Canal.stl"));
+}
+
+TEST_F(ContoursCli, RunKeepsTheVolumeOfAThinDrawnStructure) {
+  // A thin ellipse drifting along its long axis, 7 mm per 3 mm slice (the breast set's Scar is like this):
+  // most of its surface lies between the slices, on intermediate contours that carry no image noise.
+  // Fitted freely to filtered normals they round its ends inwards (-1.4 % of the volume); run keeps it.
+  nlohmann::json slices = nlohmann::json::array();
+  for (int k = 0; k < 6; ++k) {
+    nlohmann::json points = nlohmann::json::array();
+    for (int i = 0; i < 32; ++i) {
+      const double t = 2.0 * std::numbers::pi * i / 32.0;
+      points.push_back({2.5 * std::cos(t), 7.0 * k + 7.0 * std::sin(t)});
+    }
+    slices.push_back({{"w", 3.0 * k}, {"contours", {{{"points", points}}}}});
+  }
+  const fs::path json = dir_ / "drift.json";
+  std::ofstream(json) << nlohmann::json{{"format", "contourmesh-contours"}, {"version", 1}, {"slices", slices}};
+  const CliRun r = run_cli("run " + q(json) + " -o " + q(dir_ / "drift.vtp") + " --json", dir_);
+  ASSERT_EQ(r.code, 0) << r.err;
+  const auto j = nlohmann::json::parse(r.out);
+  EXPECT_LT(std::abs(j["volume_change_percent"].get<double>()), 0.5) << r.out;
 }
 
 TEST_F(ContoursCli, ContourFilesRoundTripThroughContoursAndReconstruct) {

@@ -125,6 +125,10 @@ def test_cross_slice_off_slice_filter_options(box_mesh):
         cm.smooth(*box_mesh[:4], method="cross-slice", off_slice_range="guided")
     with pytest.raises(cm.InvalidInputError, match="angle"):
         cm.smooth(*box_mesh[:4], method="cross-slice", normal_sigma=0.0)
+    kept = cm.smooth(*box_mesh[:4], method="cross-slice", off_slice_volume="preserve")
+    assert kept.points.shape == default.points.shape
+    with pytest.raises(cm.InvalidInputError, match="off_slice_volume must be"):
+        cm.smooth(*box_mesh[:4], method="cross-slice", off_slice_volume="keep")
 
 
 def test_cross_slice_profile_model(box_mesh):

@@ -3,6 +3,7 @@
 // normals of their faces (OffSliceFilterOptions).
 #include "contourmesh/smooth/cross_slice.h"
 #include "contourmesh/smooth/errors.h"
+#include "contourmesh/smooth/metrics.h"
 #include "contourmesh/smooth/shapes.h"
 #include "smooth/test_meshes.h"
 #include "contourmesh/smooth/surface_metrics.h"
@@ -379,6 +380,21 @@ TEST(CrossSliceOffSlice, RimIterationsOnEveryFaceAreMoreNormalIterations) {
   more.off_slice.normal_iterations = rims.off_slice.normal_iterations + 15;
   more.off_slice.rim_iterations = 0;
   EXPECT_TRUE(cross_slice_smooth(mesh, rims).mesh.positions == cross_slice_smooth(mesh, more).mesh.positions);
+}
+
+// Fitting to filtered normals rounds a thin structure's caps and intermediate contours inwards; with
+// OffSliceVolume::Preserve the stage gives the volume back by a uniform offset, within the bounds.
+TEST(CrossSliceOffSlice, PreserveKeepsTheVolumeTheFilterWouldTake) {
+  const Mesh mesh = noisy_off_slice_cylinder(test::cylinder_spec(1.5, 9));
+  CrossSliceOptions none, free, kept;
+  none.off_slice.filter = OffSliceFilter::None;
+  kept.off_slice.volume = OffSliceVolume::Preserve;
+  const double v0 = enclosed_volume(cross_slice_smooth(mesh, none).mesh);
+  const double v_free = enclosed_volume(cross_slice_smooth(mesh, free).mesh);
+  const CrossSliceResult r = cross_slice_smooth(mesh, kept);
+  EXPECT_GT(std::abs(v_free - v0), 0.005 * v0) << v0 << " -> " << v_free;
+  EXPECT_NEAR(enclosed_volume(r.mesh), v0, 1e-6 * v0);
+  EXPECT_GT(r.off_slice_moved, 0u);
 }
 
 TEST(CrossSliceOffSlice, RejectsOptionsOutOfRange) {

@@ -181,6 +181,16 @@ void filter_normals(const Workspace& w, const OffSliceFilterOptions& options, co
   }
 }
 
+// The move d of moving vertex m (off the contours) from its start x0, within `reach` of it and in its slab.
+Eigen::Vector3d within_bounds(const Workspace& w, std::size_t m, const Eigen::Vector3d& axis, double reach,
+                              const Eigen::Vector3d& x0, Eigen::Vector3d d) {
+  if (d.norm() > reach) d *= reach / d.norm();
+  const double h0 = axis.dot(x0);
+  const double h = std::clamp(h0 + axis.dot(d), w.low[m], w.high[m]);
+  d += axis * (h - h0 - axis.dot(d));
+  return d;
+}
+
 // The vertex update (eq. 6), Jacobi style: each moving vertex goes towards the planes of its faces with
 // the filtered normals `normals` (per filtered face), within its bounds (see filter_off_slice_normals).
 // `x` and `start` hold the local vertices.
@@ -238,12 +248,7 @@ void update_vertices(const ContourFrame& frame, const Workspace& w, const Eigen:
           if (d.norm() > options.contour_max_move) d *= options.contour_max_move / d.norm();
         } else {
           if (options.motion == OffSliceMotion::AlongAxis) step = axis * axis.dot(step);
-          // Within `reach` of the start, and in the start's slab.
-          d = x.col(i) + step - x0;
-          if (d.norm() > reach) d *= reach / d.norm();
-          const double h0 = axis.dot(x0);
-          const double h = std::clamp(h0 + axis.dot(d), w.low[m], w.high[m]);
-          d += axis * (h - h0 - axis.dot(d));
+          d = within_bounds(w, m, axis, reach, x0, x.col(i) + step - x0);
         }
         other.col(i) = x0 + d;
         moved[static_cast<std::size_t>(i)] = same_bits(other.col(i), x.col(i)) ? 0 : 1;
@@ -253,10 +258,117 @@ void update_vertices(const ContourFrame& frame, const Workspace& w, const Eigen:
   }
 }
 
+// The regions of OffSliceVolume::Preserve: the moving vertices off the contours joined through the filtered
+// faces they share (not through contour vertices). Per filtered face and per moving vertex, its region (the
+// smallest moving index in it), or -1 (a face with no such corner, a contour vertex).
+struct Regions {
+  std::vector<Index> of_face, of_moving;
+};
+
+Regions off_slice_regions(const Workspace& w, Index local_vertices) {
+  const std::size_t nk = w.filtered.size(), nm = w.moving.size();
+  std::vector<Index> moving_of(static_cast<std::size_t>(local_vertices), -1);
+  for (std::size_t m = 0; m < nm; ++m) {
+    if (!w.on_contour[m]) moving_of[static_cast<std::size_t>(w.moving[m])] = static_cast<Index>(m);
+  }
+  std::vector<Index> parent(nm);
+  for (std::size_t m = 0; m < nm; ++m) parent[m] = static_cast<Index>(m);
+  auto find = [&](Index a) {
+    while (parent[static_cast<std::size_t>(a)] != a) {
+      parent[static_cast<std::size_t>(a)] = parent[static_cast<std::size_t>(parent[static_cast<std::size_t>(a)])];
+      a = parent[static_cast<std::size_t>(a)];
+    }
+    return a;
+  };
+  Regions r;
+  r.of_face.assign(nk, -1);
+  for (std::size_t k = 0; k < nk; ++k) {
+    Index root = -1;
+    for (Index v : w.corners[k]) {
+      const Index m = moving_of[static_cast<std::size_t>(v)];
+      if (m < 0) continue;
+      const Index other = find(m);
+      if (root >= 0 && other != root) parent[static_cast<std::size_t>(std::max(other, root))] = std::min(other, root);
+      root = root < 0 ? other : std::min(other, root);
+    }
+    r.of_face[k] = root;
+  }
+  for (Index& root : r.of_face) {
+    if (root >= 0) root = find(root);
+  }
+  r.of_moving.assign(nm, -1);
+  for (std::size_t m = 0; m < nm; ++m) {
+    if (!w.on_contour[m]) r.of_moving[m] = find(static_cast<Index>(m));
+  }
+  return r;
+}
+
+// Six times the signed volume of the cone from `origin` over the triangle (a, b, c).
+double cone_volume6(const Eigen::Vector3d& a, const Eigen::Vector3d& b, const Eigen::Vector3d& c,
+                    const Eigen::Vector3d& origin) {
+  return (a - origin).dot((b - origin).cross(c - origin));
+}
+
+// OffSliceVolume::Preserve: each region is offset along its vertex normals (those not `fixed`, per local
+// vertex) by one distance, clamped to the bounds of update_vertices, so that the filtered faces touching
+// it enclose what they enclosed at `start` (the other faces did not move, so on a closed mesh that is the
+// enclosed volume). A few rounds, as clamping leaves a rest. Sequential and in mesh order: the sums do
+// not depend on the thread count.
+void restore_volume(const ContourFrame& frame, const Workspace& w, const OffSliceFilterOptions& options,
+                    const Eigen::Matrix3Xd& start, const std::vector<std::uint8_t>& fixed, Eigen::Matrix3Xd& x) {
+  const std::size_t nk = w.filtered.size(), nm = w.moving.size();
+  const Regions regions = off_slice_regions(w, x.cols());
+  const double reach = options.max_move * frame.slice_spacing;
+  const Eigen::Vector3d& axis = frame.axis;
+  std::vector<double> change(nm), rate(nm);  // per region: 6 x the volume change; the change per mm of offset
+  Eigen::Matrix3Xd normal(3, static_cast<Index>(nm));
+  for (int round = 0; round < 3; ++round) {
+    std::fill(change.begin(), change.end(), 0.0);
+    std::fill(rate.begin(), rate.end(), 0.0);
+    for (std::size_t k = 0; k < nk; ++k) {
+      const Index r = regions.of_face[k];
+      if (r < 0) continue;
+      const Triangle& t = w.corners[k];
+      const Eigen::Vector3d origin = start.col(w.moving[static_cast<std::size_t>(r)]);
+      change[static_cast<std::size_t>(r)] += cone_volume6(x.col(t[0]), x.col(t[1]), x.col(t[2]), origin) -
+                                             cone_volume6(start.col(t[0]), start.col(t[1]), start.col(t[2]), origin);
+    }
+    // Each vertex's normal: the sum of its faces' cross products (twice their areas). An offset d along
+    // it changes the volume by d times a third of the faces' areas.
+    normal.setZero();
+    for (std::size_t m = 0; m < nm; ++m) {
+      if (regions.of_moving[m] < 0 || fixed[static_cast<std::size_t>(w.moving[m])]) continue;
+      for (Index q = w.incident_offsets[m]; q < w.incident_offsets[m + 1]; ++q) {
+        const Triangle& t = w.corners[static_cast<std::size_t>(w.incident[static_cast<std::size_t>(q)])];
+        normal.col(static_cast<Index>(m)) += (x.col(t[1]) - x.col(t[0])).cross(x.col(t[2]) - x.col(t[0]));
+      }
+      rate[static_cast<std::size_t>(regions.of_moving[m])] += normal.col(static_cast<Index>(m)).norm() / 6.0;
+    }
+    bool moved = false;
+    for (std::size_t m = 0; m < nm; ++m) {
+      const Index r = regions.of_moving[m];
+      if (r < 0 || fixed[static_cast<std::size_t>(w.moving[m])]) continue;
+      const auto ru = static_cast<std::size_t>(r);
+      const double len = normal.col(static_cast<Index>(m)).norm();
+      if (!(rate[ru] > 0.0) || !(len > 0.0)) continue;
+      const double offset = -change[ru] / 6.0 / rate[ru];
+      Eigen::Vector3d step = normal.col(static_cast<Index>(m)) * (offset / len);
+      if (options.motion == OffSliceMotion::AlongAxis) step = axis * axis.dot(step);
+      const Index i = w.moving[m];
+      const Eigen::Vector3d x0 = start.col(i);
+      const Eigen::Vector3d d = within_bounds(w, m, axis, reach, x0, x.col(i) + step - x0);
+      moved = moved || x0 + d != x.col(i);
+      x.col(i) = x0 + d;
+    }
+    if (!moved) break;
+  }
+}
+
 // A face that turned over (its normal against its unfiltered one) gets its moving vertices back, until
-// none does.
-void undo_turned_faces(const Workspace& w, const Eigen::Matrix3Xd& initial_normals, const Eigen::Matrix3Xd& start,
-                       Eigen::Matrix3Xd& x) {
+// none does; they are marked in `undone` (per local vertex). Whether any vertex went back.
+bool undo_turned_faces(const Workspace& w, const Eigen::Matrix3Xd& initial_normals, const Eigen::Matrix3Xd& start,
+                       Eigen::Matrix3Xd& x, std::vector<std::uint8_t>& undone) {
+  bool undid = false;
   for (int round = 0; round < 8; ++round) {
     bool any = false;
     for (std::size_t k = 0; k < w.filtered.size(); ++k) {
@@ -267,12 +379,15 @@ void undo_turned_faces(const Workspace& w, const Eigen::Matrix3Xd& initial_norma
         const Index v = t[static_cast<std::size_t>(c)];
         if (w.moves[static_cast<std::size_t>(v)] && x.col(v) != start.col(v)) {
           x.col(v) = start.col(v);
+          undone[static_cast<std::size_t>(v)] = 1;
           any = true;
         }
       }
     }
+    undid = undid || any;
     if (!any) break;
   }
+  return undid;
 }
 
 
@@ -334,7 +449,14 @@ std::size_t filter_off_slice_normals(const ContourFrame& frame, const std::vecto
 
   Eigen::Matrix3Xd x = start;
   update_vertices(frame, w, filtered_normals, options, start, x);
-  undo_turned_faces(w, initial_normals, start, x);
+  std::vector<std::uint8_t> undone(w.vertices.size(), 0);
+  undo_turned_faces(w, initial_normals, start, x, undone);
+  // The volume after the undo, which may give back part of what the fit moved; the vertices it sent back
+  // stay, and if the offsets turn a face, its vertices go back too and the rest try again.
+  for (int round = 0; round < 3 && options.volume == OffSliceVolume::Preserve; ++round) {
+    restore_volume(frame, w, options, start, undone, x);
+    if (!undo_turned_faces(w, initial_normals, start, x, undone)) break;
+  }
   std::size_t moved = 0;
   for (Index v : w.moving) {
     if (x.col(v) == start.col(v)) continue;

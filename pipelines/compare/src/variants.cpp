@@ -135,6 +135,11 @@ const std::vector<Key>& keys() {
          o.cross_slice.off_slice.motion =
              v.choice<OffSliceMotion>({{"axis", OffSliceMotion::AlongAxis}, {"free", OffSliceMotion::Free}});
        }},
+      {"off-slice-volume", kCrossSlice,
+       [](SmoothOptions& o, const Value& v) {
+         o.cross_slice.off_slice.volume = v.choice<OffSliceVolume>(
+             {{"free", OffSliceVolume::Free}, {"preserve", OffSliceVolume::Preserve}});
+       }},
       {"off-slice-range", kCrossSlice,
        [](SmoothOptions& o, const Value& v) {
          o.cross_slice.off_slice.range = v.choice<OffSliceRange>(

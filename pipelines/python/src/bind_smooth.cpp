@@ -236,6 +236,12 @@ MethodConfig method_config(const py::object& method_arg, Options& o, Mesh& mesh)
       else if (s == "patches") fo.range = OffSliceRange::PatchGuidance;
       else throw InvalidInputError("off_slice_range must be 'faces' or 'patches', got '" + s + "'");
     });
+    o.take("off_slice_volume", [&](const py::object& v) {
+      const std::string s = as_string(v, "off_slice_volume");
+      if (s == "free") fo.volume = OffSliceVolume::Free;
+      else if (s == "preserve") fo.volume = OffSliceVolume::Preserve;
+      else throw InvalidInputError("off_slice_volume must be 'free' or 'preserve', got '" + s + "'");
+    });
     o.take_int("normal_iterations", fo.normal_iterations);
     o.take_double("normal_sigma", fo.sigma_angle_degrees);
     o.take_int("guidance_interval", fo.guidance_interval);

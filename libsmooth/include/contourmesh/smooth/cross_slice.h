@@ -98,6 +98,17 @@ enum class OffSliceRange {
   PatchGuidance,
 };
 
+/// What the normal-filtering stage does about the volume its moves enclose.
+enum class OffSliceVolume {
+  Free,  ///< nothing: the fitted positions stand
+  /// Each region of vertices between the slices (the moving vertices joined through their faces, not
+  /// through contour vertices) is then offset along its vertex normals, uniformly and within the bounds,
+  /// until the faces around it enclose the volume they enclosed before the stage: fitting to filtered
+  /// normals rounds a structure a few millimetres thick inwards at its ends (docs/smoothing.md, "The
+  /// volume of the vertices between the slices").
+  Preserve,
+};
+
 /// The normal-filtering stage for the vertices between the slices (docs/smoothing.md, "Vertices between
 /// the slices"): bilateral filtering of the normals of the faces that touch them (Zheng, Fu, Au, Tai,
 /// IEEE TVCG 2011, eq. 4: a Gaussian of the distance between face centroids, of the mean such distance,
@@ -138,6 +149,7 @@ struct OffSliceFilterOptions {
   double max_move = 0.25;
   /// Largest move of a contour vertex, in its slice plane, mm, >= 0; 0: contour vertices stay.
   double contour_max_move = 0.0;
+  OffSliceVolume volume = OffSliceVolume::Free;
 };
 
 struct CrossSliceOptions {
