@@ -111,6 +111,8 @@ void set_properties(Filter* f, const contourmesh::MethodConfig& config) {
   f->SetCreaseRestoration(o.cross_slice.crease_restoration == CreaseRestoration::Subdivide
                               ? Filter::CREASE_RESTORATION_SUBDIVIDE
                               : Filter::CREASE_RESTORATION_NONE);
+  f->SetOffSliceVolume(o.cross_slice.off_slice.volume == OffSliceVolume::Preserve ? Filter::OFF_SLICE_VOLUME_PRESERVE
+                                                                                  : Filter::OFF_SLICE_VOLUME_FREE);
 }
 
 // The input's point arrays for the prepared mesh's vertices: the first input point merged into each.
@@ -309,6 +311,14 @@ int vtkContourFeatureSmoothingFilter::Execute(vtkPolyData* input, vtkPolyData* o
     }
     o.cross_slice.crease_restoration = contourmesh::CreaseRestoration::Subdivide;
   }
+  if (this->OffSliceVolume == OFF_SLICE_VOLUME_PRESERVE) {
+    if (!cross_slice) {
+      throw InvalidInputError(
+          "keeping the off-slice volume (OffSliceVolume) needs cross-slice smoothing: set "
+          "OffSliceVolume to Free or choose SetMethodToCrossSlice()");
+    }
+    o.cross_slice.off_slice.volume = contourmesh::OffSliceVolume::Preserve;
+  }
 
   filter_detail::StageProgress stages(
       this, [](vtkAlgorithm* a) { return static_cast<vtkContourFeatureSmoothingFilter*>(a)->AbortRequested(); });
@@ -408,6 +418,8 @@ void vtkContourFeatureSmoothingFilter::PrintSelf(ostream& os, vtkIndent indent) 
   os << indent << "KeepAdaptiveMesh: " << (this->KeepAdaptiveMesh ? "On" : "Off") << "\n";
   os << indent
      << "CreaseRestoration: " << (this->CreaseRestoration == CREASE_RESTORATION_SUBDIVIDE ? "Subdivide" : "None")
+     << "\n";
+  os << indent << "OffSliceVolume: " << (this->OffSliceVolume == OFF_SLICE_VOLUME_PRESERVE ? "Preserve" : "Free")
      << "\n";
   os << indent << "GenerateLabels: " << (this->GenerateLabels ? "On" : "Off") << "\n";
   os << indent

@@ -278,6 +278,7 @@ TEST_F(VtkFilters, OptionsClampAndPrintSelfListsThem) {
                              "DiffusionMethod: Laplacian",
                              "KeepAdaptiveMesh",
                              "CreaseRestoration: None",
+                             "OffSliceVolume: Free",
                              "GenerateLabels",
                              "SliceAxis: Z",
                              "SliceTolerance",

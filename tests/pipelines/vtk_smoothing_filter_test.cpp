@@ -164,6 +164,38 @@ TEST_F(VtkFilters, CreaseRestorationGivesTheLibrarysRefinedMesh) {
   EXPECT_EQ(taubin->GetOutput()->GetNumberOfPoints(), 0);
 }
 
+// Keeping the off-slice volume: the filter's result is the library's, which differs from the default's
+// here (or the case would prove nothing); another method refuses it.
+TEST_F(VtkFilters, OffSliceVolumePreserveGivesTheLibrarysResult) {
+  // A thin stack capped half a spacing beyond its end slices: the caps are vertices between the slices.
+  ContourStackSpec spec;
+  spec.curve = ridge_circle_curve(2.0, 1.0, 0.6);
+  spec.slices = 6;
+  spec.points_per_contour = 24;
+  Mesh mesh = make_contour_stack(spec);
+  add_noise(mesh, {0.1, 5, NoiseDirection::InPlane});
+  CrossSliceOptions options;
+  options.off_slice.volume = OffSliceVolume::Preserve;
+  const CrossSliceResult expected = cross_slice_smooth(mesh, options);
+  ASSERT_GT(max_difference(expected.mesh.positions, cross_slice_smooth(mesh).mesh.positions), 0.0);
+
+  vtkNew<vtkContourFeatureSmoothingFilter> filter;
+  filter->SetInputData(to_polydata(mesh));
+  filter->SetOffSliceVolumeToPreserve();
+  filter->Update();
+  EXPECT_EQ(max_difference(from_polydata(filter->GetOutput()).positions, expected.mesh.positions), 0.0);
+
+  vtkNew<vtkContourFeatureSmoothingFilter> taubin;
+  taubin->SetInputData(to_polydata(mesh));
+  taubin->SetMethodToTaubin();
+  taubin->SetOffSliceVolumeToPreserve();
+  vtkNew<MessageObserver> messages;
+  observe_messages(taubin, messages);
+  taubin->Update();
+  EXPECT_NE(messages->errors.find("needs cross-slice smoothing"), std::string::npos) << messages->errors;
+  EXPECT_EQ(taubin->GetOutput()->GetNumberOfPoints(), 0);
+}
+
 // Every option reaches the library: for each, a non-default value that changes the library's result on
 // this mesh (checked, or the case would prove nothing) gives that result through the filter.
 TEST_F(VtkFilters, NonDefaultSmoothingOptionsReachTheLibrary) {

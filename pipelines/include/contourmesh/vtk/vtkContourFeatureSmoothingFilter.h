@@ -89,6 +89,10 @@ class vtkContourFeatureSmoothingFilter : public vtkPolyDataAlgorithm {
     CREASE_RESTORATION_NONE = 0,       ///< the input's connectivity (default)
     CREASE_RESTORATION_SUBDIVIDE = 1,  ///< cross-slice: creases restored on a refined mesh
   };
+  enum OffSliceVolumeType {
+    OFF_SLICE_VOLUME_FREE = 0,      ///< cross-slice: the off-slice filter's fit stands (default)
+    OFF_SLICE_VOLUME_PRESERVE = 1,  ///< cross-slice: the volume the off-slice filter takes is given back
+  };
   enum SliceAxisType {
     SLICE_AXIS_NONE = -1,  ///< never recover missing ids (default)
     SLICE_AXIS_X = 0,
@@ -284,6 +288,17 @@ class vtkContourFeatureSmoothingFilter : public vtkPolyDataAlgorithm {
   ///@}
 
   ///@{
+  /// Cross-slice smoothing: OFF_SLICE_VOLUME_FREE (default) or OFF_SLICE_VOLUME_PRESERVE, which gives back
+  /// the volume the normal filter of the vertices between the slices takes (contourmesh::OffSliceVolume).
+  /// Use Preserve on meshes tiled from drawn contours (vtkContourPolylinesToSurfaceFilter), whose vertices
+  /// between the slices are interpolated: `contourmesh run` does on such input (docs/contours.md).
+  vtkSetClampMacro(OffSliceVolume, int, OFF_SLICE_VOLUME_FREE, OFF_SLICE_VOLUME_PRESERVE);
+  vtkGetMacro(OffSliceVolume, int);
+  void SetOffSliceVolumeToFree() { this->SetOffSliceVolume(OFF_SLICE_VOLUME_FREE); }
+  void SetOffSliceVolumeToPreserve() { this->SetOffSliceVolume(OFF_SLICE_VOLUME_PRESERVE); }
+  ///@}
+
+  ///@{
   /// Add the per-vertex "FeatureLabel" array (default Off): the labels of the paper's method or of
   /// cross-slice smoothing; with a baseline method the paper's detection runs on the input just for them.
   vtkSetMacro(GenerateLabels, vtkTypeBool);
@@ -351,6 +366,7 @@ class vtkContourFeatureSmoothingFilter : public vtkPolyDataAlgorithm {
   int DiffusionMethod = METHOD_TAUBIN;
   vtkTypeBool KeepAdaptiveMesh = 0;
   int CreaseRestoration = CREASE_RESTORATION_NONE;
+  int OffSliceVolume = OFF_SLICE_VOLUME_FREE;
   vtkTypeBool GenerateLabels = 0;
   int SliceAxis = SLICE_AXIS_NONE;
   double SliceTolerance = 0.0;
