@@ -23,6 +23,9 @@ void add_method_options(CLI::App* cmd, MethodArgs& args, bool iterations) {
   cmd->add_option("--creases", args.creases,
                   "cross-slice: none | restore (sharpen the creases the image's blur rounded: the mesh is refined "
                   "around them, the input's vertices first; default none)");
+  cmd->add_option("--off-slice-volume", args.off_slice_volume,
+                  "cross-slice: free | preserve (give back the volume the normal filter of the vertices between "
+                  "the slices takes; default free, but run on drawn contours preserves it)");
 }
 
 void add_step_options(CLI::App* cmd, StepArgs& args) {
@@ -60,6 +63,17 @@ MethodConfig method_config(const MethodArgs& args, const StepArgs& steps, const 
     if (*args.creases == "none") c.options.cross_slice.crease_restoration = CreaseRestoration::None;
     else if (*args.creases == "restore") c.options.cross_slice.crease_restoration = CreaseRestoration::Subdivide;
     else throw InvalidInputError("--creases must be 'none' or 'restore', got '" + *args.creases + "'");
+  }
+  if (args.off_slice_volume) {
+    if (c.method != SmoothingMethod::CrossSlice) {
+      throw InvalidInputError("--off-slice-volume does not apply to " + std::string(to_string(c.method)) +
+                              " smoothing");
+    }
+    OffSliceVolume& v = c.options.cross_slice.off_slice.volume;
+    if (*args.off_slice_volume == "free") v = OffSliceVolume::Free;
+    else if (*args.off_slice_volume == "preserve") v = OffSliceVolume::Preserve;
+    else throw InvalidInputError("--off-slice-volume must be 'free' or 'preserve', got '" + *args.off_slice_volume +
+                                 "'");
   }
   // A step option the selected method has no use for is a mistake worth reporting, not ignoring.
   const auto refuse = [&](bool given, const char* option, bool applies) {

@@ -23,6 +23,9 @@ struct MethodArgs {
   std::string preset;  ///< --preset; empty: the default preset (unless --method is given)
   std::optional<int> iterations;
   std::optional<std::string> creases;  ///< --creases: none | restore (cross-slice smoothing)
+  /// --off-slice-volume: free | preserve (cross-slice smoothing); unset: free, but `run` keeps the volume
+  /// on drawn contours
+  std::optional<std::string> off_slice_volume;
 };
 
 /// Step options of `smooth` (run and detect keep the defaults).
@@ -34,16 +37,16 @@ struct StepArgs {
   bool keep_adaptive = false;
 };
 
-/// Registers --method and --preset (the two exclude each other) and, with `iterations`, --iterations and
-/// --creases.
+/// Registers --method and --preset (the two exclude each other) and, with `iterations`, --iterations,
+/// --creases and --off-slice-volume.
 void add_method_options(CLI::App* command, MethodArgs& args, bool iterations = true);
 /// Registers --lambda, --mu, --beta, --boundary, --max-levels, --diffusion, --keep-adaptive.
 void add_step_options(CLI::App* command, StepArgs& args);
 
 /// The method and options selected: the preset (default: Preset::Default), or --method with the
-/// library's defaults for it; then --iterations, --creases, the step options and the detection options
-/// given. Throws InvalidInputError for an unknown name, --iterations on a method without an iteration count,
-/// --creases on a method other than cross-slice smoothing,
+/// library's defaults for it; then --iterations, --creases, --off-slice-volume, the step options and the
+/// detection options given. Throws InvalidInputError for an unknown name, --iterations on a method without an
+/// iteration count, --creases or --off-slice-volume on a method other than cross-slice smoothing,
 /// --keep-adaptive without the paper's method, or a detection option out of its vocabulary.
 [[nodiscard]] MethodConfig method_config(const MethodArgs& args, const StepArgs& steps, const FeatureArgs& features);
 

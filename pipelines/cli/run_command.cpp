@@ -86,9 +86,10 @@ MethodConfig run_method_config(const RunArgs& a, const std::string& labels_out) 
 
 // The smoothing stage, the same for every input: the selected method through libsmooth's one entry
 // point (cross-slice smoothing by default), which also guards against a diverging run. For drawn contours
-// (run_one) the cross-slice stage keeps the volume of the vertices between the slices
-// (OffSliceVolume::Preserve): they are interpolated, not read from an image, so its normal filter has no
-// noise to remove there and would only round thin structures inwards (docs/contours.md).
+// (run_one) the cross-slice stage keeps the volume of the vertices between the slices unless
+// --off-slice-volume says otherwise (OffSliceVolume::Preserve): they are interpolated, not read from an
+// image, so its normal filter has no noise to remove there and would only round thin structures inwards
+// (docs/contours.md).
 SmoothResult smooth_reconstruction(const Mesh& mesh, MethodConfig config, ProgressDisplay& progress,
                                    const std::string& source) {
   config.options.progress = progress.callback();
@@ -445,7 +446,7 @@ nlohmann::json run_one(const RunArgs& a, const MethodConfig& config, InputKind k
   print_warnings("run", rec.report.warnings);
   auto t = std::chrono::steady_clock::now();
   MethodConfig drawn = config;
-  drawn.options.cross_slice.off_slice.volume = OffSliceVolume::Preserve;
+  if (!a.smoothing.off_slice_volume) drawn.options.cross_slice.off_slice.volume = OffSliceVolume::Preserve;
   const SmoothResult smoothed = smooth_reconstruction(rec.mesh, drawn, progress, in.what);
   const double seconds_smooth = seconds_since(t);
   t = std::chrono::steady_clock::now();

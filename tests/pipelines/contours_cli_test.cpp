@@ -188,6 +188,16 @@ TEST_F(ContoursCli, RunKeepsTheVolumeOfAThinDrawnStructure) {
   ASSERT_EQ(r.code, 0) << r.err;
   const auto j = nlohmann::json::parse(r.out);
   EXPECT_LT(std::abs(j["volume_change_percent"].get<double>()), 0.5) << r.out;
+  // --off-slice-volume free: the fit stands, and the structure shrinks.
+  const CliRun free =
+      run_cli("run " + q(json) + " -o " + q(dir_ / "free.vtp") + " --json --off-slice-volume free", dir_);
+  ASSERT_EQ(free.code, 0) << free.err;
+  EXPECT_LT(nlohmann::json::parse(free.out)["volume_change_percent"].get<double>(), -0.5) << free.out;
+  const CliRun taubin =
+      run_cli("run " + q(json) + " -o " + q(dir_ / "t.vtp") + " --method taubin --off-slice-volume free", dir_);
+  EXPECT_EQ(taubin.code, 2);
+  EXPECT_NE(taubin.err.find("--off-slice-volume does not apply to taubin"), std::string::npos) << taubin.err;
+  EXPECT_FALSE(fs::exists(dir_ / "t.vtp"));
 }
 
 TEST_F(ContoursCli, ContourFilesRoundTripThroughContoursAndReconstruct) {
