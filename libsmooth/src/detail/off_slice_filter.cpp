@@ -1,6 +1,7 @@
 // SPDX-License-Identifier: BSD-3-Clause
 #include "detail/off_slice_filter.h"
 
+#include "contourmesh/internal/union_find.h"
 #include "detail/guidance_patches.h"
 #include "detail/off_slice_workspace.h"
 #include "detail/parallel.h"
@@ -271,34 +272,23 @@ Regions off_slice_regions(const Workspace& w, Index local_vertices) {
   for (std::size_t m = 0; m < nm; ++m) {
     if (!w.on_contour[m]) moving_of[static_cast<std::size_t>(w.moving[m])] = static_cast<Index>(m);
   }
-  std::vector<Index> parent(nm);
-  for (std::size_t m = 0; m < nm; ++m) parent[m] = static_cast<Index>(m);
-  auto find = [&](Index a) {
-    while (parent[static_cast<std::size_t>(a)] != a) {
-      parent[static_cast<std::size_t>(a)] = parent[static_cast<std::size_t>(parent[static_cast<std::size_t>(a)])];
-      a = parent[static_cast<std::size_t>(a)];
-    }
-    return a;
-  };
+  UnionFind<Index> sets(nm);
   Regions r;
   r.of_face.assign(nk, -1);
   for (std::size_t k = 0; k < nk; ++k) {
     Index root = -1;
     for (Index v : w.corners[k]) {
       const Index m = moving_of[static_cast<std::size_t>(v)];
-      if (m < 0) continue;
-      const Index other = find(m);
-      if (root >= 0 && other != root) parent[static_cast<std::size_t>(std::max(other, root))] = std::min(other, root);
-      root = root < 0 ? other : std::min(other, root);
+      if (m >= 0) root = root < 0 ? sets.find(m) : sets.unite(root, m);
     }
     r.of_face[k] = root;
   }
   for (Index& root : r.of_face) {
-    if (root >= 0) root = find(root);
+    if (root >= 0) root = sets.find(root);
   }
   r.of_moving.assign(nm, -1);
   for (std::size_t m = 0; m < nm; ++m) {
-    if (!w.on_contour[m]) r.of_moving[m] = find(static_cast<Index>(m));
+    if (!w.on_contour[m]) r.of_moving[m] = sets.find(static_cast<Index>(m));
   }
   return r;
 }
