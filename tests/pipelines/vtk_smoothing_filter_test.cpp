@@ -133,6 +133,19 @@ TEST_F(VtkFilters, TwoSmoothingFiltersChainLikeTwoLibraryCalls) {
   expect_labels_then_added(b->GetOutput(), mesh.num_vertices(), expected.detection.labels);
 }
 
+// An option of cross-slice smoothing, set with another method (Taubin): an error naming it, no output.
+void expect_cross_slice_only(const Mesh& mesh, const std::function<void(vtkContourFeatureSmoothingFilter*)>& option) {
+  vtkNew<vtkContourFeatureSmoothingFilter> taubin;
+  taubin->SetInputData(to_polydata(mesh));
+  taubin->SetMethodToTaubin();
+  option(taubin.GetPointer());
+  vtkNew<MessageObserver> messages;
+  observe_messages(taubin, messages);
+  taubin->Update();
+  EXPECT_NE(messages->errors.find("needs cross-slice smoothing"), std::string::npos) << messages->errors;
+  EXPECT_EQ(taubin->GetOutput()->GetNumberOfPoints(), 0);
+}
+
 // Crease restoration: the filter's refined mesh is the library's, point for point, with the input's
 // labels first and -1 on the points it adds; another method refuses it.
 TEST_F(VtkFilters, CreaseRestorationGivesTheLibrarysRefinedMesh) {
@@ -153,26 +166,14 @@ TEST_F(VtkFilters, CreaseRestorationGivesTheLibrarysRefinedMesh) {
   EXPECT_EQ(out.slice_ids, expected.mesh.slice_ids);
   expect_labels_then_added(filter->GetOutput(), mesh.num_vertices(), expected.labels);
 
-  vtkNew<vtkContourFeatureSmoothingFilter> taubin;
-  taubin->SetInputData(to_polydata(mesh));
-  taubin->SetMethodToTaubin();
-  taubin->SetCreaseRestorationToSubdivide();
-  vtkNew<MessageObserver> messages;
-  observe_messages(taubin, messages);
-  taubin->Update();
-  EXPECT_NE(messages->errors.find("needs cross-slice smoothing"), std::string::npos) << messages->errors;
-  EXPECT_EQ(taubin->GetOutput()->GetNumberOfPoints(), 0);
+  expect_cross_slice_only(mesh, [](vtkContourFeatureSmoothingFilter* f) { f->SetCreaseRestorationToSubdivide(); });
 }
 
 // Keeping the off-slice volume: the filter's result is the library's, which differs from the default's
 // here (or the case would prove nothing); another method refuses it.
 TEST_F(VtkFilters, OffSliceVolumePreserveGivesTheLibrarysResult) {
   // A thin stack capped half a spacing beyond its end slices: the caps are vertices between the slices.
-  ContourStackSpec spec;
-  spec.curve = ridge_circle_curve(2.0, 1.0, 0.6);
-  spec.slices = 6;
-  spec.points_per_contour = 24;
-  Mesh mesh = make_contour_stack(spec);
+  Mesh mesh = make_contour_stack(ContourStackSpec{ridge_circle_curve(2.0, 1.0, 0.6), 6, 24});
   add_noise(mesh, {0.1, 5, NoiseDirection::InPlane});
   CrossSliceOptions options;
   options.off_slice.volume = OffSliceVolume::Preserve;
@@ -185,15 +186,7 @@ TEST_F(VtkFilters, OffSliceVolumePreserveGivesTheLibrarysResult) {
   filter->Update();
   EXPECT_EQ(max_difference(from_polydata(filter->GetOutput()).positions, expected.mesh.positions), 0.0);
 
-  vtkNew<vtkContourFeatureSmoothingFilter> taubin;
-  taubin->SetInputData(to_polydata(mesh));
-  taubin->SetMethodToTaubin();
-  taubin->SetOffSliceVolumeToPreserve();
-  vtkNew<MessageObserver> messages;
-  observe_messages(taubin, messages);
-  taubin->Update();
-  EXPECT_NE(messages->errors.find("needs cross-slice smoothing"), std::string::npos) << messages->errors;
-  EXPECT_EQ(taubin->GetOutput()->GetNumberOfPoints(), 0);
+  expect_cross_slice_only(mesh, [](vtkContourFeatureSmoothingFilter* f) { f->SetOffSliceVolumeToPreserve(); });
 }
 
 // Every option reaches the library: for each, a non-default value that changes the library's result on
