@@ -89,8 +89,16 @@ std::vector<Eigen::Vector2d> drift_offsets(const ContourStack& stack, double min
     if (sl[s].contours.size() != 1 || sl[s - 1].contours.size() != 1) continue;
     const Polygon& below = sl[s - 1].contours[0].points;
     const Polygon& above = sl[s].contours[0].points;
-    if (overlap_fraction(below, above) <= std::min(1.0, 2.0 * min_overlap)) continue;
-    offset[s] += centroid(above) - centroid(below);
+    const double overlap = overlap_fraction(below, above);
+    if (overlap <= std::min(1.0, 2.0 * min_overlap)) continue;
+    // A drift, not a change of shape: the contours overlap at least as much once their centroids meet.
+    // Where an outline widens on one side its centroid moves too, and shifting it would tile the slab
+    // in a frame where the two contours agree less (the top of the breast set's Breast).
+    const Eigen::Vector2d shift = centroid(above) - centroid(below);
+    Polygon moved = above;
+    for (Eigen::Vector2d& p : moved) p -= shift;
+    if (overlap_fraction(below, moved) < overlap) continue;
+    offset[s] += shift;
     ++aligned;
   }
   return offset;

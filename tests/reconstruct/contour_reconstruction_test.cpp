@@ -206,6 +206,18 @@ TEST(ContourReconstruction, DriftAlignedBandsAreJudgedAsShearedBack) {
   EXPECT_NEAR(enclosed_volume(r.mesh), slicewise_volume(s), 0.03 * slicewise_volume(s));
 }
 
+TEST(ContourReconstruction, DriftAlignmentLeavesAnOutlineThatGrowsOnOneSide) {
+  // A block that grows a long tail to one side: its centroid moves 11 mm without drifting. Centred, the
+  // block would cover the slice below by half, where it is it covers it whole (the top of the breast
+  // set's Breast), so that slab is tiled in place; the gaps between equal contours align with no shift.
+  auto block = [](double z) { return Points{{0, 0, z}, {20, 0, z}, {20, 10, z}, {0, 10, z}}; };
+  auto tailed = [](double z) { return Points{{0, 0, z}, {60, 0, z}, {60, 3, z}, {20, 3, z}, {20, 10, z}, {0, 10, z}}; };
+  const ContourStack s = stack_of({block(0), block(3), tailed(6), tailed(9)});
+  const ContourReconstruction r = reconstruct_from_contours(s, "test");
+  EXPECT_EQ(r.report.aligned_gaps, 2u);
+  expect_faithful(r, s);
+}
+
 TEST(ContourReconstruction, DriftAlignmentNeverConnectsSeparateContours) {
   // Two blobs on alternate slices that do not overlap stay two objects.
   const ContourStack s = stack_of({ellipse(0, 0, 3, 3, 0), ellipse(0, 0, 3, 3, 3), ellipse(20, 0, 3, 3, 6),
