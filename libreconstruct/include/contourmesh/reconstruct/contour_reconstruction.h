@@ -19,10 +19,13 @@ namespace contourmesh {
 /// How the tiler sees slices whose one contour drifts sideways from slice to slice.
 enum class DriftAlignment {
   /// Between two adjacent slices that each hold exactly one contour, and whose contours overlap (by
-  /// twice the tiler's minimum overlap), the upper slice is shifted so that the centroids coincide
+  /// twice the tiler's minimum overlap) and overlap at least as much once their centroids meet (a drift,
+  /// not an outline growing on one side), the upper slice is shifted so that the centroids coincide
   /// while tiling; the mesh is shifted back after (an exact, piecewise affine shear along the slice
-  /// axis). The minimum-area tiling otherwise pinches an oblique structure into an hourglass between
-  /// slices. Never changes which contours are connected. Default.
+  /// axis), and the tiler judges the slab's faces as they will be once shifted back, refining leaning
+  /// bands through intermediate contours. The minimum-area tiling otherwise pinches an oblique structure
+  /// into an hourglass between slices. Never changes which contours are connected. Default
+  /// (docs/contours.md, "Drift alignment").
   Centroids,
   /// Tile the contours where they are.
   None,
