@@ -56,32 +56,28 @@ MethodConfig method_config(const MethodArgs& args, const StepArgs& steps, const 
     }
     c.options.iterations = *args.iterations;
   }
-  if (args.creases) {
-    if (c.method != SmoothingMethod::CrossSlice) {
-      throw InvalidInputError("--creases does not apply to " + std::string(to_string(c.method)) + " smoothing");
-    }
-    if (*args.creases == "none") c.options.cross_slice.crease_restoration = CreaseRestoration::None;
-    else if (*args.creases == "restore") c.options.cross_slice.crease_restoration = CreaseRestoration::Subdivide;
-    else throw InvalidInputError("--creases must be 'none' or 'restore', got '" + *args.creases + "'");
-  }
-  if (args.off_slice_volume) {
-    if (c.method != SmoothingMethod::CrossSlice) {
-      throw InvalidInputError("--off-slice-volume does not apply to " + std::string(to_string(c.method)) +
-                              " smoothing");
-    }
-    OffSliceVolume& v = c.options.cross_slice.off_slice.volume;
-    if (*args.off_slice_volume == "free") v = OffSliceVolume::Free;
-    else if (*args.off_slice_volume == "preserve") v = OffSliceVolume::Preserve;
-    else throw InvalidInputError("--off-slice-volume must be 'free' or 'preserve', got '" + *args.off_slice_volume +
-                                 "'");
-  }
-  // A step option the selected method has no use for is a mistake worth reporting, not ignoring.
+  // An option the selected method has no use for is a mistake worth reporting, not ignoring.
   const auto refuse = [&](bool given, const char* option, bool applies) {
     if (given && !applies) {
       throw InvalidInputError(std::string(option) + " does not apply to " + std::string(to_string(c.method)) +
                               " smoothing");
     }
   };
+  const bool cross_slice = c.method == SmoothingMethod::CrossSlice;
+  refuse(args.creases.has_value(), "--creases", cross_slice);
+  refuse(args.off_slice_volume.has_value(), "--off-slice-volume", cross_slice);
+  if (args.creases) {
+    if (*args.creases == "none") c.options.cross_slice.crease_restoration = CreaseRestoration::None;
+    else if (*args.creases == "restore") c.options.cross_slice.crease_restoration = CreaseRestoration::Subdivide;
+    else throw InvalidInputError("--creases must be 'none' or 'restore', got '" + *args.creases + "'");
+  }
+  if (args.off_slice_volume) {
+    OffSliceVolume& v = c.options.cross_slice.off_slice.volume;
+    if (*args.off_slice_volume == "free") v = OffSliceVolume::Free;
+    else if (*args.off_slice_volume == "preserve") v = OffSliceVolume::Preserve;
+    else throw InvalidInputError("--off-slice-volume must be 'free' or 'preserve', got '" + *args.off_slice_volume +
+                                 "'");
+  }
   const bool paper = c.method == SmoothingMethod::FeaturePreserving;
   const bool baseline = is_baseline(c.method) && c.method != SmoothingMethod::None;
   refuse(steps.lambda.has_value(), "--lambda", paper || baseline);
