@@ -303,20 +303,20 @@ int vtkContourFeatureSmoothingFilter::Execute(vtkPolyData* input, vtkPolyData* o
   o.paper.boundary = boundary;
   o.paper.output = this->KeepAdaptiveMesh ? OutputResolution::Adaptive : OutputResolution::Original;
   o.paper.locked = locked;
-  if (this->CreaseRestoration == CREASE_RESTORATION_SUBDIVIDE) {
+  // A cross-slice property set away from its default with another method is an error, not ignored.
+  const auto needs_cross_slice = [cross_slice](const std::string& what, const std::string& property,
+                                               const std::string& default_value) {
     if (!cross_slice) {
-      throw InvalidInputError(
-          "crease restoration (CreaseRestoration) needs cross-slice smoothing: set "
-          "CreaseRestoration to None or choose SetMethodToCrossSlice()");
+      throw InvalidInputError(what + " (" + property + ") needs cross-slice smoothing: set " + property + " to " +
+                              default_value + " or choose SetMethodToCrossSlice()");
     }
+  };
+  if (this->CreaseRestoration == CREASE_RESTORATION_SUBDIVIDE) {
+    needs_cross_slice("crease restoration", "CreaseRestoration", "None");
     o.cross_slice.crease_restoration = contourmesh::CreaseRestoration::Subdivide;
   }
   if (this->OffSliceVolume == OFF_SLICE_VOLUME_PRESERVE) {
-    if (!cross_slice) {
-      throw InvalidInputError(
-          "keeping the off-slice volume (OffSliceVolume) needs cross-slice smoothing: set "
-          "OffSliceVolume to Free or choose SetMethodToCrossSlice()");
-    }
+    needs_cross_slice("keeping the off-slice volume", "OffSliceVolume", "Free");
     o.cross_slice.off_slice.volume = contourmesh::OffSliceVolume::Preserve;
   }
 
