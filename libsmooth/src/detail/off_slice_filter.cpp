@@ -259,14 +259,35 @@ void update_vertices(const ContourFrame& frame, const Workspace& w, const Eigen:
   }
 }
 
+// Six times the signed volume of the cone from `origin` over the triangle (a, b, c).
+double cone_volume6(const Eigen::Vector3d& a, const Eigen::Vector3d& b, const Eigen::Vector3d& c,
+                    const Eigen::Vector3d& origin) {
+  return (a - origin).dot((b - origin).cross(c - origin));
+}
+
 // The regions of OffSliceVolume::Preserve: the moving vertices off the contours joined through the filtered
 // faces they share (not through contour vertices). Per filtered face and per moving vertex, its region (the
-// smallest moving index in it), or -1 (a face with no such corner, a contour vertex).
+// smallest moving index in it), or -1 (a face with no such corner, a contour vertex); per region (at its
+// index), six times the volume its faces enclose at `start` seen from its first vertex's start.
 struct Regions {
   std::vector<Index> of_face, of_moving;
+  std::vector<double> start_volume6;
 };
 
-Regions off_slice_regions(const Workspace& w, Index local_vertices) {
+// The cone volumes of the filtered faces of each region at the positions x, six times, from the region's
+// first vertex's start, added into `volume6` (per region, at its index).
+void region_volumes6(const Workspace& w, const Regions& regions, const Eigen::Matrix3Xd& start,
+                     const Eigen::Matrix3Xd& x, std::vector<double>& volume6) {
+  for (std::size_t k = 0; k < w.filtered.size(); ++k) {
+    const Index r = regions.of_face[k];
+    if (r < 0) continue;
+    const Triangle& t = w.corners[k];
+    volume6[static_cast<std::size_t>(r)] +=
+        cone_volume6(x.col(t[0]), x.col(t[1]), x.col(t[2]), start.col(w.moving[static_cast<std::size_t>(r)]));
+  }
+}
+
+Regions off_slice_regions(const Workspace& w, Index local_vertices, const Eigen::Matrix3Xd& start) {
   const std::size_t nk = w.filtered.size(), nm = w.moving.size();
   std::vector<Index> moving_of(static_cast<std::size_t>(local_vertices), -1);
   for (std::size_t m = 0; m < nm; ++m) {
@@ -290,13 +311,9 @@ Regions off_slice_regions(const Workspace& w, Index local_vertices) {
   for (std::size_t m = 0; m < nm; ++m) {
     if (!w.on_contour[m]) r.of_moving[m] = sets.find(static_cast<Index>(m));
   }
+  r.start_volume6.assign(nm, 0.0);
+  region_volumes6(w, r, start, start, r.start_volume6);
   return r;
-}
-
-// Six times the signed volume of the cone from `origin` over the triangle (a, b, c).
-double cone_volume6(const Eigen::Vector3d& a, const Eigen::Vector3d& b, const Eigen::Vector3d& c,
-                    const Eigen::Vector3d& origin) {
-  return (a - origin).dot((b - origin).cross(c - origin));
 }
 
 // OffSliceVolume::Preserve: each region is offset along its vertex normals (those not `fixed`, per local
@@ -305,24 +322,17 @@ double cone_volume6(const Eigen::Vector3d& a, const Eigen::Vector3d& b, const Ei
 // enclosed volume). A few rounds, as clamping leaves a rest. Sequential and in mesh order: the sums do
 // not depend on the thread count.
 void restore_volume(const ContourFrame& frame, const Workspace& w, const OffSliceFilterOptions& options,
-                    const Eigen::Matrix3Xd& start, const std::vector<std::uint8_t>& fixed, Eigen::Matrix3Xd& x) {
-  const std::size_t nk = w.filtered.size(), nm = w.moving.size();
-  const Regions regions = off_slice_regions(w, x.cols());
+                    const Regions& regions, const Eigen::Matrix3Xd& start, const std::vector<std::uint8_t>& fixed,
+                    Eigen::Matrix3Xd& x) {
+  const std::size_t nm = w.moving.size();
   const double reach = options.max_move * frame.slice_spacing;
   const Eigen::Vector3d& axis = frame.axis;
   std::vector<double> change(nm), rate(nm);  // per region: 6 x the volume change; the change per mm of offset
   Eigen::Matrix3Xd normal(3, static_cast<Index>(nm));
   for (int round = 0; round < 3; ++round) {
-    std::fill(change.begin(), change.end(), 0.0);
+    for (std::size_t r = 0; r < nm; ++r) change[r] = -regions.start_volume6[r];
     std::fill(rate.begin(), rate.end(), 0.0);
-    for (std::size_t k = 0; k < nk; ++k) {
-      const Index r = regions.of_face[k];
-      if (r < 0) continue;
-      const Triangle& t = w.corners[k];
-      const Eigen::Vector3d origin = start.col(w.moving[static_cast<std::size_t>(r)]);
-      change[static_cast<std::size_t>(r)] += cone_volume6(x.col(t[0]), x.col(t[1]), x.col(t[2]), origin) -
-                                             cone_volume6(start.col(t[0]), start.col(t[1]), start.col(t[2]), origin);
-    }
+    region_volumes6(w, regions, start, x, change);
     // Each vertex's normal: the sum of its faces' cross products (twice their areas). An offset d along
     // it changes the volume by d times a third of the faces' areas.
     normal.setZero();
@@ -443,9 +453,12 @@ std::size_t filter_off_slice_normals(const ContourFrame& frame, const std::vecto
   undo_turned_faces(w, initial_normals, start, x, undone);
   // The volume after the undo, which may give back part of what the fit moved; the vertices it sent back
   // stay, and if the offsets turn a face, its vertices go back too and the rest try again.
-  for (int round = 0; round < 3 && options.volume == OffSliceVolume::Preserve; ++round) {
-    restore_volume(frame, w, options, start, undone, x);
-    if (!undo_turned_faces(w, initial_normals, start, x, undone)) break;
+  if (options.volume == OffSliceVolume::Preserve) {
+    const Regions regions = off_slice_regions(w, x.cols(), start);
+    for (int round = 0; round < 3; ++round) {
+      restore_volume(frame, w, options, regions, start, undone, x);
+      if (!undo_turned_faces(w, initial_normals, start, x, undone)) break;
+    }
   }
   std::size_t moved = 0;
   for (Index v : w.moving) {
