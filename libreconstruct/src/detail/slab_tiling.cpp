@@ -202,13 +202,38 @@ Polygon sheared(const Polygon& points, double w, const Eigen::Vector2d& shear) {
   return out;
 }
 
+// A candidate tiling built against a rival it must beat: its flat and sliver area so far, measured as
+// faces are appended to its mesh. Faces only add to that area, so once it reaches the rival's the
+// candidate has lost, and the rest of it need not be built (branch and bound: the choice, and the mesh,
+// are those of building it whole).
+class Bound {
+ public:
+  explicit Bound(double rival) : rival_(rival) {}
+  // Whether the faces of `mesh` (the candidate's, only ever appended to) already hold at least the
+  // rival's flat and sliver area.
+  bool lost(const SlabMesh& mesh) {
+    measure_more_defects(mesh, measured_, so_far_);
+    measured_ = mesh.triangles.size();
+    return !(so_far_.score() < rival_);
+  }
+  // The defects of all the faces measured: measure_defects of the whole candidate.
+  [[nodiscard]] const TilingDefects& defects() const { return so_far_; }
+
+ private:
+  double rival_;
+  TilingDefects so_far_;
+  std::size_t measured_ = 0;
+};
+
 class SlabTiler {
  public:
   explicit SlabTiler(const TilingOptions& options) : options_(options) {}
 
   // `depth`: how many times the slab has been halved; `refine`: whether bands may be refined (not
   // inside a refinement); `top`: the slab between two slices, whose groups the statistics count.
-  void tile(const Level& lower, const Level& upper, Span span, int depth, bool refine, bool top, SlabMesh& out) {
+  // With a `bound` on `out`, stops after the group that makes the candidate lose.
+  void tile(const Level& lower, const Level& upper, Span span, int depth, bool refine, bool top, SlabMesh& out,
+            Bound* bound = nullptr) {
     const Correspondence links = correspond(lower, upper, options_);
     const double extension = options_.end_caps == EndCaps::HalfSpacing ? 0.5 * (upper.w - lower.w) : 0.0;
     for (const ContourGroup& group : contour_groups(lower, upper, links)) {
@@ -228,6 +253,7 @@ class SlabTiler {
           topology_change(restrict_level(lower, group.lower), restrict_level(upper, group.upper), span, depth, out);
           break;
       }
+      if (bound && bound->lost(out)) return;
     }
   }
 
@@ -360,9 +386,9 @@ class SlabTiler {
   // than parting the group, the parting.
   //
   // Where halves may be tried, the composite's costly bands are solved only when the choice needs them:
-  // without them the composite already has its bridges and a lower bound of its flat and sliver area
-  // (its bands only add faces), which is often enough to know that the halves beat it. The choice, and
-  // the mesh, are those of solving the composite first.
+  // without them the composite already has its bridges and most of its flat and sliver area, which is
+  // often enough to know that the lifted transition beats it. The halves, the costliest candidate, are
+  // built last, against the best of the others, and given up as soon as they cannot win (Bound).
   void topology_change(const Level& lower, const Level& upper, Span span, int depth, SlabMesh& out) {
     const bool may_halve = options_.branching == Branching::Interpolated && depth < options_.max_branching_depth;
     SlabMesh composite = out.scratch();
@@ -382,23 +408,6 @@ class SlabTiler {
       settle(lower, upper, span, depth, std::move(lifted), *lifted_defects, out);
       return;
     }
-    if (!(partial.bridge_area > 0.0 && (!lifted_defects || wants_halves(*lifted_defects)))) {
-      finish_composite(pending, options_, composite);
-      TilingDefects best = measure_defects(composite);
-      if (lifted_defects && lifted_defects->score() < best.score()) {
-        settle(lower, upper, span, depth, std::move(lifted), *lifted_defects, out);
-      } else {
-        settle(lower, upper, span, depth, std::move(composite), best, out);
-      }
-      return;
-    }
-    // Halves are tried whichever of the composite and the lifted transition wins.
-    Halves halves = build_halves(lower, upper, span, depth, out);
-    const bool beats_lifted = !lifted_defects || halves.defects.score() < lifted_defects->score();
-    if (halves.built && beats_lifted && halves.defects.score() < partial.score()) {
-      if (!try_parting(lower, upper, halves.defects, out)) out.absorb(std::move(halves.mesh));
-      return;
-    }
     finish_composite(pending, options_, composite);
     TilingDefects best = measure_defects(composite);
     SlabMesh* chosen = &composite;
@@ -406,7 +415,18 @@ class SlabTiler {
       best = *lifted_defects;
       chosen = &lifted;
     }
-    if (halves.built && halves.defects.score() < best.score()) {
+    if (!(partial.bridge_area > 0.0 && (!lifted_defects || wants_halves(*lifted_defects)))) {
+      settle(lower, upper, span, depth, std::move(*chosen), best, out);
+      return;
+    }
+    // Halves are tried whichever of the composite and the lifted transition wins. They win where they
+    // beat the better of the two, and also where they beat the lifted transition and the unfinished
+    // composite: the choice made when the halves were built before the composite was finished. Finishing
+    // usually adds area, but a crossing band splits faces and can take some away.
+    const double partial_rival =
+        lifted_defects ? std::min(partial.score(), lifted_defects->score()) : partial.score();
+    Halves halves = build_halves(lower, upper, span, depth, std::max(partial_rival, best.score()), out);
+    if (halves.won) {
       if (!try_parting(lower, upper, halves.defects, out)) out.absorb(std::move(halves.mesh));
       return;
     }
@@ -481,20 +501,22 @@ class SlabTiler {
     return true;
   }
 
-  // The slab tiled lower -> mid-level -> upper (built when the mid-level has contours for the group),
+  // The slab tiled lower -> mid-level -> upper, when the mid-level has contours for the group and the
+  // halves leave less poorly shaped area than their rival (`won`; otherwise the mesh may be partial),
   // with the claims on the interpolation's contours to undo if it is dropped.
   struct Halves {
     SlabMesh mesh;
     TilingDefects defects;
-    bool built = false;
+    bool won = false;
     std::unique_ptr<Interpolation> owned;
     Interpolation* interpolation = nullptr;
     Interpolation::Claims before;
     void undo() { interpolation->restore(before); }
   };
 
-  // The halves as a scratch mesh of `parent`.
-  Halves build_halves(const Level& lower, const Level& upper, Span span, int depth, const SlabMesh& parent) {
+  // The halves as a scratch mesh of `parent`, built until they lose to `rival`.
+  Halves build_halves(const Level& lower, const Level& upper, Span span, int depth, double rival,
+                      const SlabMesh& parent) {
     Halves h;
     h.mesh = parent.scratch();
     span = with_interpolation(lower, upper, span, h.owned);
@@ -504,10 +526,13 @@ class SlabTiler {
     const std::vector<std::size_t> chosen = span.interpolation->select(tm, lower, upper);
     if (!chosen.empty()) {
       const Level middle = span.interpolation->take(tm, chosen, h.mesh);
-      tile(lower, middle, {span.interpolation, span.t0, tm}, depth + 1, true, false, h.mesh);
-      tile(middle, upper, {span.interpolation, tm, span.t1}, depth + 1, true, false, h.mesh);
-      h.defects = measure_defects(h.mesh);
-      h.built = true;
+      Bound bound(rival);
+      tile(lower, middle, {span.interpolation, span.t0, tm}, depth + 1, true, false, h.mesh, &bound);
+      if (bound.lost(h.mesh)) return h;
+      tile(middle, upper, {span.interpolation, tm, span.t1}, depth + 1, true, false, h.mesh, &bound);
+      if (bound.lost(h.mesh)) return h;
+      h.defects = bound.defects();
+      h.won = true;
     }
     return h;
   }
@@ -516,8 +541,8 @@ class SlabTiler {
   // area than `rival`; otherwise adds nothing.
   bool try_halves(const Level& lower, const Level& upper, Span span, int depth, const TilingDefects& rival,
                   SlabMesh& out) {
-    Halves h = build_halves(lower, upper, span, depth, out);
-    if (h.built && h.defects.score() < rival.score()) {
+    Halves h = build_halves(lower, upper, span, depth, rival.score(), out);
+    if (h.won) {
       out.absorb(std::move(h.mesh));
       return true;
     }

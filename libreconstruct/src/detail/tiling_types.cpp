@@ -93,8 +93,13 @@ bool is_sliver(const Eigen::Vector3d& a, const Eigen::Vector3d& b, const Eigen::
 
 TilingDefects measure_defects(const SlabMesh& mesh) {
   TilingDefects d;
+  measure_more_defects(mesh, 0, d);
+  return d;
+}
+
+void measure_more_defects(const SlabMesh& mesh, std::size_t first_face, TilingDefects& d) {
   const double cos_flat = std::cos(10.0 * std::numbers::pi / 180.0);
-  for (std::size_t f = 0; f < mesh.triangles.size(); ++f) {
+  for (std::size_t f = first_face; f < mesh.triangles.size(); ++f) {
     const Triangle& t = mesh.triangles[f];
     const Eigen::Vector3d a = mesh.judged_position(t[0]), b = mesh.judged_position(t[1]),
                           c = mesh.judged_position(t[2]);
@@ -111,7 +116,6 @@ TilingDefects measure_defects(const SlabMesh& mesh) {
     if (flat || sliver) d.poor_area += area;
     if (mesh.roles[f] == FaceRole::Bridge) d.bridge_area += area;
   }
-  return d;
 }
 
 }  // namespace contourmesh::detail

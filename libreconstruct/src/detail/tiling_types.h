@@ -115,5 +115,8 @@ struct TilingDefects {
 };
 /// Judged at the mesh's judged positions (SlabMesh::shear).
 [[nodiscard]] TilingDefects measure_defects(const SlabMesh& mesh);
+/// Adds the faces `first_face` .. end of `mesh` to `defects`, in order: after faces are only appended,
+/// measuring the new ones into the running total gives exactly measure_defects(mesh).
+void measure_more_defects(const SlabMesh& mesh, std::size_t first_face, TilingDefects& defects);
 
 }  // namespace contourmesh::detail
