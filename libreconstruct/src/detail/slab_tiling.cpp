@@ -204,23 +204,44 @@ Polygon sheared(const Polygon& points, double w, const Eigen::Vector2d& shear) {
 
 // A candidate tiling built against a rival it must beat: its flat and sliver area so far, measured as
 // faces are appended to its mesh. Faces only add to that area, so once it reaches the rival's the
-// candidate has lost, and the rest of it need not be built (branch and bound: the choice, and the mesh,
-// are those of building it whole).
+// candidate has lost, and the rest of it need not be built (branch and bound).
+//
+// Candidates nest: the halves of a slab hold pieces whose own halves are being built. A nested piece adds
+// to the outer candidate at least the lesser of its halves' area so far and `floor`, what it adds when
+// they lose (the best of its other candidates), so its faces count towards the outer bounds too: when an
+// outer candidate has lost, the nested work is abandoned up to it (Abandoned). The one exception is a
+// nested piece that would part (try_parting), whose caps can add less: the outer candidate is given up
+// all the same. On the real scans and the phantoms the meshes are those of building every candidate whole.
 class Bound {
  public:
-  explicit Bound(double rival) : rival_(rival) {}
-  // Whether the faces of `mesh` (the candidate's, only ever appended to) already hold at least the
-  // rival's flat and sliver area.
+  Bound(double rival, double floor, Bound* outer) : rival_(rival), floor_(floor), outer_(outer) {}
+
+  // Thrown by lost() to abandon every candidate up to the outer `bound`, which has lost.
+  struct Abandoned {
+    const Bound* bound;
+  };
+
+  // Whether the faces of `mesh` (this candidate's, only ever appended to) already hold at least the
+  // rival's flat and sliver area. Throws Abandoned when an outer candidate has lost.
   bool lost(const SlabMesh& mesh) {
     measure_more_defects(mesh, measured_, so_far_);
     measured_ = mesh.triangles.size();
-    return !(so_far_.score() < rival_);
+    if (!(so_far_.score() < rival_)) return true;
+    double added = std::min(floor_, so_far_.score());
+    for (const Bound* b = outer_; b; b = b->outer_) {
+      const double at_least = b->so_far_.score() + added;
+      if (!(at_least < b->rival_)) throw Abandoned{b};
+      added = std::min(b->floor_, at_least);
+    }
+    return false;
   }
   // The defects of all the faces measured: measure_defects of the whole candidate.
   [[nodiscard]] const TilingDefects& defects() const { return so_far_; }
 
  private:
   double rival_;
+  double floor_;
+  Bound* outer_;
   TilingDefects so_far_;
   std::size_t measured_ = 0;
 };
@@ -327,7 +348,7 @@ class SlabTiler {
       // A topology change in disguise: the halves through the mid-level, if they do better.
       const Level lo = restrict_level(lower, group.lower), hi = restrict_level(upper, group.upper);
       if (top) ++direct.stats.branchings;
-      if (try_halves(lo, hi, span, depth, measure_defects(direct), out)) return;
+      if (try_halves(lo, hi, span, depth, measure_defects(direct), 0.0, out)) return;
       if (try_parting(lo, hi, measure_defects(direct), out)) return;
     }
     if (refine && options_.band_refinement == BandRefinement::Interpolated &&
@@ -356,6 +377,14 @@ class SlabTiler {
   // Tiles lower -> upper through `steps` - 1 intermediate levels; false when an intermediate level
   // cannot be made.
   bool refine_band(const Level& lower, const Level& upper, Span span, int steps, int depth, SlabMesh& out) {
+    // The refinement may be dropped for the direct band: its pieces count towards no outer candidate.
+    Bound* const outer = active_;
+    active_ = nullptr;
+    struct Restore {
+      Bound*& active;
+      Bound* outer;
+      ~Restore() { active = outer; }
+    } restore{active_, outer};
     std::vector<double> ts;
     std::vector<std::vector<std::size_t>> chosen;
     for (int k = 1; k < steps; ++k) {
@@ -425,7 +454,7 @@ class SlabTiler {
     // usually adds area, but a crossing band splits faces and can take some away.
     const double partial_rival =
         lifted_defects ? std::min(partial.score(), lifted_defects->score()) : partial.score();
-    Halves halves = build_halves(lower, upper, span, depth, std::max(partial_rival, best.score()), out);
+    Halves halves = build_halves(lower, upper, span, depth, std::max(partial_rival, best.score()), best.score(), out);
     if (halves.won) {
       if (!try_parting(lower, upper, halves.defects, out)) out.absorb(std::move(halves.mesh));
       return;
@@ -457,7 +486,7 @@ class SlabTiler {
     if (options_.branching == Branching::Interpolated && depth < options_.max_branching_depth &&
         wants_halves(best)) {
       SlabMesh halves = out.scratch();
-      if (try_halves(lower, upper, span, depth, best, halves)) {
+      if (try_halves(lower, upper, span, depth, best, best.score(), halves)) {
         best = measure_defects(halves);
         if (!try_parting(lower, upper, best, out)) out.absorb(std::move(halves));
         return;
@@ -514,8 +543,9 @@ class SlabTiler {
     void undo() { interpolation->restore(before); }
   };
 
-  // The halves as a scratch mesh of `parent`, built until they lose to `rival`.
-  Halves build_halves(const Level& lower, const Level& upper, Span span, int depth, double rival,
+  // The halves as a scratch mesh of `parent`, built until they lose to `rival`; `floor`: what the
+  // group adds to an outer candidate when they lose (Bound).
+  Halves build_halves(const Level& lower, const Level& upper, Span span, int depth, double rival, double floor,
                       const SlabMesh& parent) {
     Halves h;
     h.mesh = parent.scratch();
@@ -526,13 +556,22 @@ class SlabTiler {
     const std::vector<std::size_t> chosen = span.interpolation->select(tm, lower, upper);
     if (!chosen.empty()) {
       const Level middle = span.interpolation->take(tm, chosen, h.mesh);
-      Bound bound(rival);
-      tile(lower, middle, {span.interpolation, span.t0, tm}, depth + 1, true, false, h.mesh, &bound);
-      if (bound.lost(h.mesh)) return h;
-      tile(middle, upper, {span.interpolation, tm, span.t1}, depth + 1, true, false, h.mesh, &bound);
-      if (bound.lost(h.mesh)) return h;
+      Bound bound(rival, floor, active_);
+      Bound* const outer = active_;
+      active_ = &bound;
+      try {
+        tile(lower, middle, {span.interpolation, span.t0, tm}, depth + 1, true, false, h.mesh, &bound);
+        if (!bound.lost(h.mesh)) {
+          tile(middle, upper, {span.interpolation, tm, span.t1}, depth + 1, true, false, h.mesh, &bound);
+          h.won = !bound.lost(h.mesh);
+        }
+      } catch (const Bound::Abandoned& abandoned) {
+        active_ = outer;
+        if (abandoned.bound != &bound) throw;
+        return h;
+      }
+      active_ = outer;
       h.defects = bound.defects();
-      h.won = true;
     }
     return h;
   }
@@ -540,8 +579,8 @@ class SlabTiler {
   // Tiles lower -> mid-level -> upper into `out` and returns true when that leaves less poorly shaped
   // area than `rival`; otherwise adds nothing.
   bool try_halves(const Level& lower, const Level& upper, Span span, int depth, const TilingDefects& rival,
-                  SlabMesh& out) {
-    Halves h = build_halves(lower, upper, span, depth, rival.score(), out);
+                  double floor, SlabMesh& out) {
+    Halves h = build_halves(lower, upper, span, depth, rival.score(), floor, out);
     if (h.won) {
       out.absorb(std::move(h.mesh));
       return true;
@@ -551,6 +590,8 @@ class SlabTiler {
   }
 
   const TilingOptions& options_;
+  // The innermost candidate being built whose pieces count towards the outer ones (Bound).
+  Bound* active_ = nullptr;
 };
 
 }  // namespace

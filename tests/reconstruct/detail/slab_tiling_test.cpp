@@ -116,5 +116,37 @@ TEST(SlabTiling, IntermediateContoursOfABranchLieBetweenTheSlices) {
   }
 }
 
+TEST(SlabTiling, DefectsMeasuredAsFacesAreAppendedAreThoseOfTheWholeMesh) {
+  // The halves of a branching slab are given up once their flat and sliver area, measured as faces are
+  // appended, reaches their rival's: the running measure must be the whole mesh's, bit for bit.
+  test::TestStack stack;
+  const Level lower{0.0, {stack.contour(circle_points(0, 0, 10, 64), 0.0)}};
+  const Level upper{2.0,
+                    {stack.contour(circle_points(-7, 0, 4.5, 32), 2.0),
+                     stack.contour(circle_points(7, 0, 4.5, 32), 2.0)}};
+  SlabMesh slab = stack.slab();
+  tile_slab(lower, upper, TilingOptions{}, slab);
+  ASSERT_GT(slab.triangles.size(), 10u);
+  const TilingDefects whole = measure_defects(slab);
+  ASSERT_GT(whole.score(), 0.0);
+  for (const std::size_t split : {std::size_t{0}, slab.triangles.size() / 3, slab.triangles.size()}) {
+    SlabMesh part = stack.slab();
+    part.vertices = slab.vertices;
+    part.triangles.assign(slab.triangles.begin(), slab.triangles.begin() + static_cast<std::ptrdiff_t>(split));
+    part.roles.assign(slab.roles.begin(), slab.roles.begin() + static_cast<std::ptrdiff_t>(split));
+    TilingDefects running;
+    measure_more_defects(part, 0, running);
+    part.triangles = slab.triangles;
+    part.roles = slab.roles;
+    measure_more_defects(part, split, running);
+    EXPECT_EQ(running.area, whole.area) << split;
+    EXPECT_EQ(running.flat_area, whole.flat_area) << split;
+    EXPECT_EQ(running.sliver_area, whole.sliver_area) << split;
+    EXPECT_EQ(running.poor_area, whole.poor_area) << split;
+    EXPECT_EQ(running.bridge_area, whole.bridge_area) << split;
+    EXPECT_EQ(running.longest_edge, whole.longest_edge) << split;
+  }
+}
+
 }  // namespace
 }  // namespace contourmesh::detail
