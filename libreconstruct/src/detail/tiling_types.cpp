@@ -68,27 +68,39 @@ void SlabMesh::absorb(SlabMesh&& child) {
   stats += child.stats;
 }
 
-bool is_sliver(const Eigen::Vector3d& a, const Eigen::Vector3d& b, const Eigen::Vector3d& c) {
+namespace {
+
+const double kCos10 = std::cos(10.0 * std::numbers::pi / 180.0);
+const double kCos10Squared = kCos10 * kCos10;
+
+// is_sliver from the triangle's edges ab = b - a, bc = c - b, ca = a - c and their squared lengths.
+bool sliver_of_edges(const Eigen::Vector3d& ab, const Eigen::Vector3d& bc, const Eigen::Vector3d& ca, double lab,
+                     double lbc, double lca) {
   // The smallest angle is opposite the shortest edge; it is under 10 degrees when its cosine, from the
   // other two edges, exceeds cos 10 degrees. Degenerate triangles are slivers.
-  static const double cos10 = std::cos(10.0 * std::numbers::pi / 180.0);
-  const Eigen::Vector3d ab = b - a, bc = c - b, ca = a - c;
-  const double lab = ab.squaredNorm(), lbc = bc.squaredNorm(), lca = ca.squaredNorm();
-  Eigen::Vector3d u, v;  // the two edges leaving the corner opposite the shortest edge
+  double d, uu, vv;  // the two edges leaving the corner opposite the shortest edge: their dot product and lengths
   if (lab <= lbc && lab <= lca) {
-    u = -bc;  // corner c: c -> b and c -> a
-    v = ca;
+    d = -bc.dot(ca);  // corner c: c -> b and c -> a
+    uu = lbc;
+    vv = lca;
   } else if (lbc <= lca) {
-    u = -ca;  // corner a: a -> c and a -> b
-    v = ab;
+    d = -ca.dot(ab);  // corner a: a -> c and a -> b
+    uu = lca;
+    vv = lab;
   } else {
-    u = -ab;  // corner b: b -> a and b -> c
-    v = bc;
+    d = -ab.dot(bc);  // corner b: b -> a and b -> c
+    uu = lab;
+    vv = lbc;
   }
-  const double uu = u.squaredNorm(), vv = v.squaredNorm();
   if (uu == 0.0 || vv == 0.0) return true;
-  const double d = u.dot(v);
-  return d > 0.0 && d * d > cos10 * cos10 * uu * vv;
+  return d > 0.0 && d * d > kCos10Squared * uu * vv;
+}
+
+}  // namespace
+
+bool is_sliver(const Eigen::Vector3d& a, const Eigen::Vector3d& b, const Eigen::Vector3d& c) {
+  const Eigen::Vector3d ab = b - a, bc = c - b, ca = a - c;
+  return sliver_of_edges(ab, bc, ca, ab.squaredNorm(), bc.squaredNorm(), ca.squaredNorm());
 }
 
 TilingDefects measure_defects(const SlabMesh& mesh) {
@@ -99,23 +111,27 @@ TilingDefects measure_defects(const SlabMesh& mesh) {
 
 void measure_more_defects(const SlabMesh& mesh, std::size_t first_face, TilingDefects& d) {
   const double cos_flat = std::cos(10.0 * std::numbers::pi / 180.0);
+  double longest2 = 0.0;  // the longest edge's squared length: its root is the longest length
   for (std::size_t f = first_face; f < mesh.triangles.size(); ++f) {
     const Triangle& t = mesh.triangles[f];
     const Eigen::Vector3d a = mesh.judged_position(t[0]), b = mesh.judged_position(t[1]),
                           c = mesh.judged_position(t[2]);
-    const Eigen::Vector3d n = (b - a).cross(c - a);
-    d.longest_edge = std::max({d.longest_edge, (b - a).norm(), (c - b).norm(), (a - c).norm()});
+    const Eigen::Vector3d ab = b - a, bc = c - b, ca = a - c;
+    const double lab = ab.squaredNorm(), lbc = bc.squaredNorm(), lca = ca.squaredNorm();
+    longest2 = std::max({longest2, lab, lbc, lca});
+    const Eigen::Vector3d n = ab.cross(c - a);
     const double twice = n.norm();
     if (twice == 0.0) continue;
     const double area = 0.5 * twice;
     d.area += area;
     const bool flat = mesh.roles[f] != FaceRole::Cap && std::abs(n.z()) >= cos_flat * twice;
-    const bool sliver = is_sliver(a, b, c);
+    const bool sliver = sliver_of_edges(ab, bc, ca, lab, lbc, lca);
     if (flat) d.flat_area += area;
     if (sliver) d.sliver_area += area;
     if (flat || sliver) d.poor_area += area;
     if (mesh.roles[f] == FaceRole::Bridge) d.bridge_area += area;
   }
+  d.longest_edge = std::max(d.longest_edge, std::sqrt(longest2));
 }
 
 }  // namespace contourmesh::detail
