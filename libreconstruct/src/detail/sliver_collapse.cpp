@@ -103,16 +103,23 @@ class Collapser {
   }
   [[nodiscard]] bool removable(int v) const { return fixed_[static_cast<std::size_t>(v)] == 0; }
 
+  // The smallest angle (degrees) of the faces around v.
+  [[nodiscard]] double smallest_angle_around(int v) const {
+    double smallest = 180.0;
+    for (int f : around_[static_cast<std::size_t>(v)]) smallest = std::min(smallest, min_angle(f));
+    return smallest;
+  }
+
   // The smallest angle (degrees) of the faces around `gone` after it moves onto `kept`, or -1 when the
-  // collapse is not allowed. `gone_ring`: ring(gone). The geometric tests come first: they are cheap and
-  // turn most candidates down.
-  [[nodiscard]] double try_collapse(int gone, const std::vector<int>& gone_ring, int kept, double max_length,
-                                    double max_deviation) const {
+  // collapse is not allowed. `gone_ring`: ring(gone); `before`: smallest_angle_around(gone). The
+  // geometric tests come first: they are cheap and turn most candidates down; the angles (two arc
+  // tangents each) only when they pass.
+  [[nodiscard]] double try_collapse(int gone, const std::vector<int>& gone_ring, double before, int kept,
+                                    double max_length, double max_deviation) const {
     if (fixed_[static_cast<std::size_t>(gone)] || !complete_[static_cast<std::size_t>(kept)] ||
         (pos(kept) - pos(gone)).norm() > max_length) {
       return -1.0;
     }
-    double before = 180.0, after = 180.0;
     double flat_before = 0.0, flat_after = 0.0;  // twice the area within 10 degrees of the slice planes
     std::array<int, 2> opposite{-1, -1};
     int shared = 0;  // faces that hold the edge
@@ -120,7 +127,6 @@ class Collapser {
     for (int f : around_[static_cast<std::size_t>(gone)]) {
       const auto& t = faces_[static_cast<std::size_t>(f)];
       std::array<Eigen::Vector3d, 3> p{pos(t[0]), pos(t[1]), pos(t[2])};
-      before = std::min(before, minimum_angle_degrees(p[0], p[1], p[2]));
       const Eigen::Vector3d n0 = (p[1] - p[0]).cross(p[2] - p[0]);
       const double n0n = n0.norm();
       if (std::abs(n0.z()) >= kFlatCosine * n0n) flat_before += n0n;
@@ -143,10 +149,20 @@ class Collapser {
       // ... and the vertex that goes lies near the plane of every new face.
       if (std::abs(n1.dot(from - p[0])) > max_deviation * n1n) return -1.0;
       if (std::abs(n1.z()) >= kFlatCosine * n1n) flat_after += n1n;
-      after = std::min(after, minimum_angle_degrees(p[0], p[1], p[2]));
     }
     // A collapse adds no area lying nearly in the slice planes (a shelf), and raises the smallest angle.
-    if (flat_after > flat_before || !(after > before)) return -1.0;
+    if (flat_after > flat_before) return -1.0;
+    double after = 180.0;
+    for (int f : around_[static_cast<std::size_t>(gone)]) {
+      const auto& t = faces_[static_cast<std::size_t>(f)];
+      if (std::find(t.begin(), t.end(), kept) != t.end()) continue;
+      std::array<Eigen::Vector3d, 3> p{pos(t[0]), pos(t[1]), pos(t[2])};
+      for (int k = 0; k < 3; ++k) {
+        if (t[k] == gone) p[k] = pos(kept);
+      }
+      after = std::min(after, minimum_angle_degrees(p[0], p[1], p[2]));
+    }
+    if (!(after > before)) return -1.0;
     // Exactly two faces hold the edge, and its ends share no neighbour but their third corners (the link
     // condition).
     if (shared != 2 || opposite[0] == opposite[1]) return -1.0;
@@ -298,8 +314,9 @@ std::size_t collapse_slivers(SlabMesh& mesh, double max_length, double max_devia
       for (int gone : c.face(f)) {
         if (!c.removable(gone)) continue;
         const std::vector<int> ring = c.ring(gone);
+        const double before = c.smallest_angle_around(gone);
         for (int kept : ring) {
-          const double after = c.try_collapse(gone, ring, kept, max_length, max_deviation);
+          const double after = c.try_collapse(gone, ring, before, kept, max_length, max_deviation);
           if (after > best) {
             best = after;
             best_gone = gone;
