@@ -202,16 +202,17 @@ Polygon sheared(const Polygon& points, double w, const Eigen::Vector2d& shear) {
   return out;
 }
 
-// A candidate tiling built against a rival it must beat: its flat and sliver area so far, measured as
-// faces are appended to its mesh. Faces only add to that area, so once it reaches the rival's the
+// A candidate tiling built against a rival it must beat (the halves of a slab against its composite or
+// lifted transition, a refined band against the direct one): its flat and sliver area so far, measured
+// as faces are appended to its mesh. Faces only add to that area, so once it reaches the rival's the
 // candidate has lost, and the rest of it need not be built (branch and bound).
 //
-// Candidates nest: the halves of a slab hold pieces whose own halves are being built. A nested piece adds
-// to the outer candidate at least the lesser of its halves' area so far and `floor`, what it adds when
-// they lose (the best of its other candidates), so its faces count towards the outer bounds too: when an
-// outer candidate has lost, the nested work is abandoned up to it (Abandoned). The one exception is a
-// nested piece that would part (try_parting), whose caps can add less: the outer candidate is given up
-// all the same. On the real scans and the phantoms the meshes are those of building every candidate whole.
+// Candidates nest: the halves of a slab hold pieces whose own candidates are being built. A nested
+// candidate adds to the outer one at least the lesser of its area so far and `floor`, what its piece adds
+// when it loses (the best of its rivals), so its faces count towards the outer bounds too: when an outer
+// candidate has lost, the nested work is abandoned up to it (Abandoned). The one exception is a nested
+// piece that would part (try_parting), whose caps can add less: the outer candidate is given up all the
+// same. On the real scans and the phantoms the meshes are those of building every candidate whole.
 class Bound {
  public:
   Bound(double rival, double floor, Bound* outer) : rival_(rival), floor_(floor), outer_(outer) {}
@@ -244,6 +245,19 @@ class Bound {
   Bound* outer_;
   TilingDefects so_far_;
   std::size_t measured_ = 0;
+};
+
+// Makes `bound` the innermost candidate being built (SlabTiler::active_) for its lifetime.
+class Candidate {
+ public:
+  Candidate(Bound*& active, Bound& bound) : active_(active), outer_(active) { active_ = &bound; }
+  ~Candidate() { active_ = outer_; }
+  Candidate(const Candidate&) = delete;
+  Candidate& operator=(const Candidate&) = delete;
+
+ private:
+  Bound*& active_;
+  Bound* outer_;
 };
 
 class SlabTiler {
@@ -363,8 +377,7 @@ class SlabTiler {
       std::unique_ptr<Interpolation> owned;
       const Span s = with_interpolation(lo, hi, span, owned);
       const Interpolation::Claims before = s.interpolation->claims();
-      if (refine_band(lo, hi, s, steps, depth, refined) &&
-          measure_defects(refined).score() < measure_defects(direct).score()) {
+      if (refine_band(lo, hi, s, steps, depth, measure_defects(direct).score(), refined)) {
         if (top) ++refined.stats.refined_bands;
         out.absorb(std::move(refined));
         return;
@@ -374,17 +387,23 @@ class SlabTiler {
     out.absorb(std::move(direct));
   }
 
-  // Tiles lower -> upper through `steps` - 1 intermediate levels; false when an intermediate level
-  // cannot be made.
-  bool refine_band(const Level& lower, const Level& upper, Span span, int steps, int depth, SlabMesh& out) {
-    // The refinement may be dropped for the direct band: its pieces count towards no outer candidate.
-    Bound* const outer = active_;
-    active_ = nullptr;
-    struct Restore {
-      Bound*& active;
-      Bound* outer;
-      ~Restore() { active = outer; }
-    } restore{active_, outer};
+  // Tiles lower -> upper through `steps` - 1 intermediate levels into `out` and returns true when that
+  // leaves less flat and sliver area than `rival`, the direct band's (given up as soon as it cannot:
+  // Bound); false also when an intermediate level cannot be made.
+  bool refine_band(const Level& lower, const Level& upper, Span span, int steps, int depth, double rival,
+                   SlabMesh& out) {
+    Bound bound(rival, rival, active_);
+    const Candidate candidate(active_, bound);
+    try {
+      return refine_through(lower, upper, span, steps, depth, bound, out);
+    } catch (const Bound::Abandoned& abandoned) {
+      if (abandoned.bound != &bound) throw;
+      return false;
+    }
+  }
+
+  bool refine_through(const Level& lower, const Level& upper, Span span, int steps, int depth, Bound& bound,
+                      SlabMesh& out) {
     std::vector<double> ts;
     std::vector<std::vector<std::size_t>> chosen;
     for (int k = 1; k < steps; ++k) {
@@ -396,12 +415,13 @@ class SlabTiler {
     double t_previous = span.t0;
     for (std::size_t k = 0; k < ts.size(); ++k) {
       Level next = span.interpolation->take(ts[k], chosen[k], out);
-      tile(previous, next, {span.interpolation, t_previous, ts[k]}, depth, false, false, out);
+      tile(previous, next, {span.interpolation, t_previous, ts[k]}, depth, false, false, out, &bound);
+      if (bound.lost(out)) return false;
       previous = std::move(next);
       t_previous = ts[k];
     }
-    tile(previous, upper, {span.interpolation, t_previous, span.t1}, depth, false, false, out);
-    return true;
+    tile(previous, upper, {span.interpolation, t_previous, span.t1}, depth, false, false, out, &bound);
+    return !bound.lost(out);
   }
 
   static bool wants_halves(const TilingDefects& d) {
@@ -557,8 +577,7 @@ class SlabTiler {
     if (!chosen.empty()) {
       const Level middle = span.interpolation->take(tm, chosen, h.mesh);
       Bound bound(rival, floor, active_);
-      Bound* const outer = active_;
-      active_ = &bound;
+      const Candidate candidate(active_, bound);
       try {
         tile(lower, middle, {span.interpolation, span.t0, tm}, depth + 1, true, false, h.mesh, &bound);
         if (!bound.lost(h.mesh)) {
@@ -566,11 +585,9 @@ class SlabTiler {
           h.won = !bound.lost(h.mesh);
         }
       } catch (const Bound::Abandoned& abandoned) {
-        active_ = outer;
         if (abandoned.bound != &bound) throw;
         return h;
       }
-      active_ = outer;
       h.defects = bound.defects();
     }
     return h;

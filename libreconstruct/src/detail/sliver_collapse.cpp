@@ -6,6 +6,7 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <limits>
 #include <numbers>
 #include <utility>
 #include <vector>
@@ -111,10 +112,10 @@ class Collapser {
   }
 
   // The smallest angle (degrees) of the faces around `gone` after it moves onto `kept`, or -1 when the
-  // collapse is not allowed. `gone_ring`: ring(gone); `before`: smallest_angle_around(gone). The
-  // geometric tests come first: they are cheap and turn most candidates down; the angles (two arc
-  // tangents each) only when they pass.
-  [[nodiscard]] double try_collapse(int gone, const std::vector<int>& gone_ring, double before, int kept,
+  // collapse is not allowed. `gone_ring`: ring(gone); `before`: smallest_angle_around(gone), or NaN
+  // until a candidate needs it (then set). The geometric tests come first: they are cheap and turn most
+  // candidates down; the angles (two arc tangents each) only when they pass.
+  [[nodiscard]] double try_collapse(int gone, const std::vector<int>& gone_ring, double& before, int kept,
                                     double max_length, double max_deviation) const {
     if (fixed_[static_cast<std::size_t>(gone)] || !complete_[static_cast<std::size_t>(kept)] ||
         (pos(kept) - pos(gone)).norm() > max_length) {
@@ -152,6 +153,7 @@ class Collapser {
     }
     // A collapse adds no area lying nearly in the slice planes (a shelf), and raises the smallest angle.
     if (flat_after > flat_before) return -1.0;
+    if (std::isnan(before)) before = smallest_angle_around(gone);
     double after = 180.0;
     for (int f : around_[static_cast<std::size_t>(gone)]) {
       const auto& t = faces_[static_cast<std::size_t>(f)];
@@ -314,7 +316,7 @@ std::size_t collapse_slivers(SlabMesh& mesh, double max_length, double max_devia
       for (int gone : c.face(f)) {
         if (!c.removable(gone)) continue;
         const std::vector<int> ring = c.ring(gone);
-        const double before = c.smallest_angle_around(gone);
+        double before = std::numeric_limits<double>::quiet_NaN();  // smallest_angle_around(gone), when needed
         for (int kept : ring) {
           const double after = c.try_collapse(gone, ring, before, kept, max_length, max_deviation);
           if (after > best) {
