@@ -217,7 +217,8 @@ class Bound {
  public:
   Bound(double rival, double floor, Bound* outer) : rival_(rival), floor_(floor), outer_(outer) {}
 
-  // Thrown by lost() to abandon every candidate up to the outer `bound`, which has lost.
+  // Thrown by lost() to abandon every candidate up to the outer `bound`, which has lost; caught there
+  // (build_halves, refine_band), it never leaves the tiler.
   struct Abandoned {
     const Bound* bound;
   };
