@@ -138,8 +138,9 @@ void composite_band(const DeferredBand& d, const TilingOptions& options, SlabMes
 constexpr double kOverHoleCap = 0.25;
 
 void tile_composite(const Level& lower, const Level& upper, const TilingOptions& options, SlabMesh& out,
-                    std::vector<DeferredBand>* deferred) {
-  const Correspondence links = correspond(lower, upper, options);
+                    std::vector<DeferredBand>* deferred, const Correspondence* given) {
+  std::optional<Correspondence> computed;
+  const Correspondence& links = given ? *given : computed.emplace(correspond(lower, upper, options));
   const std::size_t na = lower.contours.size(), nb = upper.contours.size();
   const double w0 = lower.w, w1 = upper.w;
   const double extension = options.end_caps == EndCaps::HalfSpacing ? 0.5 * (w1 - w0) : 0.0;

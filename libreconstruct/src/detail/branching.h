@@ -3,6 +3,7 @@
 // at the finest level of interpolation (or every one, with Branching::MidPlaneComposite).
 #pragma once
 
+#include "detail/correspondence.h"
 #include "detail/tiling_types.h"
 
 #include <cstddef>
@@ -26,8 +27,10 @@ namespace contourmesh::detail {
 ///
 /// With `deferred`, the bands that join a composite contour to the other side (the costly part: rings of
 /// all of a side's contours) are not solved but listed there; every other face is added. The faces
-/// added so far then have the composite's bridge area, and a lower bound of its flat and sliver area,
-/// so that a caller can decide whether it needs the composite at all before finish_composite.
+/// added so far then have the composite's bridge area and most of its flat and sliver area (the bands
+/// add faces; a crossing band also splits some, so it is no lower bound), so that a caller can often
+/// decide whether it needs the composite at all before finish_composite. `links`: the levels'
+/// correspondence when the caller has it (restrict_correspondence), else it is computed.
 struct DeferredBand {
   LevelContour lower, upper;
   double wl = 0.0, wu = 0.0;
@@ -35,7 +38,7 @@ struct DeferredBand {
   bool lower_composite = false, upper_composite = false;  ///< which rings are composites
 };
 void tile_composite(const Level& lower, const Level& upper, const TilingOptions& options, SlabMesh& out,
-                    std::vector<DeferredBand>* deferred = nullptr);
+                    std::vector<DeferredBand>* deferred = nullptr, const Correspondence* links = nullptr);
 
 /// Solves the bands tile_composite deferred into `out` and inserts their faces where it would have
 /// added them (a crossing band's faces are appended): the mesh is then the one tile_composite makes

@@ -126,6 +126,36 @@ std::vector<ContourGroup> contour_groups(const Level& lower, const Level& upper,
   return groups;
 }
 
+Correspondence restrict_correspondence(const Correspondence& links, const ContourGroup& group) {
+  auto numbering = [](const std::vector<int>& members, std::size_t size) {
+    std::vector<int> to(size, -1);
+    for (std::size_t k = 0; k < members.size(); ++k) to[static_cast<std::size_t>(members[k])] = static_cast<int>(k);
+    return to;
+  };
+  const std::vector<int> lower = numbering(group.lower, links.up.size());
+  const std::vector<int> upper = numbering(group.upper, links.down.size());
+  auto renumbered = [](const std::vector<int>& partners, const std::vector<int>& to) {
+    std::vector<int> out;
+    out.reserve(partners.size());
+    for (int p : partners) out.push_back(to[static_cast<std::size_t>(p)]);
+    return out;
+  };
+  Correspondence r;
+  for (int i : group.lower) {
+    const auto k = static_cast<std::size_t>(i);
+    r.up.push_back(renumbered(links.up[k], upper));
+    r.opens_up.push_back(links.opens_up[k]);
+    r.over_hole_up.push_back(links.over_hole_up[k]);
+  }
+  for (int j : group.upper) {
+    const auto k = static_cast<std::size_t>(j);
+    r.down.push_back(renumbered(links.down[k], lower));
+    r.opens_down.push_back(links.opens_down[k]);
+    r.over_hole_down.push_back(links.over_hole_down[k]);
+  }
+  return r;
+}
+
 GroupChange classify_group(const ContourGroup& group, const Level& lower, const Level& upper,
                            const Correspondence& links, std::vector<std::pair<int, int>>* pairs) {
   if (group.upper.empty()) return GroupChange::EndsAbove;

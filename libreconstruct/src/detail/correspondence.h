@@ -45,6 +45,11 @@ struct ContourGroup {
 [[nodiscard]] std::vector<ContourGroup> contour_groups(const Level& lower, const Level& upper,
                                                        const Correspondence& links);
 
+/// `links` among the contours of `group` only, numbered as restrict_level numbers them: what correspond
+/// gives for the two restricted levels (a group holds every contour its contours' links and the
+/// coverage of its holes read), without computing the overlaps again.
+[[nodiscard]] Correspondence restrict_correspondence(const Correspondence& links, const ContourGroup& group);
+
 /// How a group passes from one level to the other.
 enum class GroupChange {
   EndsAbove,   ///< no upper contour: the lower contours are capped

@@ -286,7 +286,8 @@ class SlabTiler {
           break;
         case GroupChange::Topology:
           if (top) ++out.stats.branchings;
-          topology_change(restrict_level(lower, group.lower), restrict_level(upper, group.upper), span, depth, out);
+          topology_change(restrict_level(lower, group.lower), restrict_level(upper, group.upper),
+                          restrict_correspondence(links, group), span, depth, out);
           break;
       }
       if (bound && bound->lost(out)) return;
@@ -439,11 +440,12 @@ class SlabTiler {
   // without them the composite already has its bridges and most of its flat and sliver area, which is
   // often enough to know that the lifted transition beats it. The halves, the costliest candidate, are
   // built last, against the best of the others, and given up as soon as they cannot win (Bound).
-  void topology_change(const Level& lower, const Level& upper, Span span, int depth, SlabMesh& out) {
+  void topology_change(const Level& lower, const Level& upper, const Correspondence& links, Span span, int depth,
+                       SlabMesh& out) {
     const bool may_halve = options_.branching == Branching::Interpolated && depth < options_.max_branching_depth;
     SlabMesh composite = out.scratch();
     std::vector<DeferredBand> pending;
-    tile_composite(lower, upper, options_, composite, may_halve ? &pending : nullptr);
+    tile_composite(lower, upper, options_, composite, may_halve ? &pending : nullptr, &links);
     const TilingDefects partial = measure_defects(composite);
     if (pending.empty() || partial.poor_area <= 0.0) {
       finish_composite(pending, options_, composite);

@@ -81,6 +81,38 @@ TEST(Correspondence, AHoleOpensWhereTheOtherLevelHasNoWallAndEndsWhereItIsCovere
   EXPECT_EQ(classify_group(contour_groups(ring, disc, covered)[0], ring, disc, covered), GroupChange::Topology);
 }
 
+TEST(Correspondence, AGroupsRestrictedLinksAreThoseOfItsRestrictedLevels) {
+  // Two pieces: a far disc, and a tube whose hole opens under two arcs of its wall. The tube's group,
+  // taken out of the links of both, is what correspond finds for its contours alone.
+  test::TestStack stack;
+  Level lower{0.0,
+              {stack.contour(circle_points(60, 0, 5, 30), 0.0), stack.contour(circle_points(0, 0, 12, 80), 0.0),
+               stack.contour(circle_points(0, 0, 8, 60, true), 0.0, true, 1)}};
+  Level upper{2.0,
+              {stack.contour(arc_points(0.3, 2.84, 8, 12, 30), 2.0), stack.contour(circle_points(61, 0, 5, 30), 2.0),
+               stack.contour(arc_points(3.44, 5.98, 8, 12, 30), 2.0)}};
+  const Correspondence all = correspond(lower, upper, 0.05, 0.01);
+  const auto groups = contour_groups(lower, upper, all);
+  ASSERT_EQ(groups.size(), 2u);
+  for (const ContourGroup& group : groups) {
+    const Correspondence restricted = restrict_correspondence(all, group);
+    const Correspondence direct =
+        correspond(restrict_level(lower, group.lower), restrict_level(upper, group.upper), 0.05, 0.01);
+    EXPECT_EQ(restricted.up, direct.up);
+    EXPECT_EQ(restricted.down, direct.down);
+    EXPECT_EQ(restricted.opens_up, direct.opens_up);
+    EXPECT_EQ(restricted.opens_down, direct.opens_down);
+    EXPECT_EQ(restricted.over_hole_up, direct.over_hole_up);
+    EXPECT_EQ(restricted.over_hole_down, direct.over_hole_down);
+  }
+  // The tube's group renumbers its contours: its hole (lower 2) becomes 1, and it opens.
+  const ContourGroup& tube = groups[0].lower.front() == 1 ? groups[0] : groups[1];
+  const Correspondence t = restrict_correspondence(all, tube);
+  ASSERT_EQ(t.up.size(), 2u);
+  EXPECT_EQ(t.up[0], (std::vector<int>{0, 1}));
+  EXPECT_TRUE(t.opens_up[1]);
+}
+
 // A pocket in a wide wall whose region lies, on the other level, inside the wall's large cavity (a diploe
 // cavity over the cranial cavity where the skull's roof is nearly flat): it opens, but over a hole.
 TEST(Correspondence, APocketOverTheOtherLevelsCavityOpensOverAHole) {
