@@ -346,15 +346,22 @@ class SlabTiler {
       twisted = twisted || pair_twisted;
     }
     if (top) direct.stats.one_to_one += pairs.size();
+    // The direct tiling's defects, measured once when first needed.
+    std::optional<TilingDefects> direct_defects;
+    auto direct_measure = [&]() -> const TilingDefects& {
+      if (!direct_defects) direct_defects = measure_defects(direct);
+      return *direct_defects;
+    };
     if (options_.band_refinement == BandRefinement::Interpolated &&
         quality.sliver_share() > options_.max_band_sliver_share) {
       // A nearly flat band between nested contours: the lifted triangulation of the region between.
       SlabMesh lifted = out.scratch();
       if (lifted_transition(restrict_level(lower, group.lower), restrict_level(upper, group.upper), lifted) &&
-          measure_defects(lifted).score() < measure_defects(direct).score()) {
+          measure_defects(lifted).score() < direct_measure().score()) {
         if (top) lifted.stats.one_to_one += pairs.size();
         direct = std::move(lifted);
-        const TilingDefects d = measure_defects(direct);
+        direct_defects.reset();
+        const TilingDefects& d = direct_measure();
         quality.area = d.area;
         quality.sliver_area = d.sliver_area;
         twisted = false;
@@ -364,8 +371,8 @@ class SlabTiler {
       // A topology change in disguise: the halves through the mid-level, if they do better.
       const Level lo = restrict_level(lower, group.lower), hi = restrict_level(upper, group.upper);
       if (top) ++direct.stats.branchings;
-      if (try_halves(lo, hi, span, depth, measure_defects(direct), 0.0, out)) return;
-      if (try_parting(lo, hi, measure_defects(direct), out)) return;
+      if (try_halves(lo, hi, span, depth, direct_measure(), 0.0, out)) return;
+      if (try_parting(lo, hi, direct_measure(), out)) return;
     }
     if (refine && options_.band_refinement == BandRefinement::Interpolated &&
         quality.sliver_share() > options_.max_band_sliver_share) {
@@ -379,7 +386,7 @@ class SlabTiler {
       std::unique_ptr<Interpolation> owned;
       const Span s = with_interpolation(lo, hi, span, owned);
       const Interpolation::Claims before = s.interpolation->claims();
-      if (refine_band(lo, hi, s, steps, depth, measure_defects(direct).score(), refined)) {
+      if (refine_band(lo, hi, s, steps, depth, direct_measure().score(), refined)) {
         if (top) ++refined.stats.refined_bands;
         out.absorb(std::move(refined));
         return;
@@ -447,7 +454,11 @@ class SlabTiler {
     std::vector<DeferredBand> pending;
     tile_composite(lower, upper, options_, composite, may_halve ? &pending : nullptr, &links);
     const TilingDefects partial = measure_defects(composite);
-    if (pending.empty() || partial.poor_area <= 0.0) {
+    if (pending.empty()) {  // nothing deferred: the composite is complete
+      settle_composite(lower, upper, span, depth, std::move(composite), partial, out);
+      return;
+    }
+    if (partial.poor_area <= 0.0) {
       finish_composite(pending, options_, composite);
       settle_composite(lower, upper, span, depth, std::move(composite), measure_defects(composite), out);
       return;
