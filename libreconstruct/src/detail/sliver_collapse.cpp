@@ -36,6 +36,15 @@ class Collapser {
     }
     std::sort(contour_refs_.begin(), contour_refs_.end());
     contour_refs_.erase(std::unique(contour_refs_.begin(), contour_refs_.end()), contour_refs_.end());
+    // A slab's contour vertices are numbered slice by slice: their refs span a range little wider than
+    // their count, where each one's rank is a table look-up.
+    if (!contour_refs_.empty() &&
+        static_cast<std::size_t>(contour_refs_.back() - contour_refs_.front()) < 4 * contour_refs_.size() + 64) {
+      rank_.assign(static_cast<std::size_t>(contour_refs_.back() - contour_refs_.front()) + 1, -1);
+      for (std::size_t k = 0; k < contour_refs_.size(); ++k) {
+        rank_[static_cast<std::size_t>(contour_refs_[k] - contour_refs_.front())] = static_cast<int>(k);
+      }
+    }
     const std::size_t n = locals_ + contour_refs_.size();
     positions_.resize(n);
     for (std::size_t v = 0; v < n; ++v) positions_[v] = mesh.position(ref(static_cast<int>(v)));
@@ -54,15 +63,24 @@ class Collapser {
         for (int v : t) complete_[static_cast<std::size_t>(v)] = 1;
       }
     }
-    around_.resize(n);
     for (std::size_t f = 0; f < faces_.size(); ++f) {
       const auto& t = faces_[f];
-      if (!complete_[static_cast<std::size_t>(t[0])] && !complete_[static_cast<std::size_t>(t[1])] &&
-          !complete_[static_cast<std::size_t>(t[2])]) {
-        continue;
+      if (complete_[static_cast<std::size_t>(t[0])] || complete_[static_cast<std::size_t>(t[1])] ||
+          complete_[static_cast<std::size_t>(t[2])]) {
+        patch_.push_back(static_cast<int>(f));
       }
-      patch_.push_back(static_cast<int>(f));
-      for (int v : t) around_[static_cast<std::size_t>(v)].push_back(static_cast<int>(f));
+    }
+    // Each vertex's faces, each list allocated once at its size.
+    std::vector<int> degree(n, 0);
+    for (int f : patch_) {
+      for (int v : faces_[static_cast<std::size_t>(f)]) ++degree[static_cast<std::size_t>(v)];
+    }
+    around_.resize(n);
+    for (std::size_t v = 0; v < n; ++v) {
+      if (degree[v] > 0) around_[v].reserve(static_cast<std::size_t>(degree[v]));
+    }
+    for (int f : patch_) {
+      for (int v : faces_[static_cast<std::size_t>(f)]) around_[static_cast<std::size_t>(v)].push_back(f);
     }
     // Contour vertices, vertices on the slab's boundary (an edge with one face, or more than two), the
     // corners of caps and the patch's incomplete vertices never go.
@@ -263,6 +281,9 @@ class Collapser {
 
   [[nodiscard]] int compact(VertexRef r) const {
     if (is_local(r)) return static_cast<int>(local_index(r));
+    if (!rank_.empty()) {
+      return static_cast<int>(locals_) + rank_[static_cast<std::size_t>(r - contour_refs_.front())];
+    }
     const auto it = std::lower_bound(contour_refs_.begin(), contour_refs_.end(), r);
     return static_cast<int>(locals_ + static_cast<std::size_t>(it - contour_refs_.begin()));
   }
@@ -276,6 +297,7 @@ class Collapser {
   SlabMesh& mesh_;
   std::size_t locals_;
   std::vector<VertexRef> contour_refs_;  // sorted
+  std::vector<int> rank_;  // where their span is narrow: rank_[r - contour_refs_.front()], else empty
   std::vector<Eigen::Vector3d> positions_;
   std::vector<std::array<int, 3>> faces_;
   std::vector<std::uint8_t> alive_;
