@@ -1,6 +1,7 @@
 // SPDX-License-Identifier: BSD-3-Clause
 // Private: the face-shape measure and the angle thresholds shared by the passes that mend slivers (the
-// slab pass after tiling, slab_remeshing.h; the flips after the off-slice heights, moved_face_flips.h).
+// slab pass after tiling, slab_remeshing.h; the flips after the off-slice heights, moved_face_flips.h;
+// the collapses, sliver_collapse.h) and by the tiler's measure of its candidates (measure_defects).
 #pragma once
 
 #include <Eigen/Core>

@@ -1,6 +1,8 @@
 // SPDX-License-Identifier: BSD-3-Clause
 #include "detail/sliver_collapse.h"
 
+#include "detail/face_shape.h"
+
 #include <contourmesh/smooth/mesh_quality.h>
 
 #include <algorithm>
@@ -17,8 +19,6 @@ namespace {
 
 // A face's normal may turn by at most this much in a collapse.
 const double kMaxTurnCosine = std::cos(45.0 * std::numbers::pi / 180.0);
-// Faces whose normal lies within 10 degrees of the slice axis lie nearly in the slice planes.
-const double kFlatCosine = std::cos(10.0 * std::numbers::pi / 180.0);
 
 // The slab's faces over compact vertex numbers (the slab's local vertices first, in order, then the
 // contour vertices its faces use). Only the patch around the slivers takes part: the faces that touch a
@@ -148,7 +148,7 @@ class Collapser {
       std::array<Eigen::Vector3d, 3> p{pos(t[0]), pos(t[1]), pos(t[2])};
       const Eigen::Vector3d n0 = (p[1] - p[0]).cross(p[2] - p[0]);
       const double n0n = n0.norm();
-      if (std::abs(n0.z()) >= kFlatCosine * n0n) flat_before += n0n;
+      if (std::abs(n0.z()) >= kShelfCosine * n0n) flat_before += n0n;
       // The kept vertex lies near the plane of every face the vertex that goes had.
       if (n0n > 0.0 && std::abs(n0.dot(target - p[0])) > max_deviation * n0n) return -1.0;
       if (std::find(t.begin(), t.end(), kept) != t.end()) {
@@ -167,7 +167,7 @@ class Collapser {
       if (!(n1n > 0.0) || n0.dot(n1) < kMaxTurnCosine * n0n * n1n) return -1.0;
       // ... and the vertex that goes lies near the plane of every new face.
       if (std::abs(n1.dot(from - p[0])) > max_deviation * n1n) return -1.0;
-      if (std::abs(n1.z()) >= kFlatCosine * n1n) flat_after += n1n;
+      if (std::abs(n1.z()) >= kShelfCosine * n1n) flat_after += n1n;
     }
     // A collapse adds no area lying nearly in the slice planes (a shelf), and raises the smallest angle.
     if (flat_after > flat_before) return -1.0;

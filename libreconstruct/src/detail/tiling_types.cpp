@@ -1,6 +1,8 @@
 // SPDX-License-Identifier: BSD-3-Clause
 #include "detail/tiling_types.h"
 
+#include "detail/face_shape.h"
+
 #include "contourmesh/reconstruct/contours.h"
 
 #include <contourmesh/smooth/errors.h>
@@ -8,7 +10,6 @@
 
 #include <algorithm>
 #include <cmath>
-#include <numbers>
 #include <string>
 
 namespace contourmesh::detail {
@@ -70,8 +71,7 @@ void SlabMesh::absorb(SlabMesh&& child) {
 
 namespace {
 
-const double kCos10 = std::cos(10.0 * std::numbers::pi / 180.0);
-const double kCos10Squared = kCos10 * kCos10;
+const double kSliverCosineSquared = kSliverCosine * kSliverCosine;
 
 // is_sliver from the triangle's edges ab = b - a, bc = c - b, ca = a - c and their squared lengths.
 bool sliver_of_edges(const Eigen::Vector3d& ab, const Eigen::Vector3d& bc, const Eigen::Vector3d& ca, double lab,
@@ -93,7 +93,7 @@ bool sliver_of_edges(const Eigen::Vector3d& ab, const Eigen::Vector3d& bc, const
     vv = lbc;
   }
   if (uu == 0.0 || vv == 0.0) return true;
-  return d > 0.0 && d * d > kCos10Squared * uu * vv;
+  return d > 0.0 && d * d > kSliverCosineSquared * uu * vv;
 }
 
 }  // namespace
@@ -110,7 +110,6 @@ TilingDefects measure_defects(const SlabMesh& mesh) {
 }
 
 void measure_more_defects(const SlabMesh& mesh, std::size_t first_face, TilingDefects& d) {
-  const double cos_flat = std::cos(10.0 * std::numbers::pi / 180.0);
   double longest2 = 0.0;  // the longest edge's squared length: its root is the longest length
   for (std::size_t f = first_face; f < mesh.triangles.size(); ++f) {
     const Triangle& t = mesh.triangles[f];
@@ -124,7 +123,7 @@ void measure_more_defects(const SlabMesh& mesh, std::size_t first_face, TilingDe
     if (twice == 0.0) continue;
     const double area = 0.5 * twice;
     d.area += area;
-    const bool flat = mesh.roles[f] != FaceRole::Cap && std::abs(n.z()) >= cos_flat * twice;
+    const bool flat = mesh.roles[f] != FaceRole::Cap && std::abs(n.z()) >= kShelfCosine * twice;
     const bool sliver = sliver_of_edges(ab, bc, ca, lab, lbc, lca);
     if (flat) d.flat_area += area;
     if (sliver) d.sliver_area += area;
