@@ -11,8 +11,6 @@
 #include <cstdint>
 #include <deque>
 #include <numbers>
-#include <unordered_map>
-#include <unordered_set>
 #include <vector>
 
 namespace contourmesh::detail {
@@ -275,13 +273,16 @@ class SurfacePatch {
 
  private:
   static std::uint64_t key(int a, int b) { return EdgeMap::key(a, b); }
+  // The compact index of v, numbered in order of first use. A VertexRef is never -1, EdgeMap's one
+  // forbidden key.
   int compact(VertexRef v) {
-    const auto [it, inserted] = index_.emplace(v, static_cast<int>(points_.size()));
-    if (inserted) {
-      points_.push_back(mesh_.position(v));
-      refs_.push_back(v);
-    }
-    return it->second;
+    const auto k = static_cast<std::uint64_t>(v);
+    if (const std::int32_t* i = index_.find(k)) return *i;
+    const int i = static_cast<int>(points_.size());
+    index_.insert(k, i);
+    points_.push_back(mesh_.position(v));
+    refs_.push_back(v);
+    return i;
   }
   [[nodiscard]] int third(int g, int b, int a) const {
     const auto& t = faces_[static_cast<std::size_t>(g)];
@@ -300,7 +301,7 @@ class SurfacePatch {
   }
 
   SlabMesh& mesh_;
-  std::unordered_map<VertexRef, int> index_;
+  EdgeMap index_;  // VertexRef -> compact index (a flat table: no node per vertex)
   std::vector<Eigen::Vector3d> points_;
   std::vector<VertexRef> refs_;
   std::vector<std::array<int, 3>> faces_;
@@ -391,14 +392,17 @@ SlabRemeshing improve_slab_faces(SlabMesh& mesh, double max_deviation, double mi
   if (slivers.empty()) return done;
   // The patch: the faces around the slivers' corners (a fan's faces all share its apex), caps left out
   // (they are planar and triangulated as CapRefinement asks). Its edges to the faces outside stay.
-  std::unordered_set<VertexRef> corners;
-  corners.reserve(3 * slivers.size());
-  for (const int f : slivers) corners.insert(mesh.triangles[static_cast<std::size_t>(f)].begin(),
-                                             mesh.triangles[static_cast<std::size_t>(f)].end());
+  EdgeMap corners(3 * slivers.size());  // the corners as keys (a VertexRef is never -1)
+  for (const int f : slivers) {
+    for (const VertexRef v : mesh.triangles[static_cast<std::size_t>(f)]) {
+      corners.insert(static_cast<std::uint64_t>(v), 0);
+    }
+  }
+  auto corner = [&](VertexRef v) { return corners.contains(static_cast<std::uint64_t>(v)); };
   std::vector<int> which;
   for (std::size_t f = 0; f < mesh.triangles.size(); ++f) {
     const Triangle& t = mesh.triangles[f];
-    if (mesh.roles[f] != FaceRole::Cap && (corners.count(t[0]) || corners.count(t[1]) || corners.count(t[2]))) {
+    if (mesh.roles[f] != FaceRole::Cap && (corner(t[0]) || corner(t[1]) || corner(t[2]))) {
       which.push_back(static_cast<int>(f));
     }
   }

@@ -186,8 +186,10 @@ class Collapser {
     // Exactly two faces hold the edge, and its ends share no neighbour but their third corners (the link
     // condition).
     if (shared != 2 || opposite[0] == opposite[1]) return -1.0;
-    const std::vector<int> kept_ring = ring(kept);
-    std::vector<int> common;
+    std::vector<int>& kept_ring = kept_ring_;
+    ring(kept, kept_ring);
+    std::vector<int>& common = common_;
+    common.clear();
     std::set_intersection(gone_ring.begin(), gone_ring.end(), kept_ring.begin(), kept_ring.end(),
                           std::back_inserter(common));
     std::sort(opposite.begin(), opposite.end());
@@ -260,9 +262,9 @@ class Collapser {
     mesh_.roles = std::move(roles);
   }
 
-  // The vertices that share a face with v, sorted, without v.
-  [[nodiscard]] std::vector<int> ring(int v) const {
-    std::vector<int> out;
+  // The vertices that share a face with v, sorted, without v, into `out` (its storage reused).
+  void ring(int v, std::vector<int>& out) const {
+    out.clear();
     for (int f : around_[static_cast<std::size_t>(v)]) {
       for (int u : faces_[static_cast<std::size_t>(f)]) {
         if (u != v) out.push_back(u);
@@ -270,7 +272,6 @@ class Collapser {
     }
     std::sort(out.begin(), out.end());
     out.erase(std::unique(out.begin(), out.end()), out.end());
-    return out;
   }
 
  private:
@@ -302,6 +303,8 @@ class Collapser {
   std::vector<std::array<int, 3>> faces_;
   std::vector<std::uint8_t> alive_;
   std::vector<std::vector<int>> around_;
+  // Scratch for try_collapse (the kept vertex's ring, the rings' common vertices): storage reused.
+  mutable std::vector<int> kept_ring_, common_;
   std::vector<std::uint8_t> fixed_;
   std::vector<std::uint8_t> complete_;
   std::vector<int> patch_;
@@ -322,6 +325,7 @@ std::size_t collapse_slivers(SlabMesh& mesh, double max_length, double max_devia
   std::size_t collapses = 0;
   // The sharpest slivers first; a collapse changes the faces around it, so each is checked again when
   // its turn comes, and further sweeps take what the first one left or made.
+  std::vector<int> ring;  // of the corner that would go, reused
   for (int sweep = 0; sweep < 3; ++sweep) {
     std::vector<std::pair<double, int>> work;
     for (int f : c.patch()) {
@@ -337,7 +341,7 @@ std::size_t collapse_slivers(SlabMesh& mesh, double max_length, double max_devia
       double best = -1.0;
       for (int gone : c.face(f)) {
         if (!c.removable(gone)) continue;
-        const std::vector<int> ring = c.ring(gone);
+        c.ring(gone, ring);
         double before = std::numeric_limits<double>::quiet_NaN();  // smallest_angle_around(gone), when needed
         for (int kept : ring) {
           const double after = c.try_collapse(gone, ring, before, kept, max_length, max_deviation);
