@@ -48,10 +48,18 @@ class EdgeGrid {
       : ring_(ring), origin_(box.min()), cell_(cell) {
     nx_ = static_cast<std::size_t>(std::floor(box.sizes().x() / cell)) + 1;
     ny_ = static_cast<std::size_t>(std::floor(box.sizes().y() / cell)) + 1;
-    cells_.resize(nx_ * ny_);
     seen_.assign(ring.size(), std::numeric_limits<std::size_t>::max());
+    // Each cell's edges in ascending order, one array for all cells (cell c: entries start_[c] to
+    // start_[c + 1]): counted, then placed.
+    start_.assign(nx_ * ny_ + 1, 0);
     for (std::size_t e = 0; e < ring.size(); ++e) {
-      for_cells(ring[e], ring[(e + 1) % ring.size()], [&](std::size_t c) { cells_[c].push_back(e); });
+      for_cells(ring[e], ring[(e + 1) % ring.size()], [&](std::size_t c) { ++start_[c + 1]; });
+    }
+    for (std::size_t c = 0; c + 1 < start_.size(); ++c) start_[c + 1] += start_[c];
+    entries_.resize(start_.back());
+    std::vector<std::size_t> next(start_.begin(), start_.end() - 1);
+    for (std::size_t e = 0; e < ring.size(); ++e) {
+      for_cells(ring[e], ring[(e + 1) % ring.size()], [&](std::size_t c) { entries_[next[c]++] = e; });
     }
   }
 
@@ -60,7 +68,8 @@ class EdgeGrid {
   template <class F>
   void visit(const Eigen::Vector2d& a, const Eigen::Vector2d& b, std::size_t query, F&& f) {
     for_cells(a, b, [&](std::size_t c) {
-      for (std::size_t e : cells_[c]) {
+      for (std::size_t k = start_[c]; k < start_[c + 1]; ++k) {
+        const std::size_t e = entries_[k];
         if (seen_[e] == query) continue;
         seen_[e] = query;
         f(e);
@@ -103,7 +112,8 @@ class EdgeGrid {
   Eigen::Vector2d origin_;
   double cell_;
   std::size_t nx_ = 1, ny_ = 1;
-  std::vector<std::vector<std::size_t>> cells_;
+  std::vector<std::size_t> start_;
+  std::vector<std::size_t> entries_;
   std::vector<std::size_t> seen_;
 };
 

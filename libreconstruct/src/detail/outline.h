@@ -6,6 +6,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <utility>
 #include <vector>
 
 namespace contourmesh::detail {
@@ -27,12 +28,26 @@ class Outline {
       const double height = c.box.max().y() - c.box.min().y();
       s.rows = height > 0.0 ? std::max<int>(1, static_cast<int>(c.points.size() / 8)) : 1;
       s.scale = height > 0.0 ? s.rows / height : 0.0;
-      s.edges.resize(static_cast<std::size_t>(s.rows));
+      // Each row's edges in one array for all rows (row r: entries start[r] to start[r + 1]), counted
+      // first, then placed.
+      s.start.assign(static_cast<std::size_t>(s.rows) + 1, 0);
       const std::size_t n = c.points.size();
-      for (std::size_t i = 0, j = n - 1; i < n; j = i++) {
+      auto rows_of = [&](std::size_t i, std::size_t j) {
         const double y0 = std::min(c.points[i].y(), c.points[j].y()), y1 = std::max(c.points[i].y(), c.points[j].y());
-        for (int r = s.row(y0); r <= s.row(y1); ++r)
-          s.edges[static_cast<std::size_t>(r)].push_back(static_cast<int>(i));
+        return std::pair<int, int>(s.row(y0), s.row(y1));
+      };
+      for (std::size_t i = 0, j = n - 1; i < n; j = i++) {
+        const auto [r0, r1] = rows_of(i, j);
+        for (int r = r0; r <= r1; ++r) ++s.start[static_cast<std::size_t>(r) + 1];
+      }
+      for (std::size_t r = 0; r + 1 < s.start.size(); ++r) s.start[r + 1] += s.start[r];
+      s.edges.resize(static_cast<std::size_t>(s.start.back()));
+      std::vector<int> next(s.start.begin(), s.start.end() - 1);
+      for (std::size_t i = 0, j = n - 1; i < n; j = i++) {
+        const auto [r0, r1] = rows_of(i, j);
+        for (int r = r0; r <= r1; ++r) {
+          s.edges[static_cast<std::size_t>(next[static_cast<std::size_t>(r)]++)] = static_cast<int>(i);
+        }
       }
       strips_.push_back(std::move(s));
     }
@@ -44,8 +59,9 @@ class Outline {
       const Polygon& poly = *s.points;
       const std::size_t n = poly.size();
       bool in = false;
-      for (int i : s.edges[static_cast<std::size_t>(s.row(p.y()))]) {
-        const std::size_t k = static_cast<std::size_t>(i);
+      const auto r = static_cast<std::size_t>(s.row(p.y()));
+      for (int e = s.start[r]; e < s.start[r + 1]; ++e) {
+        const auto k = static_cast<std::size_t>(s.edges[static_cast<std::size_t>(e)]);
         if (crosses_ray(poly[k == 0 ? n - 1 : k - 1], poly[k], p)) in = !in;
       }
       if (in) return true;
@@ -59,7 +75,8 @@ class Outline {
     Eigen::AlignedBox2d box;
     int rows = 1;
     double scale = 0.0;
-    std::vector<std::vector<int>> edges;  // per row, the edges (by end point) whose heights reach it
+    std::vector<int> start;  // per row, where its edges begin in `edges` (one more entry: the end)
+    std::vector<int> edges;  // the edges (by end point) whose heights reach each row, row by row
     [[nodiscard]] int row(double y) const {
       return std::clamp(static_cast<int>(std::floor((y - box.min().y()) * scale)), 0, rows - 1);
     }
