@@ -51,6 +51,8 @@ class SurfacePatch {
       origin_.push_back(w);
     }
     original_vertices_ = static_cast<int>(points_.size());
+    sharp_.resize(faces_.size());
+    for (std::size_t f = 0; f < faces_.size(); ++f) update_sharp(static_cast<int>(f));
     edges_.reserve(3 * faces_.size());
     for (std::size_t f = 0; f < faces_.size(); ++f) {
       for (int k = 0; k < 3; ++k) {
@@ -62,10 +64,8 @@ class SurfacePatch {
   // False when a directed edge occurs twice (a slab that is not an oriented surface): nothing is changed.
   [[nodiscard]] bool valid() const { return valid_; }
   [[nodiscard]] std::size_t size() const { return faces_.size(); }
-  [[nodiscard]] double sharp(int f) const {
-    const auto& t = faces_[static_cast<std::size_t>(f)];
-    return sharpness(points_[t[0]], points_[t[1]], points_[t[2]]);
-  }
+  // sharpness of face f (kept per face: points do not move, and every changed face is linked again).
+  [[nodiscard]] double sharp(int f) const { return sharp_[static_cast<std::size_t>(f)]; }
 
   // The face across edge k of face f (from corner k to corner k + 1), or -1 on the slab's boundary or
   // where the faces' roles differ.
@@ -98,7 +98,9 @@ class SurfacePatch {
     if (c == d) return 0.0;
     const Eigen::Vector3d &A = points_[a], &B = points_[b], &C = points_[c], &D = points_[d];
     // The tests below only turn the flip down; the one that does so most often comes first.
-    const double before = std::max(sharpness(A, B, C), sharpness(B, A, D));
+    // sharpness depends on the sorted edge lengths only, so the faces' kept values are those of (A, B, C)
+    // and (B, A, D).
+    const double before = std::max(sharp(f), sharp(g));
     const double after = std::max(sharpness(C, A, D), sharpness(D, B, C));
     if (!(after < before - 1e-9)) return 0.0;
     if (edges_.contains(key(c, d)) || edges_.contains(key(d, c))) return 0.0;
@@ -298,6 +300,13 @@ class SurfacePatch {
   void link(int f) {
     const auto& t = faces_[static_cast<std::size_t>(f)];
     for (int k = 0; k < 3; ++k) edges_.assign(key(t[k], t[(k + 1) % 3]), f);
+    update_sharp(f);
+  }
+  void update_sharp(int f) {
+    const auto k = static_cast<std::size_t>(f);
+    if (k >= sharp_.size()) sharp_.resize(k + 1);
+    const auto& t = faces_[k];
+    sharp_[k] = sharpness(points_[t[0]], points_[t[1]], points_[t[2]]);
   }
 
   SlabMesh& mesh_;
@@ -308,6 +317,7 @@ class SurfacePatch {
   std::vector<FaceRole> roles_;
   std::vector<int> origin_;  // the face of the slab mesh, -1 for a face a split added
   EdgeMap edges_;  // directed edge -> the face holding it
+  std::vector<double> sharp_;  // per face
   int original_vertices_ = 0;
   bool valid_ = true;
 };
