@@ -8,6 +8,7 @@
 #include <cstdint>
 #include <cstring>
 #include <limits>
+#include <memory>
 #include <utility>
 
 namespace contourmesh::detail {
@@ -232,16 +233,17 @@ std::vector<Polygon> zero_level(const DistancePair& fields, double t, double lev
   // Values at the nodes; exact zeros move a hair outside so that no crossing sits on a node (two
   // loops would touch there).
   const double nudge = 1e-7 * fields.h;
-  std::vector<double> f(count);
+  // (arrays filled whole at once: not zeroed first)
+  const std::unique_ptr<double[]> f(new double[count]);
   for (std::size_t k = 0; k < count; ++k) f[k] = node_value(fields.lower[k], fields.upper[k], t, level, nudge);
   // Which nodes are inside, one byte each: runs of eight cells whose nine nodes on both rows are all
   // inside or all outside hold no crossing and are passed over in one step (most of the grid).
-  std::vector<std::uint8_t> inside(count);
+  const std::unique_ptr<std::uint8_t[]> inside(new std::uint8_t[count]);
   for (std::size_t k = 0; k < count; ++k) inside[k] = f[k] < 0.0 ? 1 : 0;
   auto uniform_run = [&](std::size_t a, std::size_t b) {  // nodes a .. a + 8 and b .. b + 8
     std::uint64_t x = 0, y = 0;
-    std::memcpy(&x, inside.data() + a, sizeof x);
-    std::memcpy(&y, inside.data() + b, sizeof y);
+    std::memcpy(&x, inside.get() + a, sizeof x);
+    std::memcpy(&y, inside.get() + b, sizeof y);
     const std::uint64_t all = inside[a] ? 0x0101010101010101ULL : 0;
     return x == all && y == all && inside[a + 8] == inside[a] && inside[b + 8] == inside[a];
   };
@@ -352,20 +354,23 @@ double level_for_area(const DistancePair& fields, double t, double target_area) 
   // takes a node outside both regions and a shrinking one never gives up a node inside both.
   const bool grow = target_area > area;
   constexpr double kNever = std::numeric_limits<double>::infinity();
-  std::vector<double> from(count);
+  // (made in place of the array nth_element partly sorts; `inside` counts those below the level 0)
+  std::vector<double> sorted;
+  sorted.reserve(count);
+  std::size_t below = 0;
   for (std::size_t k = 0; k < count; ++k) {
     const double lo = fields.lower[k], up = fields.upper[k];
     const double blend = (1.0 - t) * lo + t * up;
-    if (grow) from[k] = std::min(lo, up) < 0.0 ? blend : kNever;
-    else from[k] = std::max(lo, up) < 0.0 ? -kNever : blend;
+    const double from = grow ? (std::min(lo, up) < 0.0 ? blend : kNever) : (std::max(lo, up) < 0.0 ? -kNever : blend);
+    below += from < iso ? 1 : 0;
+    sorted.push_back(from);
   }
   // The area inside grows by about one cell per node that the level passes: the node count to add is
   // the area missing over a cell, and the level is the value of the node with that rank. Then secant
   // steps on the area, which is continuous and monotonic in the level.
   const double tolerance = std::max(cell, 1e-3 * std::abs(target_area));
-  const auto inside = static_cast<double>(std::count_if(from.begin(), from.end(), [&](double v) { return v < iso; }));
+  const auto inside = static_cast<double>(below);
   const double rank = std::clamp(inside + (target_area - area) / cell, 0.0, static_cast<double>(count - 1));
-  std::vector<double> sorted = from;
   auto nth = sorted.begin() + static_cast<std::ptrdiff_t>(std::round(rank));
   std::nth_element(sorted.begin(), nth, sorted.end());
   if (!std::isfinite(*nth)) return 0.0;
