@@ -7,6 +7,7 @@
 #include <cmath>
 #include <cstdint>
 #include <cstring>
+#include <initializer_list>
 #include <limits>
 #include <memory>
 #include <utility>
@@ -105,34 +106,37 @@ std::vector<double> signed_distance(const Grid& g, const std::vector<Polygon>& p
       }
     }
   }
-  auto relax = [&](int i, int j, int ni, int nj) {
-    if (ni < 0 || nj < 0 || ni >= g.nx || nj >= g.ny) return;
-    const std::size_t idx = static_cast<std::size_t>(j) * g.nx + i;
-    const int s = nearest[static_cast<std::size_t>(nj) * g.nx + ni];
-    if (s < 0 || s == nearest[idx]) return;
-    const double d = distance_to(segments[static_cast<std::size_t>(s)], g.node(i, j));
-    if (d < dist[idx]) {
-      dist[idx] = d;
-      nearest[idx] = s;
+  // The sweeps: each node tries its visited neighbours' nearest edges, in this order (the order decides
+  // between edges at equal distance). A node's own nearest edge and distance are held in registers while
+  // it does; only its neighbours are read from the arrays.
+  const int nx = g.nx, ny = g.ny;
+  const Eigen::Vector2d origin = g.origin;
+  const double h = g.h;
+  auto sweep_node = [&](int i, int j, std::initializer_list<std::pair<int, int>> neighbours) {
+    const std::size_t idx = static_cast<std::size_t>(j) * nx + i;
+    int own = nearest[idx];
+    double best = dist[idx];
+    const Eigen::Vector2d p = origin + h * Eigen::Vector2d(i, j);
+    for (const auto& [ni, nj] : neighbours) {
+      if (ni < 0 || nj < 0 || ni >= nx || nj >= ny) continue;
+      const int s = nearest[static_cast<std::size_t>(nj) * nx + ni];
+      if (s < 0 || s == own) continue;
+      const double d = distance_to(segments[static_cast<std::size_t>(s)], p);
+      if (d < best) {
+        best = d;
+        own = s;
+      }
     }
+    dist[idx] = best;
+    nearest[idx] = own;
   };
-  for (int j = 0; j < g.ny; ++j) {
-    for (int i = 0; i < g.nx; ++i) {
-      relax(i, j, i - 1, j);
-      relax(i, j, i - 1, j - 1);
-      relax(i, j, i, j - 1);
-      relax(i, j, i + 1, j - 1);
-    }
-    for (int i = g.nx - 1; i >= 0; --i) relax(i, j, i + 1, j);
+  for (int j = 0; j < ny; ++j) {
+    for (int i = 0; i < nx; ++i) sweep_node(i, j, {{i - 1, j}, {i - 1, j - 1}, {i, j - 1}, {i + 1, j - 1}});
+    for (int i = nx - 1; i >= 0; --i) sweep_node(i, j, {{i + 1, j}});
   }
-  for (int j = g.ny - 1; j >= 0; --j) {
-    for (int i = g.nx - 1; i >= 0; --i) {
-      relax(i, j, i + 1, j);
-      relax(i, j, i + 1, j + 1);
-      relax(i, j, i, j + 1);
-      relax(i, j, i - 1, j + 1);
-    }
-    for (int i = 0; i < g.nx; ++i) relax(i, j, i - 1, j);
+  for (int j = ny - 1; j >= 0; --j) {
+    for (int i = nx - 1; i >= 0; --i) sweep_node(i, j, {{i + 1, j}, {i + 1, j + 1}, {i, j + 1}, {i - 1, j + 1}});
+    for (int i = 0; i < nx; ++i) sweep_node(i, j, {{i - 1, j}});
   }
   const std::vector<std::uint8_t> inside = inside_nodes(g, polygons);
   for (std::size_t k = 0; k < count; ++k) {
