@@ -25,10 +25,11 @@ struct Segment {
   double inv_len2;    // 1 / |d|^2, 0 for a zero-length edge
 };
 
-double distance_to(const Segment& s, const Eigen::Vector2d& p) {
+// The squared distance from p to segment s; its square root (Eigen's norm) is the distance.
+double squared_distance_to(const Segment& s, const Eigen::Vector2d& p) {
   const Eigen::Vector2d ap = p - s.a;
   const double t = std::clamp(ap.dot(s.d) * s.inv_len2, 0.0, 1.0);
-  return (ap - t * s.d).norm();
+  return (ap - t * s.d).squaredNorm();
 }
 
 struct Grid {
@@ -87,7 +88,11 @@ std::vector<double> signed_distance(const Grid& g, const std::vector<Polygon>& p
     }
   }
   if (segments.empty()) return std::vector<double>(count, kFar);
+  // Distances, and their squares: a trial whose square is not below the square kept cannot be nearer
+  // (the root is monotonic), so the root is taken only for the trials that may be. Kept and compared as
+  // roots, the results are those of comparing the distances themselves.
   std::vector<double> dist(count, std::numeric_limits<double>::infinity());
+  std::vector<double> dist2(count, std::numeric_limits<double>::infinity());
   std::vector<int> nearest(count, -1);
   for (std::size_t s = 0; s < segments.size(); ++s) {
     const Eigen::Vector2d a = segments[s].a, b = segments[s].a + segments[s].d;
@@ -98,9 +103,12 @@ std::vector<double> signed_distance(const Grid& g, const std::vector<Polygon>& p
     for (int j = j0; j <= j1; ++j) {
       for (int i = i0; i <= i1; ++i) {
         const std::size_t idx = static_cast<std::size_t>(j) * g.nx + i;
-        const double d = distance_to(segments[s], g.node(i, j));
+        const double d2 = squared_distance_to(segments[s], g.node(i, j));
+        if (!(d2 < dist2[idx])) continue;
+        const double d = std::sqrt(d2);
         if (d < dist[idx]) {
           dist[idx] = d;
+          dist2[idx] = d2;
           nearest[idx] = static_cast<int>(s);
         }
       }
@@ -115,19 +123,23 @@ std::vector<double> signed_distance(const Grid& g, const std::vector<Polygon>& p
   auto sweep_node = [&](int i, int j, std::initializer_list<std::pair<int, int>> neighbours) {
     const std::size_t idx = static_cast<std::size_t>(j) * nx + i;
     int own = nearest[idx];
-    double best = dist[idx];
+    double best = dist[idx], best2 = dist2[idx];
     const Eigen::Vector2d p = origin + h * Eigen::Vector2d(i, j);
     for (const auto& [ni, nj] : neighbours) {
       if (ni < 0 || nj < 0 || ni >= nx || nj >= ny) continue;
       const int s = nearest[static_cast<std::size_t>(nj) * nx + ni];
       if (s < 0 || s == own) continue;
-      const double d = distance_to(segments[static_cast<std::size_t>(s)], p);
+      const double d2 = squared_distance_to(segments[static_cast<std::size_t>(s)], p);
+      if (!(d2 < best2)) continue;
+      const double d = std::sqrt(d2);
       if (d < best) {
         best = d;
+        best2 = d2;
         own = s;
       }
     }
     dist[idx] = best;
+    dist2[idx] = best2;
     nearest[idx] = own;
   };
   for (int j = 0; j < ny; ++j) {
