@@ -187,6 +187,16 @@ constexpr double kMaxCollapseDeviation = 0.1;
 // is kept without trying the costlier ones.
 constexpr double kGoodEnough = 0.02;
 
+// Nested halves are not tried for a group of more than kFutileHalvesContours contours whose best
+// candidate has at most kFutileHalvesPoorShare of its area flat or in slivers, less than
+// kFutileHalvesBridgeShare of that in bridges (SlabTiler::nested_halves_futile).
+constexpr std::size_t kFutileHalvesContours = 6;
+constexpr double kFutileHalvesPoorShare = 0.05;
+constexpr double kFutileHalvesBridgeShare = 0.5;
+
+// Whether settle may try the halves.
+enum class Halving { IfWanted, Never };
+
 // Where a slab lies in its group's interpolation: levels t0 and t1 of `interpolation`, or, without
 // one, between two slices (t0 = 0, t1 = 1 of the interpolation a group makes when it needs one).
 struct Span {
@@ -433,6 +443,16 @@ class SlabTiler {
     return !bound.lost(out);
   }
 
+  // Inside a halved slab (depth > 0), a group of many contours whose composite (or lifted transition)
+  // is nearly good and owes little of its poor area to its bridges: halving again would move the
+  // bridges off the mid-plane, but the poor area lies elsewhere in the group (a skull section whose pores
+  // come and go), and the halves re-tile every contour of it. On the real scans such halves have not won
+  // (docs/benchmarks.md, "Tiling: nested halves that cannot pay"), at a tenth of the tiling's time.
+  static bool nested_halves_futile(const Level& lower, const Level& upper, int depth, const TilingDefects& d) {
+    return depth > 0 && lower.contours.size() + upper.contours.size() > kFutileHalvesContours &&
+           !(d.score() > kFutileHalvesPoorShare * d.area) && d.bridge_area < kFutileHalvesBridgeShare * d.score();
+  }
+
   static bool wants_halves(const TilingDefects& d) {
     // The halves cost a level of interpolation and the tilings of both; they are tried when the
     // composite has flat bridges or leaves a noticeable share of its area flat or in slivers.
@@ -478,8 +498,10 @@ class SlabTiler {
       best = *lifted_defects;
       chosen = &lifted;
     }
-    if (!(partial.bridge_area > 0.0 && (!lifted_defects || wants_halves(*lifted_defects)))) {
-      settle(lower, upper, span, depth, std::move(*chosen), best, out);
+    const Halving halving = nested_halves_futile(lower, upper, depth, best) ? Halving::Never : Halving::IfWanted;
+    if (halving == Halving::Never ||
+        !(partial.bridge_area > 0.0 && (!lifted_defects || wants_halves(*lifted_defects)))) {
+      settle(lower, upper, span, depth, std::move(*chosen), best, out, halving);
       return;
     }
     // Halves are tried whichever of the composite and the lifted transition wins. They win where they
@@ -516,8 +538,9 @@ class SlabTiler {
 
   // `candidate` (defects `best`) against the halves, when they are worth trying, and the parting.
   void settle(const Level& lower, const Level& upper, Span span, int depth, SlabMesh&& candidate,
-              TilingDefects best, SlabMesh& out) {
-    if (options_.branching == Branching::Interpolated && depth < options_.max_branching_depth &&
+              TilingDefects best, SlabMesh& out, Halving halving = Halving::IfWanted) {
+    if (halving == Halving::IfWanted && options_.branching == Branching::Interpolated &&
+        depth < options_.max_branching_depth &&
         wants_halves(best)) {
       SlabMesh halves = out.scratch();
       if (try_halves(lower, upper, span, depth, best, best.score(), halves)) {
