@@ -241,28 +241,35 @@ TilingResult detail::tile_contours_judged(const ContourStack& stack, const Tilin
       }
     }
   }
-  std::size_t faces = 0;
-  for (const SlabMesh& m : meshes) faces += m.triangles.size();
-  mesh.triangles.reserve(faces);
-  result.face_roles.reserve(faces);
+  // Each slab's vertices and faces go to their own ranges (offsets in slab order), so the slabs are
+  // copied on every core; the mesh is the same as copied one after the other.
+  std::vector<std::size_t> face_offset(slabs + 1, 0);
+  for (std::size_t k = 0; k < slabs; ++k) face_offset[k + 1] = face_offset[k] + meshes[k].triangles.size();
+  mesh.triangles.resize(face_offset[slabs]);
+  result.face_roles.resize(face_offset[slabs]);
   const bool left_handed = stack.axis_u.cross(stack.axis_v).dot(stack.axis_w) < 0.0;
-  for (std::size_t k = 0; k < slabs; ++k) {
-    const SlabMesh& m = meshes[k];
-    for (std::size_t v = 0; v < m.vertices.size(); ++v) {
-      mesh.positions.col(offset[k] + static_cast<Index>(v)) =
-          stack.to_physical(m.vertices[v].head<2>(), m.vertices[v].z());
-    }
-    auto global = [&](detail::VertexRef r) {
-      return detail::is_local(r) ? offset[k] + static_cast<Index>(detail::local_index(r)) : r;
-    };
-    for (const Triangle& t : m.triangles) {
-      Triangle g{global(t[0]), global(t[1]), global(t[2])};
-      if (left_handed) std::swap(g[1], g[2]);
-      mesh.triangles.push_back(g);
-    }
-    result.face_roles.insert(result.face_roles.end(), m.roles.begin(), m.roles.end());
-    result.stats += m.stats;
-  }
+  run_in_order(
+      slabs, threads,
+      [&](std::size_t k) {
+        const SlabMesh& m = meshes[k];
+        for (std::size_t v = 0; v < m.vertices.size(); ++v) {
+          mesh.positions.col(offset[k] + static_cast<Index>(v)) =
+              stack.to_physical(m.vertices[v].head<2>(), m.vertices[v].z());
+        }
+        auto global = [&](detail::VertexRef r) {
+          return detail::is_local(r) ? offset[k] + static_cast<Index>(detail::local_index(r)) : r;
+        };
+        for (std::size_t f = 0; f < m.triangles.size(); ++f) {
+          const Triangle& t = m.triangles[f];
+          Triangle g{global(t[0]), global(t[1]), global(t[2])};
+          if (left_handed) std::swap(g[1], g[2]);
+          mesh.triangles[face_offset[k] + f] = g;
+        }
+        std::copy(m.roles.begin(), m.roles.end(),
+                  result.face_roles.begin() + static_cast<std::ptrdiff_t>(face_offset[k]));
+      },
+      {});
+  for (const SlabMesh& m : meshes) result.stats += m.stats;
   return result;
 }
 
