@@ -32,6 +32,10 @@ double squared_distance_to(const Segment& s, const Eigen::Vector2d& p) {
   return (ap - t * s.d).squaredNorm();
 }
 
+// Whether squared distance d2 is nearer than `kept2` as the distances compare (two squares may share a
+// root): the roots are taken only when the squares allow it, which is seldom.
+bool nearer(double d2, double kept2) { return d2 < kept2 && std::sqrt(d2) < std::sqrt(kept2); }
+
 struct Grid {
   Eigen::Vector2d origin;
   double h;
@@ -88,10 +92,7 @@ std::vector<double> signed_distance(const Grid& g, const std::vector<Polygon>& p
     }
   }
   if (segments.empty()) return std::vector<double>(count, kFar);
-  // Distances, and their squares: a trial whose square is not below the square kept cannot be nearer
-  // (the root is monotonic), so the root is taken only for the trials that may be. Kept and compared as
-  // roots, the results are those of comparing the distances themselves.
-  std::vector<double> dist(count, std::numeric_limits<double>::infinity());
+  // Squared distances, compared as their roots would be (nearer); the roots at the end.
   std::vector<double> dist2(count, std::numeric_limits<double>::infinity());
   std::vector<int> nearest(count, -1);
   for (std::size_t s = 0; s < segments.size(); ++s) {
@@ -104,10 +105,7 @@ std::vector<double> signed_distance(const Grid& g, const std::vector<Polygon>& p
       for (int i = i0; i <= i1; ++i) {
         const std::size_t idx = static_cast<std::size_t>(j) * g.nx + i;
         const double d2 = squared_distance_to(segments[s], g.node(i, j));
-        if (!(d2 < dist2[idx])) continue;
-        const double d = std::sqrt(d2);
-        if (d < dist[idx]) {
-          dist[idx] = d;
+        if (nearer(d2, dist2[idx])) {
           dist2[idx] = d2;
           nearest[idx] = static_cast<int>(s);
         }
@@ -115,30 +113,26 @@ std::vector<double> signed_distance(const Grid& g, const std::vector<Polygon>& p
     }
   }
   // The sweeps: each node tries its visited neighbours' nearest edges, in this order (the order decides
-  // between edges at equal distance). A node's own nearest edge and distance are held in registers while
-  // it does; only its neighbours are read from the arrays.
+  // between edges at equal distance). A node's own nearest edge and squared distance are held in
+  // registers while it does; only its neighbours are read from the arrays.
   const int nx = g.nx, ny = g.ny;
   const Eigen::Vector2d origin = g.origin;
   const double h = g.h;
   auto sweep_node = [&](int i, int j, std::initializer_list<std::pair<int, int>> neighbours) {
     const std::size_t idx = static_cast<std::size_t>(j) * nx + i;
     int own = nearest[idx];
-    double best = dist[idx], best2 = dist2[idx];
+    double best2 = dist2[idx];
     const Eigen::Vector2d p = origin + h * Eigen::Vector2d(i, j);
     for (const auto& [ni, nj] : neighbours) {
       if (ni < 0 || nj < 0 || ni >= nx || nj >= ny) continue;
       const int s = nearest[static_cast<std::size_t>(nj) * nx + ni];
       if (s < 0 || s == own) continue;
       const double d2 = squared_distance_to(segments[static_cast<std::size_t>(s)], p);
-      if (!(d2 < best2)) continue;
-      const double d = std::sqrt(d2);
-      if (d < best) {
-        best = d;
+      if (nearer(d2, best2)) {
         best2 = d2;
         own = s;
       }
     }
-    dist[idx] = best;
     dist2[idx] = best2;
     nearest[idx] = own;
   };
@@ -151,8 +145,10 @@ std::vector<double> signed_distance(const Grid& g, const std::vector<Polygon>& p
     for (int i = 0; i < nx; ++i) sweep_node(i, j, {{i - 1, j}});
   }
   const std::vector<std::uint8_t> inside = inside_nodes(g, polygons);
+  std::vector<double> dist(count);
   for (std::size_t k = 0; k < count; ++k) {
-    if (inside[k]) dist[k] = -dist[k];
+    const double d = std::sqrt(dist2[k]);
+    dist[k] = inside[k] ? -d : d;
   }
   return dist;
 }
