@@ -1,6 +1,7 @@
 // SPDX-License-Identifier: BSD-3-Clause
 #include "detail/crossing_band.h"
 
+#include "detail/bucket_lists.h"
 #include "detail/cap_refinement.h"
 #include "contourmesh/reconstruct/contours.h"
 
@@ -49,18 +50,15 @@ class EdgeGrid {
     nx_ = static_cast<std::size_t>(std::floor(box.sizes().x() / cell)) + 1;
     ny_ = static_cast<std::size_t>(std::floor(box.sizes().y() / cell)) + 1;
     seen_.assign(ring.size(), std::numeric_limits<std::size_t>::max());
-    // Each cell's edges in ascending order, one array for all cells (cell c: entries start_[c] to
-    // start_[c + 1]): counted, then placed.
-    start_.assign(nx_ * ny_ + 1, 0);
-    for (std::size_t e = 0; e < ring.size(); ++e) {
-      for_cells(ring[e], ring[(e + 1) % ring.size()], [&](std::size_t c) { ++start_[c + 1]; });
-    }
-    for (std::size_t c = 0; c + 1 < start_.size(); ++c) start_[c + 1] += start_[c];
-    entries_.resize(start_.back());
-    std::vector<std::size_t> next(start_.begin(), start_.end() - 1);
-    for (std::size_t e = 0; e < ring.size(); ++e) {
-      for_cells(ring[e], ring[(e + 1) % ring.size()], [&](std::size_t c) { entries_[next[c]++] = e; });
-    }
+    // Each cell's edges in ascending order (cell c: entries start_[c] to start_[c + 1]).
+    file_in_buckets(
+        nx_ * ny_,
+        [&](const auto& file) {
+          for (std::size_t e = 0; e < ring.size(); ++e) {
+            for_cells(ring[e], ring[(e + 1) % ring.size()], [&](std::size_t c) { file(c, e); });
+          }
+        },
+        start_, entries_);
   }
 
   // Calls f(edge) once for each edge of the ring whose cells meet segment a-b's bounding box; `query`

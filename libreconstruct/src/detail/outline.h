@@ -2,11 +2,11 @@
 // Private: point-in-outline tests against one level, many points at a time.
 #pragma once
 
+#include "detail/bucket_lists.h"
 #include "detail/tiling_types.h"
 
 #include <algorithm>
 #include <cmath>
-#include <utility>
 #include <vector>
 
 namespace contourmesh::detail {
@@ -28,27 +28,17 @@ class Outline {
       const double height = c.box.max().y() - c.box.min().y();
       s.rows = height > 0.0 ? std::max<int>(1, static_cast<int>(c.points.size() / 8)) : 1;
       s.scale = height > 0.0 ? s.rows / height : 0.0;
-      // Each row's edges in one array for all rows (row r: entries start[r] to start[r + 1]), counted
-      // first, then placed.
-      s.start.assign(static_cast<std::size_t>(s.rows) + 1, 0);
       const std::size_t n = c.points.size();
-      auto rows_of = [&](std::size_t i, std::size_t j) {
-        const double y0 = std::min(c.points[i].y(), c.points[j].y()), y1 = std::max(c.points[i].y(), c.points[j].y());
-        return std::pair<int, int>(s.row(y0), s.row(y1));
-      };
-      for (std::size_t i = 0, j = n - 1; i < n; j = i++) {
-        const auto [r0, r1] = rows_of(i, j);
-        for (int r = r0; r <= r1; ++r) ++s.start[static_cast<std::size_t>(r) + 1];
-      }
-      for (std::size_t r = 0; r + 1 < s.start.size(); ++r) s.start[r + 1] += s.start[r];
-      s.edges.resize(static_cast<std::size_t>(s.start.back()));
-      std::vector<int> next(s.start.begin(), s.start.end() - 1);
-      for (std::size_t i = 0, j = n - 1; i < n; j = i++) {
-        const auto [r0, r1] = rows_of(i, j);
-        for (int r = r0; r <= r1; ++r) {
-          s.edges[static_cast<std::size_t>(next[static_cast<std::size_t>(r)]++)] = static_cast<int>(i);
-        }
-      }
+      file_in_buckets(
+          static_cast<std::size_t>(s.rows),
+          [&](const auto& file) {
+            for (std::size_t i = 0, j = n - 1; i < n; j = i++) {
+              const double y0 = std::min(c.points[i].y(), c.points[j].y());
+              const double y1 = std::max(c.points[i].y(), c.points[j].y());
+              for (int r = s.row(y0); r <= s.row(y1); ++r) file(static_cast<std::size_t>(r), static_cast<int>(i));
+            }
+          },
+          s.start, s.edges);
       strips_.push_back(std::move(s));
     }
   }
