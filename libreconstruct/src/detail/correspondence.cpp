@@ -127,13 +127,8 @@ std::vector<ContourGroup> contour_groups(const Level& lower, const Level& upper,
 }
 
 Correspondence restrict_correspondence(const Correspondence& links, const ContourGroup& group) {
-  auto numbering = [](const std::vector<int>& members, std::size_t size) {
-    std::vector<int> to(size, -1);
-    for (std::size_t k = 0; k < members.size(); ++k) to[static_cast<std::size_t>(members[k])] = static_cast<int>(k);
-    return to;
-  };
-  const std::vector<int> lower = numbering(group.lower, links.up.size());
-  const std::vector<int> upper = numbering(group.upper, links.down.size());
+  const std::vector<int> lower = positions_in(group.lower, links.up.size());
+  const std::vector<int> upper = positions_in(group.upper, links.down.size());
   auto renumbered = [](const std::vector<int>& partners, const std::vector<int>& to) {
     std::vector<int> out;
     out.reserve(partners.size());

@@ -24,11 +24,16 @@ void finish_contour(LevelContour& c) {
   for (const Eigen::Vector2d& p : c.points) c.box.extend(p);
 }
 
+std::vector<int> positions_in(const std::vector<int>& which, std::size_t size) {
+  std::vector<int> to(size, -1);
+  for (std::size_t k = 0; k < which.size(); ++k) to[static_cast<std::size_t>(which[k])] = static_cast<int>(k);
+  return to;
+}
+
 Level restrict_level(const Level& level, const std::vector<int>& which) {
   Level out;
   out.w = level.w;
-  std::vector<int> renumber(level.contours.size(), -1);
-  for (std::size_t k = 0; k < which.size(); ++k) renumber[static_cast<std::size_t>(which[k])] = static_cast<int>(k);
+  const std::vector<int> renumber = positions_in(which, level.contours.size());
   for (int c : which) {
     LevelContour copy = level.contours[static_cast<std::size_t>(c)];
     copy.parent = copy.parent >= 0 ? renumber[static_cast<std::size_t>(copy.parent)] : -1;

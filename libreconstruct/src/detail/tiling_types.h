@@ -46,6 +46,10 @@ struct Level {
 /// Fills area and box from the points.
 void finish_contour(LevelContour& c);
 
+/// Where each of 0 .. size - 1 stands in `which` (which[k] = i gives k for i), -1 for those not listed:
+/// how restrict_level and restrict_correspondence renumber contours.
+[[nodiscard]] std::vector<int> positions_in(const std::vector<int>& which, std::size_t size);
+
 /// The level made of the listed contours of `level` (in that order), parents renumbered. A hole whose
 /// parent is not listed keeps parent -1.
 [[nodiscard]] Level restrict_level(const Level& level, const std::vector<int>& which);
