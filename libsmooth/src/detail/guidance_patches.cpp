@@ -134,14 +134,14 @@ GuidancePatches make_patches(const ContourFrame& frame, const std::vector<Triang
 }
 
 void guidance_normals(const Workspace& w, const GuidancePatches& p, const Eigen::Matrix3Xd& normals,
-                      const std::vector<std::uint8_t>& changed, bool every_patch, bool first, double min_cos,
+                      const std::vector<std::uint8_t>& changed, bool first, double min_cos,
                       GuidanceState& state, const Eigen::Matrix3Xd& last_guidance, Eigen::Matrix3Xd& guidance,
                       std::vector<std::uint8_t>& guided_changed) {
   const std::size_t nl = w.faces.size(), nk = w.filtered.size();
   std::vector<std::uint8_t>& recomputed = state.recomputed;
   parallel_chunks(nl, 1024, [&](std::size_t, std::size_t begin, std::size_t end) {
     for (std::size_t l = begin; l < end; ++l) {
-      bool stale = every_patch || first;
+      bool stale = first;
       for (Index e = p.offsets[l]; e < p.offsets[l + 1] && !stale; ++e) {
         const Index g = p.entries[static_cast<std::size_t>(e)];
         stale = g < static_cast<Index>(nl) && changed[static_cast<std::size_t>(g)] != 0;

@@ -42,13 +42,13 @@ GuidancePatches make_patches(const ContourFrame& frame, const std::vector<Triang
                              const Eigen::Matrix3Xd& positions, const Workspace& w, const Eigen::Matrix3Xd& centroids,
                              const Eigen::VectorXd& areas);
 
-// Only what changed is recomputed. `every_patch`: every patch is (otherwise one none of whose normals
-// changed in the last iteration, `changed`, keeps its mean and consistency); `first`: every guidance normal
-// is, and counts as changed. Otherwise a filtered face whose own normal and candidate patches all stayed
-// keeps its guidance, copied from `last_guidance` (that of the last computation); `guided_changed` gets, per
-// filtered face, whether its guidance differs from the last, bit for bit.
+// Only what changed is recomputed: a patch none of whose normals changed since the last computation
+// (`changed`, per local face) keeps its mean and consistency; `first`: every patch and guidance normal is
+// computed, and counts as changed. Otherwise a filtered face whose own normal and candidate patches all
+// stayed keeps its guidance, copied from `last_guidance` (that of the last computation); `guided_changed`
+// gets, per filtered face, whether its guidance differs from the last, bit for bit.
 void guidance_normals(const Workspace& w, const GuidancePatches& p, const Eigen::Matrix3Xd& normals,
-                      const std::vector<std::uint8_t>& changed, bool every_patch, bool first, double min_cos,
+                      const std::vector<std::uint8_t>& changed, bool first, double min_cos,
                       GuidanceState& state, const Eigen::Matrix3Xd& last_guidance, Eigen::Matrix3Xd& guidance,
                       std::vector<std::uint8_t>& guided_changed);
 

@@ -92,6 +92,9 @@ void filter_normals(const Workspace& w, const OffSliceFilterOptions& options, co
   Eigen::Matrix3Xd guidance, last_guidance;
   GuidanceState state;
   std::vector<std::uint8_t> guided_changed(nl, 0);
+  // Per local face: its normal changed since the guidance was last computed (the patches it is in are
+  // computed again); the faces not filtered never change.
+  std::vector<std::uint8_t> changed_since(nl, 0);
   if (patches) {
     guidance = normals;
     state.mean.resize(3, static_cast<Index>(nl));
@@ -102,6 +105,12 @@ void filter_normals(const Workspace& w, const OffSliceFilterOptions& options, co
   // After the normal iterations, the rim iterations update the rim faces only (the others' normals stay).
   const bool rims = options.normal_iterations > 0 && options.rim_iterations > 0;
   const std::vector<std::uint8_t> rim = rims ? rim_faces(w, options, normals) : std::vector<std::uint8_t>{};
+  // The rim faces' indices among the filtered faces: from the third rim iteration on, only they are visited
+  // (the first sets the other faces' next normals and change flags, the second the other buffers').
+  std::vector<Index> rim_list;
+  for (std::size_t k = 0; k < rim.size(); ++k) {
+    if (rim[k]) rim_list.push_back(static_cast<Index>(k));
+  }
   const int iterations = options.normal_iterations + (rims ? options.rim_iterations : 0);
   for (int it = 0; it < iterations; ++it) {
     const bool all = it == 0 || full;
@@ -116,9 +125,12 @@ void filter_normals(const Workspace& w, const OffSliceFilterOptions& options, co
       if (it == 0) guidance = normals;
       // The faces not filtered: their guidance is their normal, new in the first iteration only.
       if (all || it == interval) std::fill(guided_changed.begin(), guided_changed.end(), all ? 1 : 0);
-      // After iterations without guidance, any patch may have changed since it was last computed.
-      guidance_normals(w, *patches, normals, changed, interval > 1, all, min_cos, state, last_guidance, guidance,
+      // A patch is computed again where one of its normals changed since it was last computed (in any
+      // iteration since then: on a real scan nearly every patch in the normal iterations, and in the rim
+      // iterations only those reaching a rim face).
+      guidance_normals(w, *patches, normals, changed_since, all, min_cos, state, last_guidance, guidance,
                        guided_changed);
+      std::fill(changed_since.begin(), changed_since.end(), 0);
     }
     const Eigen::Matrix3Xd& compared = patches ? guidance : normals;
     const std::vector<std::uint8_t>& compared_changed = patches ? guided_changed : changed;
@@ -132,8 +144,10 @@ void filter_normals(const Workspace& w, const OffSliceFilterOptions& options, co
         range[s] = std::exp(static_cast<float>(-dr * inv_r));
       }
     });
-    parallel_chunks(nk, 1024, [&](std::size_t, std::size_t begin, std::size_t end) {
-      for (std::size_t k = begin; k < end; ++k) {
+    const bool rim_faces_only = !full && it >= options.normal_iterations + 2;
+    parallel_chunks(rim_faces_only ? rim_list.size() : nk, 1024, [&](std::size_t, std::size_t begin, std::size_t end) {
+      for (std::size_t q = begin; q < end; ++q) {
+        const std::size_t k = rim_faces_only ? static_cast<std::size_t>(rim_list[q]) : q;
         const Index f = w.filtered[k];
         if (rim_only && !rim[k]) {  // not a rim face: its normal stays
           next.col(f) = normals.col(f);
@@ -174,6 +188,7 @@ void filter_normals(const Workspace& w, const OffSliceFilterOptions& options, co
           nextf.col(f) << next.col(f).cast<float>(), 0.0f;
         }
         changes[static_cast<std::size_t>(f)] = same_bits(next.col(f), normals.col(f)) ? 0 : 1;
+        changed_since[static_cast<std::size_t>(f)] |= changes[static_cast<std::size_t>(f)];
       }
     });
     normals.swap(next);
