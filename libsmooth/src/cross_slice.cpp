@@ -47,6 +47,7 @@ void check_options(const CrossSliceOptions& o) {
   if (f.normal_iterations < 0 || f.vertex_iterations < 0 || f.rim_iterations < 0) {
     fail("off-slice filter iterations must be >= 0");
   }
+  if (!(f.vertex_step > 0.0 && f.vertex_step <= 2.0)) fail("the vertex step must be in (0, 2]");
   if (!(f.rim_angle_degrees > 0.0 && f.rim_angle_degrees < 180.0)) fail("the rim angle must be in (0, 180) degrees");
   if (f.rim_rings < 0) fail("the rim rings must be >= 0");
   if (f.guidance_interval < 1) fail("the guidance interval must be >= 1");

@@ -115,8 +115,10 @@ def test_cross_slice_off_slice_filter_options(box_mesh):
     off = cm.smooth(*box_mesh[:4], method="cross-slice", off_slice_filter="none")
     assert not np.array_equal(default.points, off.points)
     axis = cm.smooth(*box_mesh[:4], method="cross-slice", off_slice_motion="axis", normal_iterations=5,
-                     normal_sigma=15.0, vertex_iterations=10, max_move=0.2, contour_max_move=0.0)
+                     normal_sigma=15.0, vertex_iterations=10, vertex_step=1.0, max_move=0.2, contour_max_move=0.0)
     assert axis.points.shape == default.points.shape
+    with pytest.raises(cm.InvalidInputError, match="vertex step"):
+        cm.smooth(*box_mesh[:4], method="cross-slice", vertex_step=3.0)
     with pytest.raises(cm.InvalidInputError, match="off_slice_filter must be"):
         cm.smooth(*box_mesh[:4], method="cross-slice", off_slice_filter="guided")
     faces = cm.smooth(*box_mesh[:4], method="cross-slice", off_slice_range="faces")

@@ -420,6 +420,29 @@ TEST(CrossSliceOffSlice, RejectsOptionsOutOfRange) {
   o = {};
   o.off_slice.guidance_interval = 0;
   EXPECT_THROW((void)cross_slice_smooth(mesh, o), InvalidInputError);
+  for (const double step : {0.0, -1.0, 2.01}) {
+    o = {};
+    o.off_slice.vertex_step = step;
+    EXPECT_THROW((void)cross_slice_smooth(mesh, o), InvalidInputError) << step;
+  }
+}
+
+// The vertex update has not converged after its iterations, so its step acts as a time step: half the
+// iterations at twice the step end about where the iterations at the step do, and far from where half
+// the iterations at the step end.
+TEST(CrossSliceOffSlice, VertexStepScalesTheUpdateLikeMoreIterations) {
+  const Mesh mesh = noisy_off_slice_cylinder(test::cylinder_spec(10.0, 21));
+  const auto run = [&](int iterations, double step) {
+    CrossSliceOptions o;
+    o.off_slice.vertex_iterations = iterations;
+    o.off_slice.vertex_step = step;
+    return cross_slice_smooth(mesh, o).mesh.positions;
+  };
+  const Eigen::Matrix3Xd long_steps = run(20, 1.0), double_steps = run(10, 2.0), short_steps = run(10, 1.0);
+  const double same = (double_steps - long_steps).colwise().norm().maxCoeff();
+  const double fewer = (short_steps - long_steps).colwise().norm().maxCoeff();
+  EXPECT_GT(fewer, 1e-3);
+  EXPECT_LT(same, 0.25 * fewer) << same << " against " << fewer;
 }
 
 }  // namespace

@@ -207,8 +207,9 @@ Eigen::Vector3d within_bounds(const Workspace& w, std::size_t m, const Eigen::Ve
   return d;
 }
 
-// The vertex update (eq. 6), Jacobi style: each moving vertex goes towards the planes of its faces with
-// the filtered normals `normals` (per filtered face), within its bounds (see filter_off_slice_normals).
+// The vertex update (eq. 6, with a step: OffSliceFilterOptions::vertex_step), Jacobi style: each moving
+// vertex goes towards the planes of its faces with the filtered normals `normals` (per filtered face),
+// within its bounds (see filter_off_slice_normals).
 // `x` and `start` hold the local vertices.
 void update_vertices(const ContourFrame& frame, const Workspace& w, const Eigen::Matrix3Xd& normals,
                      const OffSliceFilterOptions& options, const Eigen::Matrix3Xd& start, Eigen::Matrix3Xd& x) {
@@ -254,7 +255,7 @@ void update_vertices(const ContourFrame& frame, const Workspace& w, const Eigen:
           const Index f = w.incident[static_cast<std::size_t>(r)];
           step += normals.col(f) * normals.col(f).dot(centroids.col(f) - x.col(i));
         }
-        step /= static_cast<double>(last - first);
+        step *= options.vertex_step / static_cast<double>(last - first);
         const Eigen::Vector3d x0 = start.col(i);
         Eigen::Vector3d d;
         if (w.on_contour[m]) {

@@ -195,7 +195,7 @@ std::string off_slice_settings(const OffSliceFilterOptions& f) {
   if (f.rim_iterations > 0) {
     s += ", " + std::to_string(f.rim_iterations) + " more at rims of " + number(f.rim_angle_degrees) + " degrees";
   }
-  return s + ")";
+  return s + "; " + std::to_string(f.vertex_iterations) + " vertex steps of " + number(f.vertex_step) + ")";
 }
 
 std::string cross_slice_settings(const SmoothOptions& o) {

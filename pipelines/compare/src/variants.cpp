@@ -159,6 +159,8 @@ const std::vector<Key>& keys() {
        [](SmoothOptions& o, const Value& v) { o.cross_slice.off_slice.rim_rings = v.integer(); }},
       {"vertex-iterations", kCrossSlice,
        [](SmoothOptions& o, const Value& v) { o.cross_slice.off_slice.vertex_iterations = v.integer(); }},
+      {"vertex-step", kCrossSlice,
+       [](SmoothOptions& o, const Value& v) { o.cross_slice.off_slice.vertex_step = v.number(); }},
       {"max-move", kCrossSlice,
        [](SmoothOptions& o, const Value& v) { o.cross_slice.off_slice.max_move = v.number(); }},
       {"contour-max-move", kCrossSlice,

@@ -249,6 +249,7 @@ MethodConfig method_config(const py::object& method_arg, Options& o, Mesh& mesh)
     o.take_double("rim_angle", fo.rim_angle_degrees);
     o.take_int("rim_rings", fo.rim_rings);
     o.take_int("vertex_iterations", fo.vertex_iterations);
+    o.take_double("vertex_step", fo.vertex_step);
     o.take_double("max_move", fo.max_move);
     o.take_double("contour_max_move", fo.contour_max_move);
   } else if (m != SmoothingMethod::None) {

@@ -99,8 +99,8 @@ struct MethodVariant {
 ///   profile-model (parabola | circle), kinks (ignore | bound), kink-rate (probability), kink-sides
 ///   (lines | curves), stages (across-then-along | across-only), extension-iterations, off-slice-filter
 ///   (bilateral | none), off-slice-motion (free | axis), off-slice-range (faces | patches), normal-iterations,
-///   normal-sigma (degrees), vertex-iterations, max-move (slice spacings), contour-max-move (mm), crease-radius,
-///   edge-threshold, corner-threshold, min-extent, band, creases (none | restore),
+///   normal-sigma (degrees), vertex-iterations, vertex-step, max-move (slice spacings), contour-max-move (mm),
+///   crease-radius, edge-threshold, corner-threshold, min-extent, band, creases (none | restore),
 ///   restore-levels;
 /// - paper: iterations, lambda, mu, max-levels, diffusion (taubin | laplacian), measure (length | normal),
 ///   in-slice (noise | along-line), gamma-factor, delta-factor, window, corner-spread, prefilter;
