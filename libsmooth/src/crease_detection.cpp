@@ -120,6 +120,19 @@ BallTensor ball_tensor(const Mesh& mesh, const MeshAdjacency& adjacency, const s
   return result;
 }
 
+// Whether candidate i is the strongest across its crease: no ring neighbour lying across the crease
+// direction `along` (more across it than along it) has a larger `strength`.
+bool across_maximum(const Mesh& mesh, const MeshAdjacency& adjacency, const Eigen::Vector3d& along,
+                    const Eigen::VectorXd& strength, Index i) {
+  for (Index j : adjacency.ring(i)) {
+    const Eigen::Vector3d d = mesh.positions.col(j) - mesh.positions.col(i);
+    const double along_part = std::abs(d.dot(along));
+    const double across_part = (d - d.dot(along) * along).norm();
+    if (across_part > along_part && strength[j] > strength[i]) return false;
+  }
+  return true;
+}
+
 // Links of the crease lines (step 2 of detect_creases): per core vertex on a slice, in CSR, the core
 // vertices on an adjacent contour's slice within `radius` of it (through vertices within it: gather_ball,
 // in the order it meets them) such that the segment between them passes `along_crease` at both ends. They
@@ -203,7 +216,6 @@ CreaseDetection detect_creases(const Mesh& mesh, const MeshAdjacency& adjacency,
   result.confirm_corner_strength = Eigen::VectorXd::Zero(n);
   BallScratchPool scratch_pool(n);
   detail::parallel_chunks(static_cast<std::size_t>(n), 4096, [&](std::size_t, std::size_t begin, std::size_t end) {
-    std::unique_ptr<BallScratch> scratch;  // taken at the chunk's first candidate
     for (std::size_t k = begin; k < end; ++k) {
       const Index i = static_cast<Index>(k);
       const Eigen::Vector3d centre = mesh.positions.col(i);
@@ -224,7 +236,23 @@ CreaseDetection detect_creases(const Mesh& mesh, const MeshAdjacency& adjacency,
       }
       eigen.computeDirect(tensor);  // the crease direction, for the suppression below
       along.col(i) = eigen.eigenvectors().col(0);
-      if (options.confirm == CreaseConfirmation::None) continue;
+    }
+  });
+
+  // Non-maximum suppression on the ring's strengths: a candidate is a ridge maximum when no neighbour
+  // lying across its crease, rather than along it, is stronger. Only ridge maxima and the ring's corners
+  // can become core vertices, so only they are examined over the ball (on a real scan half of the
+  // candidates); the other candidates are not core whatever their ball, and keep no label of their own.
+  std::vector<std::uint8_t> ridge_maximum(static_cast<std::size_t>(n), 0);
+  detail::parallel_chunks(static_cast<std::size_t>(n), 4096, [&](std::size_t, std::size_t begin, std::size_t end) {
+    std::unique_ptr<BallScratch> scratch;  // taken at the chunk's first vertex examined over its ball
+    for (std::size_t k = begin; k < end; ++k) {
+      const Index i = static_cast<Index>(k);
+      const bool ring_corner = result.corner_strength[i] >= options.corner_threshold;
+      if (result.edge_strength[i] >= options.edge_threshold) {
+        ridge_maximum[k] = across_maximum(mesh, adjacency, along.col(i), result.edge_strength, i) ? 1 : 0;
+      }
+      if (!(ring_corner || ridge_maximum[k]) || options.confirm == CreaseConfirmation::None) continue;
       // The same tensor over the ball of confirm_radius: a crease is a change of the normal that
       // persists at that scale, not a step or fold of a few tenths of a millimetre.
       if (!scratch) scratch = scratch_pool.take();
@@ -258,24 +286,12 @@ CreaseDetection detect_creases(const Mesh& mesh, const MeshAdjacency& adjacency,
     for (auto i = static_cast<Index>(begin); i < static_cast<Index>(end); ++i) {
       const bool corner = is_corner(i);
       if (!corner && result.edge_strength[i] < options.edge_threshold) continue;
+      if (!corner && !ridge_maximum[static_cast<std::size_t>(i)]) continue;  // not the strongest across
       if (confirm && result.confirm_strength[i] < threshold[i]) {
         result.labels[static_cast<std::size_t>(i)] = VertexLabel::Noise;  // not a crease at the ball's scale
         continue;
       }
-      bool maximum = true;
-      if (!corner) {
-        const Eigen::Vector3d t = along.col(i);
-        for (Index j : adjacency.ring(i)) {
-          const Eigen::Vector3d d = mesh.positions.col(j) - mesh.positions.col(i);
-          const double along_part = std::abs(d.dot(t));
-          const double across_part = (d - d.dot(t) * t).norm();
-          if (across_part > along_part && result.edge_strength[j] > result.edge_strength[i]) {
-            maximum = false;
-            break;
-          }
-        }
-      }
-      core[static_cast<std::size_t>(i)] = maximum;
+      core[static_cast<std::size_t>(i)] = 1;
     }
   });
   // Two core vertices on adjacent contours' slices within link_radius of each other (through vertices

@@ -51,6 +51,29 @@ TEST(CreaseDetection, CubeCornersAreCorners) {
   EXPECT_GT(d.corners, 0u);
 }
 
+// The ball is examined only where a vertex can become a core vertex: on the cube's edges (the ridge
+// maxima), not at the candidates beside them, which the suppression across the crease rules out first.
+TEST(CreaseDetection, OnlyRidgeMaximaAndCornersAreExaminedOverTheBall) {
+  const double h = 10.0;
+  const Mesh cube = make_cube(20, h);  // 1 mm grid
+  const CreaseOptions options;
+  const CreaseDetection d = detect_creases(cube, build_adjacency(cube), options);
+  std::size_t beside = 0, on_edges = 0;
+  for (Index i = 0; i < cube.num_vertices(); ++i) {
+    const double to_edge = distance_to_cube_edges(cube.positions.col(i), h);
+    if (to_edge < 1e-9) {
+      ++on_edges;
+      EXPECT_GE(d.confirm_strength[i], options.confirm_threshold) << "vertex " << i;
+    } else if (d.edge_strength[i] >= options.edge_threshold && d.corner_strength[i] < options.corner_threshold) {
+      ++beside;  // a crease candidate one grid step from an edge, weaker than the edge across it
+      EXPECT_EQ(d.confirm_strength[i], 0.0) << "vertex " << i << " at " << to_edge;
+      EXPECT_NE(d.labels[static_cast<std::size_t>(i)], VertexLabel::Noise) << "vertex " << i;
+    }
+  }
+  EXPECT_GT(on_edges, 100u);
+  EXPECT_GT(beside, 100u);
+}
+
 TEST(CreaseDetection, SmoothSphereHasNoFeature) {
   const Mesh sphere = make_icosphere(4, 10.0);
   const CreaseDetection d = detect_creases(sphere, build_adjacency(sphere));

@@ -10,21 +10,24 @@
 //    l2 / trace = sin^2(theta / 2) / ... up to the split of areas, about 0.07 at 30 degrees and 0.25 at
 //    60; a smooth patch of curvature kappa gives about (radius kappa)^2 / 4. In three directions (a
 //    corner) when l3 / trace >= `corner_threshold`.
-// 2. Confirmation at the feature's scale (CreaseConfirmation::Ball): the same tensor over every vertex
-//    within `confirm_radius` connected to the candidate through such vertices. A crease keeps
+// 2. Non-maximum suppression, then confirmation at the feature's scale (CreaseConfirmation::Ball). A
+//    candidate crease is a ridge maximum when no ring neighbour lying across its crease direction (the
+//    eigenvector of l3, along which the normals vary least), rather than along it, has a larger
+//    l2 / trace. Ridge maxima and the ring's corners are examined with the same tensor over every vertex
+//    within `confirm_radius` connected to them through such vertices; the other candidates cannot become
+//    core vertices, and are not examined (on a real scan, half of the candidates). A crease keeps
 //    l2 / trace >= `confirm_threshold` there; a step or fold of a few tenths of a millimetre (a cap's
 //    rim on a contour stack, a jagged end face), whose faces fill little of the ball, does not. A
 //    corner keeps l3 / trace >= `confirm_corner_threshold` (three faces meeting: up to 1/3); otherwise
 //    it is examined as an edge. With CreaseSampling::SliceAware the crease threshold is
 //    `steep_confirm_threshold` / sin^2(psi), at most `confirm_threshold`, psi the angle between the
 //    ball's mean normal and the slice planes: a contour stack samples a surface nearly parallel to its
-//    slices coarsely, and a smooth surface folds there between two contours. Candidates not confirmed
-//    are labelled noise. docs/smoothing.md, "Feature labels (crease detection)".
-// 3. Core vertices: confirmed candidates strongest across their crease (non-maximum suppression).
-//    Lines, not specks: groups of core vertices spanning less than `min_extent` are noise. A group is
-//    connected through shared edges and, between adjacent slices, through links of up to
-//    `link_radius` along the crease direction of both ends (a crease oblique to the slices meets
-//    adjacent contours at vertices that share no edge).
+//    slices coarsely, and a smooth surface folds there between two contours. Examined vertices not
+//    confirmed are labelled noise. docs/smoothing.md, "Feature labels (crease detection)".
+// 3. Core vertices: the confirmed corners and ridge maxima. Lines, not specks: groups of core vertices
+//    spanning less than `min_extent` are noise. A group is connected through shared edges and, between
+//    adjacent slices, through links of up to `link_radius` along the crease direction of both ends (a
+//    crease oblique to the slices meets adjacent contours at vertices that share no edge).
 // 4. Band: every vertex within `band` of a kept core vertex (along the mesh's edges) takes its label,
 //    edge or corner (corner wins), as the evaluation's feature region counts vertices near a feature.
 #pragma once
@@ -95,7 +98,8 @@ struct CreaseDetection {
   std::vector<VertexLabel> labels;  ///< Smooth, Edge, Corner, or Noise (a rejected candidate or core vertex)
   Eigen::VectorXd edge_strength;    ///< l2 / trace per vertex
   Eigen::VectorXd corner_strength;  ///< l3 / trace per vertex
-  /// l2 / trace and l3 / trace over the ball, per candidate vertex (0 elsewhere and without confirmation)
+  /// l2 / trace and l3 / trace over the ball, per vertex examined over it (the ring's corners and the
+  /// ridge maxima; 0 elsewhere and without confirmation)
   Eigen::VectorXd confirm_strength, confirm_corner_strength;
   std::size_t core_vertices = 0;    ///< core vertices kept
   std::size_t edges = 0, corners = 0, noise = 0;
