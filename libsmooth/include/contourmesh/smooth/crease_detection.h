@@ -95,7 +95,9 @@ struct CreaseOptions {
 };
 
 struct CreaseDetection {
-  std::vector<VertexLabel> labels;  ///< Smooth, Edge, Corner, or Noise (a rejected candidate or core vertex)
+  /// Smooth, Edge, Corner, or Noise (a vertex examined over the ball and not confirmed, or a core vertex
+  /// of a group shorter than `min_extent`)
+  std::vector<VertexLabel> labels;
   Eigen::VectorXd edge_strength;    ///< l2 / trace per vertex
   Eigen::VectorXd corner_strength;  ///< l3 / trace per vertex
   /// l2 / trace and l3 / trace over the ball, per vertex examined over it (the ring's corners and the
