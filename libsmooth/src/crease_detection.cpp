@@ -271,9 +271,8 @@ CreaseDetection detect_creases(const Mesh& mesh, const MeshAdjacency& adjacency,
     if (scratch) scratch_pool.give_back(std::move(scratch));
   });
 
-  // 2. Core vertices: strong enough, and the strongest across the crease (non-maximum suppression: no
-  //    neighbour lying across the crease, rather than along it, is stronger). Corners are kept whole.
-  //    Then grouped along the edges and the links between slices; groups shorter than min_extent are noise.
+  // 2. Core vertices: the confirmed corners (kept whole) and ridge maxima (suppression above). Then grouped
+  //    along the edges and the links between slices; groups shorter than min_extent are noise.
   std::vector<std::uint8_t> core(static_cast<std::size_t>(n), 0);
   const bool confirm = options.confirm == CreaseConfirmation::Ball;
   // A corner on the ring, and over the ball too when confirming.
@@ -285,8 +284,8 @@ CreaseDetection detect_creases(const Mesh& mesh, const MeshAdjacency& adjacency,
   detail::parallel_chunks(static_cast<std::size_t>(n), 8192, [&](std::size_t, std::size_t begin, std::size_t end) {
     for (auto i = static_cast<Index>(begin); i < static_cast<Index>(end); ++i) {
       const bool corner = is_corner(i);
-      if (!corner && result.edge_strength[i] < options.edge_threshold) continue;
-      if (!corner && !ridge_maximum[static_cast<std::size_t>(i)]) continue;  // not the strongest across
+      // Not a corner: a crease candidate only where it is the strongest across (set above for candidates).
+      if (!corner && !ridge_maximum[static_cast<std::size_t>(i)]) continue;
       if (confirm && result.confirm_strength[i] < threshold[i]) {
         result.labels[static_cast<std::size_t>(i)] = VertexLabel::Noise;  // not a crease at the ball's scale
         continue;
