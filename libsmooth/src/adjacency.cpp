@@ -61,13 +61,15 @@ void write_rings(const Mesh& mesh, std::size_t first, std::size_t last, MeshAdja
     } else {
       std::sort(s, s + count);
     }
-    if (written + count > room) {  // an open mesh: more edges than face corners
+    std::size_t distinct = count > 0 ? 1 : 0;  // the ring's size: the gathered corners come in pairs
+    for (std::size_t a = 1; a < count; ++a) distinct += static_cast<std::size_t>(s[a] != s[a - 1]);
+    if (written + distinct > room) {  // an open mesh: more edges than face corners
       if (!part.spilled) {
         part.neighbors.assign(out_neighbors, out_neighbors + written);
         part.counts.assign(out_counts, out_counts + written);
         part.spilled = true;
       }
-      room = 2 * (written + count) + 16;
+      room = 2 * (written + distinct) + 16;
       part.neighbors.resize(room);
       part.counts.resize(room);
       out_neighbors = part.neighbors.data();
