@@ -1,6 +1,7 @@
 // SPDX-License-Identifier: BSD-3-Clause
 #include "contourmesh/smooth/feature_smoothing.h"
 
+#include "detail/stopwatch.h"
 #include "contourmesh/smooth/adjacency.h"
 #include "contourmesh/smooth/errors.h"
 
@@ -9,10 +10,6 @@
 namespace contourmesh {
 
 namespace {
-
-double seconds_since(std::chrono::steady_clock::time_point t) {
-  return std::chrono::duration<double>(std::chrono::steady_clock::now() - t).count();
-}
 
 }  // namespace
 
@@ -34,7 +31,7 @@ FeatureSmoothingResult feature_preserving_smooth(const Mesh& mesh, const Feature
   DetectionOptions detection = options.detection;
   if (!detection.progress) detection.progress = options.progress;
   result.detection = detect_features(mesh, adjacency, detection);
-  result.seconds.detect = seconds_since(t);
+  result.seconds.detect = detail::seconds_since(t);
 
   // 2. Subdivide around edge and corner vertices.
   t = std::chrono::steady_clock::now();
@@ -52,7 +49,7 @@ FeatureSmoothingResult feature_preserving_smooth(const Mesh& mesh, const Feature
   result.subdivided_vertices = adaptive.subdivided.size();
   result.adaptive_vertices = adaptive.mesh.num_vertices();
   result.per_level = adaptive.per_level;
-  result.seconds.subdivide = seconds_since(t);
+  result.seconds.subdivide = detail::seconds_since(t);
   if (options.progress && !options.progress("subdivide", 1.0)) throw CancelledError("subdivision");
 
   // 3. Isotropic smoothing of the adaptive mesh; new vertices are never locked.
@@ -73,7 +70,7 @@ FeatureSmoothingResult feature_preserving_smooth(const Mesh& mesh, const Feature
   smoothing.on_iteration = options.on_iteration;
   const MeshAdjacency adaptive_adjacency = build_adjacency(adaptive.mesh);
   Eigen::Matrix3Xd smoothed = smooth(adaptive.mesh, adaptive_adjacency, smoothing);
-  result.seconds.smooth = seconds_since(t);
+  result.seconds.smooth = detail::seconds_since(t);
 
   // 4. Resume the resolution (or keep the adaptive mesh).
   if (options.output == OutputResolution::Adaptive) {
@@ -83,7 +80,7 @@ FeatureSmoothingResult feature_preserving_smooth(const Mesh& mesh, const Feature
     result.mesh = mesh;
     result.mesh.positions = smoothed.leftCols(mesh.num_vertices());
   }
-  result.seconds.total = seconds_since(start);
+  result.seconds.total = detail::seconds_since(start);
   return result;
 }
 

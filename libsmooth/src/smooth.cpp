@@ -1,6 +1,7 @@
 // SPDX-License-Identifier: BSD-3-Clause
 #include "contourmesh/smooth/smooth.h"
 
+#include "detail/stopwatch.h"
 #include "contourmesh/smooth/adjacency.h"
 #include "contourmesh/smooth/divergence.h"
 #include "contourmesh/smooth/errors.h"
@@ -15,8 +16,6 @@ namespace {
 
 using Clock = std::chrono::steady_clock;
 
-double seconds_since(Clock::time_point t) { return std::chrono::duration<double>(Clock::now() - t).count(); }
-
 SmoothResult run_baseline(const Mesh& mesh, SmoothingMethod method, const SmoothOptions& options) {
   SmoothingOptions o = options.baseline;
   o.method = method;
@@ -27,7 +26,7 @@ SmoothResult run_baseline(const Mesh& mesh, SmoothingMethod method, const Smooth
   const auto t = Clock::now();
   r.mesh = mesh;
   r.mesh.positions = smooth(mesh, o);  // builds the adjacency: part of the method's cost
-  r.seconds.smooth = seconds_since(t);
+  r.seconds.smooth = detail::seconds_since(t);
   r.iterations = o.iterations;
   return r;
 }
@@ -114,7 +113,7 @@ SmoothResult smooth(const Mesh& mesh, SmoothingMethod method, const SmoothOption
   // resolution step.
   check_not_diverged(r.mesh.positions, DivergenceBounds::of(mesh.positions), "smoothing");
   r.method = method;
-  r.seconds.total = seconds_since(start);
+  r.seconds.total = detail::seconds_since(start);
   return r;
 }
 
@@ -135,7 +134,7 @@ FeatureLabels label_features(const Mesh& mesh, SmoothingMethod method, const Smo
     f.labels = std::move(r.labels);
     f.creases = std::move(r.creases);
   }
-  f.seconds = seconds_since(start);
+  f.seconds = detail::seconds_since(start);
   return f;
 }
 
