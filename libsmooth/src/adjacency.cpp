@@ -1,6 +1,7 @@
 // SPDX-License-Identifier: BSD-3-Clause
 #include "contourmesh/smooth/adjacency.h"
 
+#include "detail/huge_pages.h"
 #include "detail/parallel.h"
 #include "contourmesh/smooth/errors.h"
 
@@ -100,7 +101,7 @@ MeshAdjacency build_adjacency(const Mesh& mesh) {
   MeshAdjacency adj;
 
   // Vertex-to-face incidence by counting sort.
-  adj.face_offsets.assign(static_cast<std::size_t>(n) + 1, 0);
+  detail::assign_huge(adj.face_offsets, static_cast<std::size_t>(n) + 1, Index{0});
   for (Index f = 0; f < nf; ++f) {
     for (Index v : mesh.triangles[f]) {
       if (v < 0 || v >= n) {
@@ -111,6 +112,7 @@ MeshAdjacency build_adjacency(const Mesh& mesh) {
     }
   }
   for (Index i = 0; i < n; ++i) adj.face_offsets[i + 1] += adj.face_offsets[i];
+  detail::reserve_huge(adj.faces, static_cast<std::size_t>(adj.face_offsets[n]));
   adj.faces.resize(static_cast<std::size_t>(adj.face_offsets[n]));
   {
     std::vector<Index> fill(adj.face_offsets.begin(), adj.face_offsets.end() - 1);
@@ -126,9 +128,11 @@ MeshAdjacency build_adjacency(const Mesh& mesh) {
   // faces, so each chunk writes in place, where its vertices' faces are listed; a chunk whose rings do
   // not fit there (an open mesh) writes into its own arrays, and the chunks are then joined in order.
   // Either way the arrays do not depend on the number of threads.
-  adj.neighbor_offsets.assign(static_cast<std::size_t>(n) + 1, 0);
-  adj.is_boundary.assign(static_cast<std::size_t>(n), 0);
+  detail::assign_huge(adj.neighbor_offsets, static_cast<std::size_t>(n) + 1, Index{0});
+  detail::assign_huge(adj.is_boundary, static_cast<std::size_t>(n), std::uint8_t{0});
+  detail::reserve_huge(adj.neighbors, adj.faces.size());
   adj.neighbors.resize(adj.faces.size());
+  detail::reserve_huge(adj.edge_face_count, adj.faces.size());
   adj.edge_face_count.resize(adj.faces.size());
   constexpr std::size_t kChunk = 16384;
   std::vector<Part> parts((static_cast<std::size_t>(n) + kChunk - 1) / kChunk);

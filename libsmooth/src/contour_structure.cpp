@@ -4,6 +4,7 @@
 #include "contourmesh/smooth/errors.h"
 
 #include "contourmesh/internal/union_find.h"
+#include "detail/huge_pages.h"
 #include "detail/parallel.h"
 
 #include <Eigen/Eigenvalues>
@@ -48,7 +49,7 @@ ContourNeighbours contour_neighbours(const Mesh& mesh, const MeshAdjacency& adj)
   if (!mesh.has_contour_ids()) throw InvalidInputError("contour_neighbours: the mesh has no contour ids");
   const Index n = mesh.num_vertices();
   ContourNeighbours out;
-  out.of.assign(static_cast<std::size_t>(n), {-1, -1});
+  detail::assign_huge(out.of, static_cast<std::size_t>(n), {-1, -1});
   const auto& slice = mesh.slice_ids;
   const auto& contour = mesh.contour_ids;
   // Each vertex reads its own ring only: fixed chunks on every core.
@@ -130,14 +131,17 @@ bool assign_ids_by_slice_planes(Mesh& mesh, const MeshAdjacency& adj, const Eige
   const Eigen::Vector3d axis = axis_in.normalized();
   const Index n = mesh.num_vertices();
   if (n == 0) return false;
-  std::vector<double> h(static_cast<std::size_t>(n));
+  std::vector<double> h;
+  detail::resize_huge(h, static_cast<std::size_t>(n));
   for (Index i = 0; i < n; ++i) h[i] = mesh.positions.col(i).dot(axis);
-  std::vector<Index> order(static_cast<std::size_t>(n));
+  std::vector<Index> order;
+  detail::resize_huge(order, static_cast<std::size_t>(n));
   std::iota(order.begin(), order.end(), 0);
   std::sort(order.begin(), order.end(), [&](Index a, Index b) { return h[a] < h[b]; });
   const double extent = h[order.back()] - h[order.front()];
   const double tol = tolerance > 0.0 ? tolerance : 1e-4 * extent;
-  std::vector<std::int32_t> slice(static_cast<std::size_t>(n));
+  std::vector<std::int32_t> slice;
+  detail::resize_huge(slice, static_cast<std::size_t>(n));
   std::int32_t current = 0;
   for (std::size_t k = 0; k < order.size(); ++k) {
     if (k > 0 && h[order[k]] - h[order[k - 1]] > tol) ++current;
@@ -146,7 +150,8 @@ bool assign_ids_by_slice_planes(Mesh& mesh, const MeshAdjacency& adj, const Eige
   // Contour-stack vertices lie on planes of many vertices; accept when 90% of them do (vertices of
   // branching copies or a few stray ones may not).
   {
-    std::vector<Index> per_plane(static_cast<std::size_t>(current) + 1, 0);
+    std::vector<Index> per_plane;
+    detail::assign_huge(per_plane, static_cast<std::size_t>(current) + 1, 0);
     for (Index i = 0; i < n; ++i) ++per_plane[slice[i]];
     Index on_planes = 0;
     for (Index i = 0; i < n; ++i) on_planes += per_plane[slice[i]] >= 3 ? 1 : 0;
@@ -161,7 +166,8 @@ bool assign_ids_by_slice_planes(Mesh& mesh, const MeshAdjacency& adj, const Eige
   }
   std::map<std::pair<std::int32_t, Index>, std::int32_t> contour_of;  // (slice, root) -> index in slice
   std::map<std::int32_t, std::int32_t> next_in_slice;
-  std::vector<std::int32_t> contour(static_cast<std::size_t>(n));
+  std::vector<std::int32_t> contour;
+  detail::resize_huge(contour, static_cast<std::size_t>(n));
   for (Index i : order) {
     const auto key = std::make_pair(slice[i], planes.find(i));
     auto it = contour_of.find(key);

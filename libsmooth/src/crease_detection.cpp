@@ -1,6 +1,7 @@
 // SPDX-License-Identifier: BSD-3-Clause
 #include "contourmesh/smooth/crease_detection.h"
 
+#include "detail/huge_pages.h"
 #include "detail/parallel.h"
 #include "detail/slice_axis.h"
 #include "detail/vertex_ball.h"
@@ -54,7 +55,8 @@ void check(const Mesh& mesh, const MeshAdjacency& adjacency, const CreaseOptions
 // Multi-source shortest paths along the edges, up to `limit`; sources at distance 0.
 std::vector<double> distances_from(const Mesh& mesh, const MeshAdjacency& adjacency, const std::vector<Index>& sources,
                                    double limit) {
-  std::vector<double> d(static_cast<std::size_t>(mesh.num_vertices()), std::numeric_limits<double>::infinity());
+  std::vector<double> d;
+  detail::assign_huge(d, static_cast<std::size_t>(mesh.num_vertices()), std::numeric_limits<double>::infinity());
   using Item = std::pair<double, Index>;
   std::priority_queue<Item, std::vector<Item>, std::greater<>> queue;
   for (Index s : sources) {
@@ -144,7 +146,7 @@ void link_partners(const Mesh& mesh, const MeshAdjacency& adjacency, const std::
   const auto n = static_cast<std::size_t>(mesh.num_vertices());
   constexpr std::size_t kChunk = 4096;
   std::vector<std::vector<Index>> parts((n + kChunk - 1) / kChunk);
-  offsets.assign(n + 1, 0);
+  detail::assign_huge(offsets, n + 1, Index{0});
   detail::parallel_chunks(n, kChunk, [&](std::size_t chunk, std::size_t begin, std::size_t end) {
     std::unique_ptr<BallScratch> scratch;  // taken at the chunk's first core vertex
     for (std::size_t v = begin; v < end; ++v) {
@@ -178,18 +180,19 @@ CreaseDetection detect_creases(const Mesh& mesh, const MeshAdjacency& adjacency,
   check(mesh, adjacency, options);
   const Index n = mesh.num_vertices();
   CreaseDetection result;
-  result.labels.assign(static_cast<std::size_t>(n), VertexLabel::Smooth);
-  result.edge_strength = Eigen::VectorXd::Zero(n);
-  result.corner_strength = Eigen::VectorXd::Zero(n);
+  detail::assign_huge(result.labels, static_cast<std::size_t>(n), VertexLabel::Smooth);
+  result.edge_strength = detail::huge_zero<Eigen::VectorXd>(n, 1);
+  result.corner_strength = detail::huge_zero<Eigen::VectorXd>(n, 1);
   // Per vertex, the direction of least normal variation: along a crease.
-  Eigen::Matrix3Xd along = Eigen::Matrix3Xd::Zero(3, n);
+  Eigen::Matrix3Xd along = detail::huge_zero<Eigen::Matrix3Xd>(3, n);
 
   // 1. Normal tensors: each vertex's own, a third of sum A_f n_f n_f^T over its faces, then summed over
   //    the vertex and its ring neighbours within the radius (about one or two edge lengths).
   //    A face's unit normal and area come from one cross product, as face_normals and face_areas
   //    compute them (the same values, without the two per-face arrays).
-  Eigen::Matrix3Xd area_normal = Eigen::Matrix3Xd::Zero(3, n);  // sum of the faces' area vectors, x2
-  std::vector<Tensor6> own(static_cast<std::size_t>(n), Tensor6::Zero());
+  Eigen::Matrix3Xd area_normal = detail::huge_zero<Eigen::Matrix3Xd>(3, n);  // sum of the faces' area vectors, x2
+  std::vector<Tensor6> own;
+  detail::assign_huge(own, static_cast<std::size_t>(n), Tensor6(Tensor6::Zero()));
   for (const Triangle& tri : mesh.triangles) {
     const Eigen::Vector3d c = (mesh.positions.col(tri[1]) - mesh.positions.col(tri[0]))
                                   .cross(mesh.positions.col(tri[2]) - mesh.positions.col(tri[0]));
@@ -211,9 +214,10 @@ CreaseDetection detect_creases(const Mesh& mesh, const MeshAdjacency& adjacency,
           : std::nullopt;
   const double relative_noise = options.noise.value_or(0.0) / options.confirm_radius;
   const double lift = options.noise_factor * relative_noise * relative_noise;
-  Eigen::VectorXd threshold = Eigen::VectorXd::Constant(n, options.confirm_threshold + lift);
-  result.confirm_strength = Eigen::VectorXd::Zero(n);
-  result.confirm_corner_strength = Eigen::VectorXd::Zero(n);
+  Eigen::VectorXd threshold = detail::huge_matrix<Eigen::VectorXd>(n, 1);
+  threshold.setConstant(options.confirm_threshold + lift);
+  result.confirm_strength = detail::huge_zero<Eigen::VectorXd>(n, 1);
+  result.confirm_corner_strength = detail::huge_zero<Eigen::VectorXd>(n, 1);
   BallScratchPool scratch_pool(n);
   detail::parallel_chunks(static_cast<std::size_t>(n), 4096, [&](std::size_t, std::size_t begin, std::size_t end) {
     for (std::size_t k = begin; k < end; ++k) {
@@ -243,7 +247,8 @@ CreaseDetection detect_creases(const Mesh& mesh, const MeshAdjacency& adjacency,
   // lying across its crease, rather than along it, is stronger. Only ridge maxima and the ring's corners
   // can become core vertices, so only they are examined over the ball (on a real scan half of the
   // candidates); the other candidates are not core whatever their ball, and keep no label of their own.
-  std::vector<std::uint8_t> ridge_maximum(static_cast<std::size_t>(n), 0);
+  std::vector<std::uint8_t> ridge_maximum;
+  detail::assign_huge(ridge_maximum, static_cast<std::size_t>(n), std::uint8_t{0});
   detail::parallel_chunks(static_cast<std::size_t>(n), 4096, [&](std::size_t, std::size_t begin, std::size_t end) {
     std::unique_ptr<BallScratch> scratch;  // taken at the chunk's first vertex examined over its ball
     for (std::size_t k = begin; k < end; ++k) {
@@ -273,7 +278,8 @@ CreaseDetection detect_creases(const Mesh& mesh, const MeshAdjacency& adjacency,
 
   // 2. Core vertices: the confirmed corners (kept whole) and ridge maxima (suppression above). Then grouped
   //    along the edges and the links between slices; groups shorter than min_extent are noise.
-  std::vector<std::uint8_t> core(static_cast<std::size_t>(n), 0);
+  std::vector<std::uint8_t> core;
+  detail::assign_huge(core, static_cast<std::size_t>(n), std::uint8_t{0});
   const bool confirm = options.confirm == CreaseConfirmation::Ball;
   // A corner on the ring, and over the ball too when confirming.
   const auto is_corner = [&](Index i) {
@@ -307,7 +313,8 @@ CreaseDetection detect_creases(const Mesh& mesh, const MeshAdjacency& adjacency,
   if (linking) {
     link_partners(mesh, adjacency, core, options.link_radius, along_crease, scratch_pool, link_offsets, links);
   }
-  std::vector<Index> group(static_cast<std::size_t>(n), -1);
+  std::vector<Index> group;
+  detail::assign_huge(group, static_cast<std::size_t>(n), Index{-1});
   std::vector<Index> kept, kept_corners, members, stack;
   const auto join = [&](Index j, Index seed) {
     if (core[static_cast<std::size_t>(j)] && group[static_cast<std::size_t>(j)] < 0) {

@@ -1,7 +1,9 @@
 // SPDX-License-Identifier: BSD-3-Clause
 #include "contourmesh/smooth/cross_slice.h"
 
+#include "detail/stopwatch.h"
 #include "detail/contour_profiles.h"
+#include "detail/huge_pages.h"
 #include "detail/lpa_ici.h"
 #include "detail/off_slice_filter.h"
 #include "detail/parallel.h"
@@ -15,10 +17,6 @@
 namespace contourmesh {
 
 namespace {
-
-double seconds_since(std::chrono::steady_clock::time_point t) {
-  return std::chrono::duration<double>(std::chrono::steady_clock::now() - t).count();
-}
 
 void check_options(const CrossSliceOptions& o) {
   const auto fail = [](const std::string& what) { throw InvalidInputError("cross-slice smoothing: " + what); };
@@ -167,7 +165,7 @@ void extend_displacements(const detail::ContourFrame& frame, int iterations, Eig
   if (free.empty()) return;
   // Each iteration's averages, for the free vertices only (the others are held), then written back:
   // Jacobi steps, each vertex independent, in fixed chunks on every core.
-  Eigen::Matrix3Xd next(3, static_cast<Index>(free.size()));
+  auto next = detail::huge_matrix<Eigen::Matrix3Xd>(3, static_cast<Index>(free.size()));
   constexpr std::size_t kChunk = 4096;
   for (int it = 0; it < iterations; ++it) {
     detail::parallel_chunks(free.size(), kChunk, [&](std::size_t, std::size_t begin, std::size_t end) {
@@ -182,6 +180,20 @@ void extend_displacements(const detail::ContourFrame& frame, int iterations, Eig
       for (std::size_t k = begin; k < end; ++k) displacement.col(free[k]) = next.col(static_cast<Index>(k));
     });
   }
+}
+
+// A copy of `mesh` whose large arrays are advised for huge pages before they are written.
+Mesh copy_mesh(const Mesh& mesh) {
+  Mesh copy;
+  copy.positions = detail::huge_matrix<Eigen::Matrix3Xd>(3, mesh.positions.cols());
+  copy.positions = mesh.positions;
+  detail::reserve_huge(copy.triangles, mesh.triangles.size());
+  copy.triangles = mesh.triangles;
+  detail::reserve_huge(copy.slice_ids, mesh.slice_ids.size());
+  copy.slice_ids = mesh.slice_ids;
+  detail::reserve_huge(copy.contour_ids, mesh.contour_ids.size());
+  copy.contour_ids = mesh.contour_ids;
+  return copy;
 }
 
 }  // namespace
@@ -203,7 +215,8 @@ CrossSliceResult cross_slice_smooth(const Mesh& mesh, const CrossSliceOptions& o
 
   auto t = std::chrono::steady_clock::now();
   const Index n = mesh.num_vertices();
-  Eigen::Matrix3Xd displacement = Eigen::Matrix3Xd::Zero(3, n);
+  auto displacement = detail::huge_matrix<Eigen::Matrix3Xd>(3, n);
+  displacement.setZero();
   detail::LpaIciOptions lpa;
 
   // 1. Across the slices.
@@ -229,7 +242,7 @@ CrossSliceResult cross_slice_smooth(const Mesh& mesh, const CrossSliceOptions& o
 
   // 2. Along the contours, on the positions after step 1 (held in the result's positions, which take
   // the final ones below: no buffer of their own).
-  result.mesh = mesh;
+  result.mesh = copy_mesh(mesh);
   if (options.stages == CrossSliceStages::AcrossThenAlong) {
     Eigen::Matrix3Xd& across = result.mesh.positions;
     detail::parallel_chunks(static_cast<std::size_t>(n), 16384, [&](std::size_t, std::size_t begin, std::size_t end) {
@@ -259,7 +272,7 @@ CrossSliceResult cross_slice_smooth(const Mesh& mesh, const CrossSliceOptions& o
   });
   result.off_slice_moved =
       detail::filter_off_slice_normals(frame, mesh.triangles, options.off_slice, result.mesh.positions);
-  result.seconds_smooth = seconds_since(t);
+  result.seconds_smooth = detail::seconds_since(t);
   if (options.progress && !options.progress("smooth", 1.0)) throw CancelledError("smoothing");
 
   // 4. Labels.
@@ -271,8 +284,8 @@ CrossSliceResult cross_slice_smooth(const Mesh& mesh, const CrossSliceOptions& o
   if (options.crease_restoration == CreaseRestoration::Subdivide) {
     result.mesh = restore_creases(result.mesh, result.labels, options.restoration).mesh;
   }
-  result.seconds_detect = seconds_since(t);
-  result.seconds_total = seconds_since(start);
+  result.seconds_detect = detail::seconds_since(t);
+  result.seconds_total = detail::seconds_since(start);
   if (options.progress && !options.progress("detect", 1.0)) throw CancelledError("feature detection");
   return result;
 }

@@ -1,6 +1,7 @@
 // SPDX-License-Identifier: BSD-3-Clause
 #include "contourmesh/smooth/normals.h"
 
+#include "detail/huge_pages.h"
 #include "detail/parallel.h"
 #include "contourmesh/smooth/errors.h"
 
@@ -52,7 +53,7 @@ Eigen::Matrix3Xd vertex_normals(const Eigen::Matrix3Xd& positions, const std::ve
                             " vertices, the positions " + std::to_string(positions.cols()));
   }
   // The faces' unnormalised cross products first (each once), then every vertex's sum over its faces.
-  Eigen::Matrix3Xd cross(3, static_cast<Eigen::Index>(triangles.size()));
+  auto cross = detail::huge_matrix<Eigen::Matrix3Xd>(3, static_cast<Eigen::Index>(triangles.size()));
   detail::parallel_chunks(triangles.size(), 16384, [&](std::size_t, std::size_t begin, std::size_t end) {
     for (std::size_t f = begin; f < end; ++f) {
       const Triangle& t = triangles[f];
@@ -60,7 +61,7 @@ Eigen::Matrix3Xd vertex_normals(const Eigen::Matrix3Xd& positions, const std::ve
           (positions.col(t[1]) - positions.col(t[0])).cross(positions.col(t[2]) - positions.col(t[0]));
     }
   });
-  Eigen::Matrix3Xd normals(3, positions.cols());
+  auto normals = detail::huge_matrix<Eigen::Matrix3Xd>(3, positions.cols());
   const auto n = static_cast<std::size_t>(positions.cols());
   detail::parallel_chunks(n, 16384, [&](std::size_t, std::size_t begin, std::size_t end) {
     for (auto i = static_cast<Index>(begin); i < static_cast<Index>(end); ++i) {

@@ -2,6 +2,7 @@
 #include "contourmesh/smooth/slice_neighbors.h"
 
 #include "contourmesh/smooth/errors.h"
+#include "detail/huge_pages.h"
 #include "detail/parallel.h"
 
 #include <array>
@@ -16,11 +17,12 @@ SliceRings split_rings_by_slice(const Mesh& mesh, const MeshAdjacency& adj) {
   if (adj.num_vertices() != n) throw InvalidInputError("split_rings_by_slice: adjacency does not match the mesh");
 
   SliceRings rings;
+  detail::reserve_huge(rings.offsets, adj.neighbor_offsets.size());
   rings.offsets = adj.neighbor_offsets;
-  rings.neighbors.resize(adj.neighbors.size());
-  rings.below_begin.resize(static_cast<std::size_t>(n));
-  rings.above_begin.resize(static_cast<std::size_t>(n));
-  rings.other_begin.resize(static_cast<std::size_t>(n));
+  detail::resize_huge(rings.neighbors, adj.neighbors.size());
+  detail::resize_huge(rings.below_begin, static_cast<std::size_t>(n));
+  detail::resize_huge(rings.above_begin, static_cast<std::size_t>(n));
+  detail::resize_huge(rings.other_begin, static_cast<std::size_t>(n));
   const auto& s = mesh.slice_ids;
   // Per neighbour its group (same slice, below, above, other), then a stable counting sort of the ring
   // by group: one pass over the ring instead of one per group.

@@ -1,4 +1,5 @@
 // SPDX-License-Identifier: BSD-3-Clause
+#include "detail/huge_pages.h"
 #include "detail/contour_profiles.h"
 
 #include "detail/parallel.h"
@@ -23,7 +24,7 @@ ContourFrame make_contour_frame(const Mesh& mesh) {
   f.rings = split_rings_by_slice(mesh, f.adjacency);
   f.axis = estimate_slice_axis(mesh);
   const Index n = mesh.num_vertices();
-  f.on_contour.assign(static_cast<std::size_t>(n), 0);
+  detail::assign_huge(f.on_contour, static_cast<std::size_t>(n), 0);
   std::vector<double> heights;
   std::map<std::int32_t, std::pair<double, double>> levels;  // slice id -> (sum of heights, count)
   double edge_sum = 0.0;
@@ -57,8 +58,8 @@ ContourFrame make_contour_frame(const Mesh& mesh) {
   if (heights.empty() || edges == 0) {
     throw InvalidInputError("cross-slice smoothing: the mesh has contour vertices on fewer than two slices");
   }
-  f.above.assign(static_cast<std::size_t>(n), -1);
-  f.below.assign(static_cast<std::size_t>(n), -1);
+  detail::assign_huge(f.above, static_cast<std::size_t>(n), -1);
+  detail::assign_huge(f.below, static_cast<std::size_t>(n), -1);
   parallel_chunks(static_cast<std::size_t>(n), 8192, [&](std::size_t, std::size_t begin, std::size_t end) {
     for (auto i = static_cast<Index>(begin); i < static_cast<Index>(end); ++i) {
       if (!f.is_contour_vertex(i)) continue;
@@ -240,8 +241,8 @@ NextCuts next_cuts(const ContourFrame& f, const Eigen::Matrix3Xd& x, const Eigen
   constexpr int kMaxStarts = 16;
   const Index n = static_cast<Index>(x.cols());
   NextCuts cuts;
-  cuts.up.assign(static_cast<std::size_t>(n), EdgePoint{});
-  cuts.down.assign(static_cast<std::size_t>(n), EdgePoint{});
+  detail::assign_huge(cuts.up, static_cast<std::size_t>(n), EdgePoint{});
+  detail::assign_huge(cuts.down, static_cast<std::size_t>(n), EdgePoint{});
   const double max_offset = 6.0 * f.slice_spacing;
   const double search_radius = 1.5 * f.slice_spacing;
   // Each vertex's cuts read the positions only: independent, in fixed chunks on every core.
@@ -443,7 +444,8 @@ NoiseEstimate profile_noise(const ContourFrame& f, const Eigen::Matrix3Xd& x, co
   const auto samples = static_cast<std::size_t>((x.cols() + stride - 1) / stride);
   constexpr std::size_t kChunk = 2048;
   std::vector<std::vector<double>> parts((samples + kChunk - 1) / kChunk);
-  std::vector<std::size_t> sampled(parts.size(), 0);
+  std::vector<std::size_t> sampled;
+  detail::assign_huge(sampled, parts.size(), 0);
   parallel_chunks(samples, kChunk, [&](std::size_t chunk, std::size_t begin, std::size_t end) {
     std::vector<double>& d4 = parts[chunk];
     Profile p;

@@ -1,4 +1,5 @@
 // SPDX-License-Identifier: BSD-3-Clause
+#include "detail/huge_pages.h"
 #include "detail/guidance_patches.h"
 
 #include <algorithm>
@@ -51,7 +52,7 @@ struct OuterFaces {
 OuterFaces outer_faces(const std::vector<Triangle>& triangles, const Eigen::Matrix3Xd& positions, const Workspace& w,
                        const std::vector<std::vector<Index>>& around, Eigen::Matrix3Xd& normals) {
   OuterFaces outer;
-  outer.of.assign(triangles.size(), -1);
+  detail::assign_huge(outer.of, triangles.size(), -1);
   for (const std::vector<Index>& part : around) {
     for (Index g : part) {
       if (w.face_map[static_cast<std::size_t>(g)] < 0) outer.of[static_cast<std::size_t>(g)] = 0;
@@ -64,9 +65,9 @@ OuterFaces outer_faces(const std::vector<Triangle>& triangles, const Eigen::Matr
     faces.push_back(static_cast<Index>(g));
   }
   const auto no = static_cast<Index>(faces.size());
-  outer.centroids.resize(3, no);
-  outer.areas.resize(no);
-  normals.resize(3, no);
+  outer.centroids = detail::huge_matrix<Eigen::Matrix3Xd>(3, no);
+  outer.areas = detail::huge_matrix<Eigen::VectorXd>(no, 1);
+  normals = detail::huge_matrix<Eigen::Matrix3Xd>(3, no);
   parallel_chunks(faces.size(), 4096, [&](std::size_t, std::size_t begin, std::size_t end) {
     for (std::size_t o = begin; o < end; ++o) {
       const Triangle& t = triangles[static_cast<std::size_t>(faces[o])];
@@ -88,13 +89,13 @@ GuidancePatches make_patches(const ContourFrame& frame, const std::vector<Triang
   const std::size_t nl = w.faces.size();
   const double inv_s = 1.0 / (2.0 * w.sigma_s * w.sigma_s);
   GuidancePatches p;
-  p.offsets.assign(nl + 1, 0);
+  detail::assign_huge(p.offsets, nl + 1, 0);
   const std::vector<std::vector<Index>> around = faces_around(frame.adjacency, triangles, w, p.offsets);
   for (std::size_t l = 0; l < nl; ++l) p.offsets[l + 1] += p.offsets[l];
   const OuterFaces outer = outer_faces(triangles, positions, w, around, p.outer_normals);
   // The entries and their weights (area x spatial kernel), on every core, in the chunks of faces_around.
-  p.entries.resize(static_cast<std::size_t>(p.offsets.back()));
-  p.weights.resize(p.entries.size());
+  detail::resize_huge(p.entries, static_cast<std::size_t>(p.offsets.back()));
+  detail::resize_huge(p.weights, p.entries.size());
   parallel_chunks(nl, kPatchChunk, [&](std::size_t chunk, std::size_t begin, std::size_t end) {
     const std::vector<Index>& part = around[chunk];
     std::size_t next = 0;  // in part

@@ -1,4 +1,5 @@
 // SPDX-License-Identifier: BSD-3-Clause
+#include "detail/huge_pages.h"
 #include "detail/off_slice_filter.h"
 
 #include "contourmesh/internal/union_find.h"
@@ -21,7 +22,8 @@ std::vector<std::uint8_t> rim_faces(const Workspace& w, const OffSliceFilterOpti
                                     const Eigen::Matrix3Xd& normals) {
   const std::size_t nk = w.filtered.size();
   const double rim_cos = std::cos(options.rim_angle_degrees * M_PI / 180.0);
-  std::vector<std::uint8_t> rim(nk, 0);
+  std::vector<std::uint8_t> rim;
+  detail::assign_huge(rim, nk, 0);
   parallel_chunks(nk, 4096, [&](std::size_t, std::size_t begin, std::size_t end) {
     for (std::size_t k = begin; k < end; ++k) {
       const Index f = w.filtered[k];
@@ -30,7 +32,8 @@ std::vector<std::uint8_t> rim_faces(const Workspace& w, const OffSliceFilterOpti
       }
     }
   });
-  std::vector<std::uint8_t> grown(nk, 0);
+  std::vector<std::uint8_t> grown;
+  detail::assign_huge(grown, nk, 0);
   for (int round = 0; round < options.rim_rings; ++round) {
     parallel_chunks(nk, 4096, [&](std::size_t, std::size_t begin, std::size_t end) {
       for (std::size_t k = begin; k < end; ++k) {
@@ -68,7 +71,8 @@ void filter_normals(const Workspace& w, const OffSliceFilterOptions& options, co
     }
   });
   nextf = nf;
-  FillVector<float> range(w.slot_a.size());  // every slot is computed in the first iteration
+  FillVector<float> range;  // every slot is computed in the first iteration
+  detail::resize_huge(range, w.slot_a.size());
   // Only what changed is recomputed. A face's sum reads the normals of its neighbourhood only (the face's
   // own included) and each pair's range kernel, which reads the pair's two compared normals: where none of
   // them changed bit for bit in the last iteration, the sum and its normal are those of the last iteration,
@@ -80,26 +84,32 @@ void filter_normals(const Workspace& w, const OffSliceFilterOptions& options, co
   const bool full = full_recompute();
   // Per local face: its normal changed in the last iteration (never, for the faces not filtered); the first
   // iteration computes everything.
-  std::vector<std::uint8_t> changed(nl, 0), changes(nl, 0);
-  std::vector<std::uint8_t> summed(nk, 0);  // per filtered face: its last sum was not zero (its normal set)
+  std::vector<std::uint8_t> changed, changes;
+  detail::assign_huge(changed, nl, 0);
+  detail::assign_huge(changes, nl, 0);
+  std::vector<std::uint8_t> summed;  // per filtered face: its last sum was not zero (its normal set)
+  detail::assign_huge(summed, nk, 0);
   // Per neighbourhood entry: its spatial weight times its pair's range kernel (in single precision),
   // kept from the iteration that last summed the face (the kernels change only where the guidance is
   // computed): the iterations in between stream it instead of looking up each pair's slot.
-  FillVector<float> coefficient(w.ring.size());
+  FillVector<float> coefficient;
+  detail::resize_huge(coefficient, w.ring.size());
   // Guidance: per local face, the compared normal and whether it changed since it was last computed. It
   // is computed every `guidance_interval` iterations; in between, it and the range kernels stay.
   const double min_cos = std::cos(options.sigma_angle_degrees * M_PI / 180.0);
   Eigen::Matrix3Xd guidance, last_guidance;
   GuidanceState state;
-  std::vector<std::uint8_t> guided_changed(nl, 0);
+  std::vector<std::uint8_t> guided_changed;
+  detail::assign_huge(guided_changed, nl, 0);
   // Per local face: its normal changed since the guidance was last computed (the patches it is in are
   // computed again); the faces not filtered never change.
-  std::vector<std::uint8_t> changed_since(nl, 0);
+  std::vector<std::uint8_t> changed_since;
+  detail::assign_huge(changed_since, nl, 0);
   if (patches) {
     guidance = normals;
-    state.mean.resize(3, static_cast<Index>(nl));
-    state.consistency.assign(nl, 0.0);
-    state.recomputed.assign(nl, 0);
+    state.mean = detail::huge_matrix<Eigen::Matrix3Xd>(3, static_cast<Index>(nl));
+    detail::assign_huge(state.consistency, nl, 0.0);
+    detail::assign_huge(state.recomputed, nl, 0);
   }
   const int interval = std::max(options.guidance_interval, 1);
   // After the normal iterations, the rim iterations update the rim faces only (the others' normals stay).
@@ -216,15 +226,17 @@ void update_vertices(const ContourFrame& frame, const Workspace& w, const Eigen:
   const double reach = options.max_move * frame.slice_spacing;
   const Eigen::Vector3d& axis = frame.axis;
   const std::size_t nk = w.filtered.size(), nm = w.moving.size();
-  Eigen::Matrix3Xd centroids(3, static_cast<Index>(nk));
+  Eigen::Matrix3Xd centroids = detail::huge_matrix<Eigen::Matrix3Xd>(3, static_cast<Index>(nk));
   // Jacobi steps into a second buffer, swapped with x after each iteration: the vertices that do not move
   // are the same in both.
   Eigen::Matrix3Xd other = x;
   // Only what changed is recomputed: a vertex's update reads the corners of its faces (through their
   // centroids) and fixed data. Where none of them moved, bit for bit, in the last iteration, the update is
   // the last one again, which is where the vertex is; a centroid whose corners stayed is the same too.
-  std::vector<std::uint8_t> moved(static_cast<std::size_t>(x.cols()), 0);  // per local vertex, last iteration
-  std::vector<std::uint8_t> face_moved(nk, 0);  // per filtered face: a corner moved (its centroid is new)
+  std::vector<std::uint8_t> moved;  // per local vertex, last iteration
+  detail::assign_huge(moved, static_cast<std::size_t>(x.cols()), 0);
+  std::vector<std::uint8_t> face_moved;  // per filtered face: a corner moved (its centroid is new)
+  detail::assign_huge(face_moved, nk, 0);
   const bool full = full_recompute();
   for (int it = 0; it < options.vertex_iterations; ++it) {
     const bool all = it == 0 || full;
@@ -305,13 +317,14 @@ void region_volumes6(const Workspace& w, const Regions& regions, const Eigen::Ma
 
 Regions off_slice_regions(const Workspace& w, Index local_vertices, const Eigen::Matrix3Xd& start) {
   const std::size_t nk = w.filtered.size(), nm = w.moving.size();
-  std::vector<Index> moving_of(static_cast<std::size_t>(local_vertices), -1);
+  std::vector<Index> moving_of;
+  detail::assign_huge(moving_of, static_cast<std::size_t>(local_vertices), -1);
   for (std::size_t m = 0; m < nm; ++m) {
     if (!w.on_contour[m]) moving_of[static_cast<std::size_t>(w.moving[m])] = static_cast<Index>(m);
   }
   UnionFind<Index> sets(nm);
   Regions r;
-  r.of_face.assign(nk, -1);
+  detail::assign_huge(r.of_face, nk, -1);
   for (std::size_t k = 0; k < nk; ++k) {
     Index root = -1;
     for (Index v : w.corners[k]) {
@@ -323,7 +336,7 @@ Regions off_slice_regions(const Workspace& w, Index local_vertices, const Eigen:
   for (Index& root : r.of_face) {
     if (root >= 0) root = sets.find(root);
   }
-  r.of_moving.assign(nm, -1);
+  detail::assign_huge(r.of_moving, nm, -1);
   for (std::size_t m = 0; m < nm; ++m) {
     if (!w.on_contour[m]) r.of_moving[m] = sets.find(static_cast<Index>(m));
   }
@@ -344,7 +357,7 @@ void restore_volume(const ContourFrame& frame, const Workspace& w, const OffSlic
   const double reach = options.max_move * frame.slice_spacing;
   const Eigen::Vector3d& axis = frame.axis;
   std::vector<double> change(nm), rate(nm);  // per region: 6 x the volume change; the change per mm of offset
-  Eigen::Matrix3Xd normal(3, static_cast<Index>(nm));
+  Eigen::Matrix3Xd normal = detail::huge_matrix<Eigen::Matrix3Xd>(3, static_cast<Index>(nm));
   for (int round = 0; round < 3; ++round) {
     for (std::size_t r = 0; r < nm; ++r) change[r] = -regions.start_volume6[r];
     std::fill(rate.begin(), rate.end(), 0.0);
@@ -417,7 +430,8 @@ std::size_t filter_off_slice_normals(const ContourFrame& frame, const std::vecto
 
   // Normals, areas and centroids of the local faces, from the mesh's positions.
   const auto nl = static_cast<Index>(w.faces.size());
-  Eigen::Matrix3Xd normals(3, nl), centroids(3, nl);
+  Eigen::Matrix3Xd normals = detail::huge_matrix<Eigen::Matrix3Xd>(3, nl);
+  Eigen::Matrix3Xd centroids = detail::huge_matrix<Eigen::Matrix3Xd>(3, nl);
   Eigen::VectorXd areas(nl);
   parallel_chunks(w.faces.size(), 4096, [&](std::size_t, std::size_t begin, std::size_t end) {
     for (std::size_t l = begin; l < end; ++l) {
@@ -430,22 +444,22 @@ std::size_t filter_off_slice_normals(const ContourFrame& frame, const std::vecto
     }
   });
   const auto nk = static_cast<Index>(w.filtered.size());
-  Eigen::Matrix3Xd initial_normals(3, nk);
+  Eigen::Matrix3Xd initial_normals = detail::huge_matrix<Eigen::Matrix3Xd>(3, nk);
   parallel_chunks(w.filtered.size(), 8192, [&](std::size_t, std::size_t begin, std::size_t end) {
     for (std::size_t k = begin; k < end; ++k) initial_normals.col(static_cast<Index>(k)) = normals.col(w.filtered[k]);
   });
 
   // The local vertices where they start, and the heights each moving vertex off the contours may take.
   const auto nv = static_cast<Index>(w.vertices.size());
-  Eigen::Matrix3Xd start(3, nv);
+  Eigen::Matrix3Xd start = detail::huge_matrix<Eigen::Matrix3Xd>(3, nv);
   parallel_chunks(w.vertices.size(), 8192, [&](std::size_t, std::size_t begin, std::size_t end) {
     for (std::size_t v = begin; v < end; ++v) start.col(static_cast<Index>(v)) = positions.col(w.vertices[v]);
   });
   {
     const std::vector<double> levels = slice_levels(frame, positions);
     const double reach = options.max_move * frame.slice_spacing;
-    w.low.assign(w.moving.size(), 0.0);
-    w.high.assign(w.moving.size(), 0.0);
+    detail::assign_huge(w.low, w.moving.size(), 0.0);
+    detail::assign_huge(w.high, w.moving.size(), 0.0);
     parallel_chunks(w.moving.size(), 8192, [&](std::size_t, std::size_t begin, std::size_t end) {
       for (std::size_t m = begin; m < end; ++m) {
         if (w.on_contour[m]) continue;
@@ -460,12 +474,13 @@ std::size_t filter_off_slice_normals(const ContourFrame& frame, const std::vecto
   const bool guided = options.range == OffSliceRange::PatchGuidance;
   if (guided) patches = make_patches(frame, triangles, positions, w, centroids, areas);
   filter_normals(w, options, guided ? &patches : nullptr, normals);
-  Eigen::Matrix3Xd filtered_normals(3, nk);
+  Eigen::Matrix3Xd filtered_normals = detail::huge_matrix<Eigen::Matrix3Xd>(3, nk);
   for (Index k = 0; k < nk; ++k) filtered_normals.col(k) = normals.col(w.filtered[static_cast<std::size_t>(k)]);
 
   Eigen::Matrix3Xd x = start;
   update_vertices(frame, w, filtered_normals, options, start, x);
-  std::vector<std::uint8_t> undone(w.vertices.size(), 0);
+  std::vector<std::uint8_t> undone;
+  detail::assign_huge(undone, w.vertices.size(), 0);
   undo_turned_faces(w, initial_normals, start, x, undone);
   // The volume after the undo, which may give back part of what the fit moved; the vertices it sent back
   // stay, and if the offsets turn a face, its vertices go back too and the rest try again.

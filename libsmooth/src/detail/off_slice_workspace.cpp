@@ -1,4 +1,5 @@
 // SPDX-License-Identifier: BSD-3-Clause
+#include "detail/huge_pages.h"
 #include "detail/off_slice_workspace.h"
 
 #include <algorithm>
@@ -15,7 +16,8 @@ void select_region(const ContourFrame& frame, std::size_t num_faces, const OffSl
   const MeshAdjacency& adj = frame.adjacency;
   const Index n = adj.num_vertices();
   const bool contour_moves = options.contour_max_move > 0.0;
-  std::vector<std::uint8_t> active(num_faces, 0);  // a byte per face: cheaper than sorting the faces' ids
+  std::vector<std::uint8_t> active;  // a byte per face: cheaper than sorting the faces' ids
+  detail::assign_huge(active, num_faces, 0);
   for (Index i = 0; i < n; ++i) {
     if ((!contour_moves && frame.is_contour_vertex(i)) || adj.valence(i) == 0) continue;
     moving.push_back(i);
@@ -30,15 +32,17 @@ void select_region(const ContourFrame& frame, std::size_t num_faces, const OffSl
 // entry f of g's neighbourhood when g is a filtered face already seen (neighbourhoods are symmetric:
 // two faces share a vertex or not).
 void assign_pair_slots(const std::vector<Index>& filtered_of, Workspace& w) {
-  w.ring_slot.resize(w.ring.size());
+  detail::resize_huge(w.ring_slot, w.ring.size());
   // In fixed chunks of filtered faces on every core: first each entry's mirror (the entry of an earlier
   // filtered face that it pairs with), or -1 where the entry opens a slot of its own (a mirror always does),
   // and each chunk's count of new slots; then the new slots are numbered in ring order (each chunk from
   // the count of the chunks before it), and the mirrors' slots copied.
   constexpr std::size_t kChunk = 4096;
   const std::size_t nk = w.filtered.size();
-  FillVector<Index> mirror_of(w.ring.size());
-  std::vector<Index> first_slot((nk + kChunk - 1) / kChunk + 1, 0);  // per chunk, then its prefix sums
+  FillVector<Index> mirror_of;
+  detail::resize_huge(mirror_of, w.ring.size());
+  std::vector<Index> first_slot;  // per chunk, then its prefix sums
+  detail::assign_huge(first_slot, (nk + kChunk - 1) / kChunk + 1, 0);
   parallel_chunks(nk, kChunk, [&](std::size_t chunk, std::size_t begin, std::size_t end) {
     Index opened = 0;
     for (std::size_t k = begin; k < end; ++k) {
@@ -62,8 +66,8 @@ void assign_pair_slots(const std::vector<Index>& filtered_of, Workspace& w) {
     first_slot[chunk + 1] = opened;
   });
   for (std::size_t c = 1; c < first_slot.size(); ++c) first_slot[c] += first_slot[c - 1];
-  w.slot_a.resize(static_cast<std::size_t>(first_slot.back()));
-  w.slot_b.resize(w.slot_a.size());
+  detail::resize_huge(w.slot_a, static_cast<std::size_t>(first_slot.back()));
+  detail::resize_huge(w.slot_b, w.slot_a.size());
   parallel_chunks(nk, kChunk, [&](std::size_t chunk, std::size_t begin, std::size_t end) {
     Index slot = first_slot[chunk];
     for (std::size_t k = begin; k < end; ++k) {
@@ -131,7 +135,8 @@ Workspace make_workspace(const ContourFrame& frame, const std::vector<Triangle>&
   // Local vertices: the corners of the filtered faces; local faces: the faces around them, which are
   // the neighbourhoods' faces. Both numbered in mesh order, through scratch maps from mesh ids.
   // (Marks in maps over the mesh and a scan in mesh order: cheaper than sorting the ids.)
-  std::vector<Index> vertex_map(static_cast<std::size_t>(adj.num_vertices()), -1);
+  std::vector<Index> vertex_map;
+  detail::assign_huge(vertex_map, static_cast<std::size_t>(adj.num_vertices()), -1);
   for (Index f : filtered) {
     for (Index v : triangles[static_cast<std::size_t>(f)]) vertex_map[static_cast<std::size_t>(v)] = 0;
   }
@@ -140,7 +145,8 @@ Workspace make_workspace(const ContourFrame& frame, const std::vector<Triangle>&
     vertex_map[v] = static_cast<Index>(w.vertices.size());
     w.vertices.push_back(static_cast<Index>(v));
   }
-  std::vector<Index> face_map(triangles.size(), -1);
+  std::vector<Index> face_map;
+  detail::assign_huge(face_map, triangles.size(), -1);
   for (Index v : w.vertices) {
     for (Index g : adj.incident_faces(v)) face_map[static_cast<std::size_t>(g)] = 0;
   }
@@ -149,13 +155,13 @@ Workspace make_workspace(const ContourFrame& frame, const std::vector<Triangle>&
     face_map[g] = static_cast<Index>(w.faces.size());
     w.faces.push_back(static_cast<Index>(g));
   }
-  w.filtered.resize(filtered.size());
+  detail::resize_huge(w.filtered, filtered.size());
   for (std::size_t k = 0; k < filtered.size(); ++k) w.filtered[k] = face_map[static_cast<std::size_t>(filtered[k])];
 
   // Per filtered face: its corners and its neighbourhood, the faces around its corners (local ids,
   // ascending as mesh ids are).
-  w.corners.resize(filtered.size());
-  w.ring_offsets.assign(filtered.size() + 1, 0);
+  detail::resize_huge(w.corners, filtered.size());
+  detail::assign_huge(w.ring_offsets, filtered.size() + 1, 0);
   // In fixed chunks on every core, each into its own list; the lists are joined in chunk order.
   constexpr std::size_t kChunk = 4096;
   std::vector<std::vector<Index>> parts((filtered.size() + kChunk - 1) / kChunk);
@@ -176,22 +182,23 @@ Workspace make_workspace(const ContourFrame& frame, const std::vector<Triangle>&
     }
   });
   for (std::size_t k = 0; k < filtered.size(); ++k) w.ring_offsets[k + 1] += w.ring_offsets[k];
-  w.ring.resize(static_cast<std::size_t>(w.ring_offsets.back()));
+  detail::resize_huge(w.ring, static_cast<std::size_t>(w.ring_offsets.back()));
   parallel_chunks(parts.size(), 1, [&](std::size_t chunk, std::size_t, std::size_t) {
     std::copy(parts[chunk].begin(), parts[chunk].end(), w.ring.begin() + w.ring_offsets[chunk * kChunk]);
   });
   // The filtered face of each local face (for the pair slots and the moving vertices' faces).
-  std::vector<Index> filtered_of(w.faces.size(), -1);
+  std::vector<Index> filtered_of;
+  detail::assign_huge(filtered_of, w.faces.size(), -1);
   for (std::size_t k = 0; k < filtered.size(); ++k) {
     filtered_of[static_cast<std::size_t>(w.filtered[k])] = static_cast<Index>(k);
   }
   assign_pair_slots(filtered_of, w);
   w.filtered_of = std::move(filtered_of);
   w.face_map = std::move(face_map);
-  w.moves.assign(w.vertices.size(), 0);
-  w.incident_offsets.assign(moving.size() + 1, 0);
-  w.on_contour.resize(moving.size());
-  w.moving.resize(moving.size());
+  detail::assign_huge(w.moves, w.vertices.size(), 0);
+  detail::assign_huge(w.incident_offsets, moving.size() + 1, 0);
+  detail::resize_huge(w.on_contour, moving.size());
+  detail::resize_huge(w.moving, moving.size());
   for (std::size_t m = 0; m < moving.size(); ++m) {
     const Index i = moving[m];
     const Index li = vertex_map[static_cast<std::size_t>(i)];
@@ -200,7 +207,7 @@ Workspace make_workspace(const ContourFrame& frame, const std::vector<Triangle>&
     w.on_contour[m] = frame.is_contour_vertex(i) ? 1 : 0;
     w.incident_offsets[m + 1] = w.incident_offsets[m] + static_cast<Index>(adj.incident_faces(i).size());
   }
-  w.incident.resize(static_cast<std::size_t>(w.incident_offsets.back()));
+  detail::resize_huge(w.incident, static_cast<std::size_t>(w.incident_offsets.back()));
   parallel_chunks(moving.size(), 4096, [&](std::size_t, std::size_t begin, std::size_t end) {
     for (std::size_t m = begin; m < end; ++m) {
       auto e = static_cast<std::size_t>(w.incident_offsets[m]);
@@ -217,7 +224,9 @@ void spatial_weights(const Eigen::Matrix3Xd& centroids, const Eigen::VectorXd& a
   // Per pair of faces (slot), once: the distance between the centroids and its Gaussian are symmetric bit
   // for bit (the difference only changes sign), as the range kernel is.
   const std::size_t ns = w.slot_a.size();
-  FillVector<double> squared(ns), distance(ns);  // every element written by the loop below
+  FillVector<double> squared, distance;  // every element written by the loop below
+  detail::resize_huge(squared, ns);
+  detail::resize_huge(distance, ns);
   parallel_chunks(ns, 4096, [&](std::size_t, std::size_t begin, std::size_t end) {
     for (std::size_t s = begin; s < end; ++s) {
       squared[s] = (centroids.col(w.slot_b[s]) - centroids.col(w.slot_a[s])).squaredNorm();
@@ -232,7 +241,7 @@ void spatial_weights(const Eigen::Matrix3Xd& centroids, const Eigen::VectorXd& a
   parallel_chunks(ns, 4096, [&](std::size_t, std::size_t begin, std::size_t end) {
     for (std::size_t s = begin; s < end; ++s) kernel[s] = std::exp(-squared[s] * inv_s);
   });
-  w.ring_weights.resize(w.ring.size());
+  detail::resize_huge(w.ring_weights, w.ring.size());
   parallel_chunks(w.ring.size(), 16384, [&](std::size_t, std::size_t begin, std::size_t end) {
     for (std::size_t r = begin; r < end; ++r) {
       w.ring_weights[r] = areas[w.ring[r]] * kernel[static_cast<std::size_t>(w.ring_slot[r])];

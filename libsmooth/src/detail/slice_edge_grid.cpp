@@ -1,6 +1,7 @@
 // SPDX-License-Identifier: BSD-3-Clause
 #include "detail/slice_edge_grid.h"
 
+#include "detail/huge_pages.h"
 #include "detail/parallel.h"
 
 #include <algorithm>
@@ -16,6 +17,10 @@ SliceEdgeGrid::SliceEdgeGrid(const Mesh& mesh, const ContourNeighbours& contour,
   e2_ = axis.cross(e1_);
   const Index n = mesh.num_vertices();
   std::int32_t lo = std::numeric_limits<std::int32_t>::max(), hi = std::numeric_limits<std::int32_t>::min();
+  // At most one edge per contour vertex (each joins it to the next one along its contour).
+  const auto on = static_cast<std::size_t>(std::count(on_contour.begin(), on_contour.end(), std::uint8_t{1}));
+  reserve_huge(edge_a_, on);
+  reserve_huge(edge_b_, on);
   for (Index i = 0; i < n; ++i) {
     if (!on_contour[static_cast<std::size_t>(i)]) continue;
     for (Index j : contour.of[static_cast<std::size_t>(i)]) {
@@ -49,7 +54,8 @@ SliceEdgeGrid::SliceEdgeGrid(const Mesh& mesh, const ContourNeighbours& contour,
     ++slice_start[s + 1];
   }
   for (std::size_t s = 0; s < slices_.size(); ++s) slice_start[s + 1] += slice_start[s];
-  std::vector<Index> by_slice(edge_a_.size());
+  std::vector<Index> by_slice;
+  resize_huge(by_slice, edge_a_.size());
   {
     std::vector<Index> fill(slice_start.begin(), slice_start.end() - 1);
     for (std::size_t e = 0; e < edge_a_.size(); ++e) {

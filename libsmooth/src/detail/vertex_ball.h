@@ -4,6 +4,7 @@
 // gathered breadth-first into scratch space that each worker reuses. Private to libsmooth.
 #pragma once
 
+#include "detail/huge_pages.h"
 #include "contourmesh/smooth/adjacency.h"
 #include "contourmesh/smooth/mesh.h"
 
@@ -26,7 +27,7 @@ struct BallScratch {
   std::vector<std::uint32_t> stamp;
   std::uint32_t current = 0;
 
-  explicit BallScratch(Index vertices) : stamp(static_cast<std::size_t>(vertices), 0) {}
+  explicit BallScratch(Index vertices) { assign_huge(stamp, static_cast<std::size_t>(vertices), std::uint32_t{0}); }
 
   /// Starts a new ball: no vertex is a member.
   void clear() {
