@@ -1,7 +1,7 @@
 // SPDX-License-Identifier: BSD-3-Clause
 #include "contourmesh/smooth/adjacency.h"
 
-#include "detail/huge_pages.h"
+#include "contourmesh/internal/huge_pages.h"
 #include "detail/parallel.h"
 #include "contourmesh/smooth/errors.h"
 

@@ -3,8 +3,8 @@
 
 #include "contourmesh/smooth/errors.h"
 
+#include "contourmesh/internal/huge_pages.h"
 #include "contourmesh/internal/union_find.h"
-#include "detail/huge_pages.h"
 #include "detail/parallel.h"
 
 #include <Eigen/Eigenvalues>

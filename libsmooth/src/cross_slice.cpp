@@ -1,12 +1,12 @@
 // SPDX-License-Identifier: BSD-3-Clause
 #include "contourmesh/smooth/cross_slice.h"
 
-#include "detail/stopwatch.h"
+#include "contourmesh/internal/huge_pages.h"
 #include "detail/contour_profiles.h"
-#include "detail/huge_pages.h"
 #include "detail/lpa_ici.h"
 #include "detail/off_slice_filter.h"
 #include "detail/parallel.h"
+#include "detail/stopwatch.h"
 #include "contourmesh/smooth/errors.h"
 #include "contourmesh/smooth/normals.h"
 

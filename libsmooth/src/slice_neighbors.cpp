@@ -1,9 +1,9 @@
 // SPDX-License-Identifier: BSD-3-Clause
 #include "contourmesh/smooth/slice_neighbors.h"
 
-#include "contourmesh/smooth/errors.h"
-#include "detail/huge_pages.h"
+#include "contourmesh/internal/huge_pages.h"
 #include "detail/parallel.h"
+#include "contourmesh/smooth/errors.h"
 
 #include <array>
 #include <cstdint>

@@ -1,5 +1,5 @@
 // SPDX-License-Identifier: BSD-3-Clause
-#include "detail/huge_pages.h"
+#include "contourmesh/internal/huge_pages.h"
 
 #include <cstdint>
 

@@ -1,7 +1,7 @@
 // SPDX-License-Identifier: BSD-3-Clause
-#include "detail/huge_pages.h"
 #include "detail/off_slice_filter.h"
 
+#include "contourmesh/internal/huge_pages.h"
 #include "contourmesh/internal/union_find.h"
 #include "detail/guidance_patches.h"
 #include "detail/off_slice_workspace.h"

@@ -1,6 +1,7 @@
 // SPDX-License-Identifier: BSD-3-Clause
-#include "detail/huge_pages.h"
 #include "detail/off_slice_workspace.h"
+
+#include "contourmesh/internal/huge_pages.h"
 
 #include <algorithm>
 #include <cmath>

@@ -1,7 +1,7 @@
 // SPDX-License-Identifier: BSD-3-Clause
 #include "detail/slice_edge_grid.h"
 
-#include "detail/huge_pages.h"
+#include "contourmesh/internal/huge_pages.h"
 #include "detail/parallel.h"
 
 #include <algorithm>

@@ -4,7 +4,7 @@
 // gathered breadth-first into scratch space that each worker reuses. Private to libsmooth.
 #pragma once
 
-#include "detail/huge_pages.h"
+#include "contourmesh/internal/huge_pages.h"
 #include "contourmesh/smooth/adjacency.h"
 #include "contourmesh/smooth/mesh.h"
 

@@ -1,8 +1,8 @@
 // SPDX-License-Identifier: BSD-3-Clause
-// White-box tests of the huge-page advice for libsmooth's large buffers (libsmooth/src/detail/
+// Tests of the huge-page advice for the libraries' large buffers (libsmooth/internal/contourmesh/internal/
 // huge_pages.h): the helpers keep the std::vector and Eigen contracts, and where Linux offers
 // transparent huge pages on advice, an advised buffer is written with far fewer page faults.
-#include "detail/huge_pages.h"
+#include "contourmesh/internal/huge_pages.h"
 #include "detail/parallel.h"
 
 #include <gtest/gtest.h>

@@ -1,9 +1,11 @@
 // SPDX-License-Identifier: BSD-3-Clause
-// Transparent huge pages for libsmooth's large buffers (docs/benchmarks.md, "Page faults and huge
-// pages"). A fresh buffer of n bytes costs n / 4 KiB page faults on its first writes; on a virtual
-// machine each costs several microseconds of kernel time: a fifth of the default smoothing's CPU time on
-// the benchmarks' 1M-vertex mesh. Where Linux keeps transparent huge pages on advice
-// ("madvise", its usual default), a buffer advised before its first write takes one fault per 2 MiB.
+// Private to ContourMesh (not installed): transparent huge pages for the large buffers of libsmooth and
+// libreconstruct (docs/benchmarks.md, "Page faults and huge pages"). Compiled into libsmooth
+// (src/detail/huge_pages.cpp). A fresh buffer of n bytes costs n / 4 KiB page faults on its first
+// writes; on a virtual machine each costs several microseconds of kernel time: a fifth of the default
+// smoothing's CPU time on the benchmarks' 1M-vertex mesh. Where Linux keeps transparent huge pages on
+// advice ("madvise", its usual default), a buffer advised before its first write takes one fault per
+// 2 MiB.
 #pragma once
 
 #include <Eigen/Core>
