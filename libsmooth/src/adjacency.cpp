@@ -112,8 +112,7 @@ MeshAdjacency build_adjacency(const Mesh& mesh) {
     }
   }
   for (Index i = 0; i < n; ++i) adj.face_offsets[i + 1] += adj.face_offsets[i];
-  detail::reserve_huge(adj.faces, static_cast<std::size_t>(adj.face_offsets[n]));
-  adj.faces.resize(static_cast<std::size_t>(adj.face_offsets[n]));
+  detail::resize_huge(adj.faces, static_cast<std::size_t>(adj.face_offsets[n]));
   {
     std::vector<Index> fill(adj.face_offsets.begin(), adj.face_offsets.end() - 1);
     for (Index f = 0; f < nf; ++f) {
@@ -130,10 +129,8 @@ MeshAdjacency build_adjacency(const Mesh& mesh) {
   // Either way the arrays do not depend on the number of threads.
   detail::assign_huge(adj.neighbor_offsets, static_cast<std::size_t>(n) + 1, Index{0});
   detail::assign_huge(adj.is_boundary, static_cast<std::size_t>(n), std::uint8_t{0});
-  detail::reserve_huge(adj.neighbors, adj.faces.size());
-  adj.neighbors.resize(adj.faces.size());
-  detail::reserve_huge(adj.edge_face_count, adj.faces.size());
-  adj.edge_face_count.resize(adj.faces.size());
+  detail::resize_huge(adj.neighbors, adj.faces.size());
+  detail::resize_huge(adj.edge_face_count, adj.faces.size());
   constexpr std::size_t kChunk = 16384;
   std::vector<Part> parts((static_cast<std::size_t>(n) + kChunk - 1) / kChunk);
   const Index* face_offsets = adj.face_offsets.data();

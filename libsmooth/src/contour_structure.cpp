@@ -150,8 +150,7 @@ bool assign_ids_by_slice_planes(Mesh& mesh, const MeshAdjacency& adj, const Eige
   // Contour-stack vertices lie on planes of many vertices; accept when 90% of them do (vertices of
   // branching copies or a few stray ones may not).
   {
-    std::vector<Index> per_plane;
-    detail::assign_huge(per_plane, static_cast<std::size_t>(current) + 1, 0);
+    std::vector<Index> per_plane(static_cast<std::size_t>(current) + 1, 0);
     for (Index i = 0; i < n; ++i) ++per_plane[slice[i]];
     Index on_planes = 0;
     for (Index i = 0; i < n; ++i) on_planes += per_plane[slice[i]] >= 3 ? 1 : 0;

@@ -444,8 +444,7 @@ NoiseEstimate profile_noise(const ContourFrame& f, const Eigen::Matrix3Xd& x, co
   const auto samples = static_cast<std::size_t>((x.cols() + stride - 1) / stride);
   constexpr std::size_t kChunk = 2048;
   std::vector<std::vector<double>> parts((samples + kChunk - 1) / kChunk);
-  std::vector<std::size_t> sampled;
-  detail::assign_huge(sampled, parts.size(), 0);
+  std::vector<std::size_t> sampled(parts.size(), 0);
   parallel_chunks(samples, kChunk, [&](std::size_t chunk, std::size_t begin, std::size_t end) {
     std::vector<double>& d4 = parts[chunk];
     Profile p;

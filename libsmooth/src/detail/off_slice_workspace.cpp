@@ -42,8 +42,7 @@ void assign_pair_slots(const std::vector<Index>& filtered_of, Workspace& w) {
   const std::size_t nk = w.filtered.size();
   FillVector<Index> mirror_of;
   detail::resize_huge(mirror_of, w.ring.size());
-  std::vector<Index> first_slot;  // per chunk, then its prefix sums
-  detail::assign_huge(first_slot, (nk + kChunk - 1) / kChunk + 1, 0);
+  std::vector<Index> first_slot((nk + kChunk - 1) / kChunk + 1, 0);  // per chunk, then its prefix sums
   parallel_chunks(nk, kChunk, [&](std::size_t chunk, std::size_t begin, std::size_t end) {
     Index opened = 0;
     for (std::size_t k = begin; k < end; ++k) {
