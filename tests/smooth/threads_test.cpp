@@ -6,10 +6,19 @@
 
 #include <gtest/gtest.h>
 
+#include <atomic>
 #include <chrono>
 #include <mutex>
+#include <numeric>
 #include <set>
+#include <stdexcept>
 #include <thread>
+#include <vector>
+
+#if defined(__unix__)
+#include <sys/wait.h>
+#include <unistd.h>
+#endif
 
 namespace contourmesh {
 namespace {
@@ -47,6 +56,96 @@ TEST(SmoothThreads, ALimitCapsTheLoopsAndEndsWithIt) {
   }
   EXPECT_THROW(SmoothThreadLimit(-1), InvalidInputError);
 }
+
+// Sum of 0 .. n - 1 through a parallel loop of one-element chunks, reduced in chunk order.
+long long chunked_sum(std::size_t n) {
+  std::vector<long long> parts(n, 0);
+  detail::parallel_chunks(
+      n, 1, [&](std::size_t k, std::size_t begin, std::size_t) { parts[k] = static_cast<long long>(begin); });
+  return std::accumulate(parts.begin(), parts.end(), 0LL);
+}
+
+thread_local int t_loops_seen = 0;
+
+TEST(ParallelChunks, TheSameThreadsServeOneLoopAfterAnother) {
+  const detail::ScopedWorkerCount three(3);
+  std::mutex m;
+  std::set<std::thread::id> ids;
+  std::atomic<int> fresh_helpers{0};
+  const std::thread::id caller = std::this_thread::get_id();
+  for (int loop = 0; loop < 2; ++loop) {
+    detail::parallel_chunks(48, 1, [&](std::size_t, std::size_t, std::size_t) {
+      std::this_thread::sleep_for(std::chrono::milliseconds(1));
+      const std::lock_guard lock(m);
+      if (loop == 1 && std::this_thread::get_id() != caller && t_loops_seen == 0) ++fresh_helpers;
+      if (t_loops_seen <= loop) t_loops_seen = loop + 1;
+      ids.insert(std::this_thread::get_id());
+    });
+  }
+  EXPECT_EQ(ids.size(), 3u);  // the caller and two helpers
+  EXPECT_EQ(ids.count(caller), 1u);
+  EXPECT_EQ(fresh_helpers.load(), 0) << "the second loop ran on threads made for it";
+}
+
+TEST(ParallelChunks, ALoopInsideAChunkRunsOnItsThreadAndGivesTheSameSum) {
+  const detail::ScopedWorkerCount two(2);
+  std::vector<long long> inner(8, 0);
+  detail::parallel_chunks(8, 1, [&](std::size_t k, std::size_t, std::size_t) { inner[k] = chunked_sum(100 + k); });
+  for (std::size_t k = 0; k < inner.size(); ++k) {
+    const auto n = static_cast<long long>(100 + k);
+    EXPECT_EQ(inner[k], n * (n - 1) / 2);
+  }
+}
+
+TEST(ParallelChunks, LoopsStartedOnTwoThreadsAtOnceBothFinish) {
+  const detail::ScopedWorkerCount two(2);
+  std::vector<long long> sums(2, 0);
+  std::vector<std::thread> callers;
+  for (int c = 0; c < 2; ++c) {
+    callers.emplace_back([&, c] {
+      long long total = 0;
+      for (int loop = 0; loop < 200; ++loop) total += chunked_sum(64);
+      sums[static_cast<std::size_t>(c)] = total;
+    });
+  }
+  for (std::thread& t : callers) t.join();
+  EXPECT_EQ(sums[0], 200LL * 64 * 63 / 2);
+  EXPECT_EQ(sums[1], 200LL * 64 * 63 / 2);
+}
+
+TEST(ParallelChunks, AnExceptionReachesTheCallerAndThePoolServesTheNextLoop) {
+  const detail::ScopedWorkerCount two(2);
+  EXPECT_THROW(detail::parallel_chunks(64, 1,
+                                       [](std::size_t k, std::size_t, std::size_t) {
+                                         if (k == 17) throw std::runtime_error("chunk 17");
+                                       }),
+               std::runtime_error);
+  EXPECT_EQ(chunked_sum(64), 64LL * 63 / 2);
+}
+
+#if defined(__unix__)
+TEST(ParallelChunks, AForkedChildRunsLoopsOnAPoolOfItsOwn) {
+  const detail::ScopedWorkerCount two(2);
+  ASSERT_EQ(chunked_sum(64), 64LL * 63 / 2);  // the parent's pool exists before the fork
+  const pid_t child = fork();
+  ASSERT_GE(child, 0);
+  if (child == 0) {
+    alarm(20);  // a child waiting for the parent's threads would hang: end it instead
+    std::set<std::thread::id> ids;
+    std::mutex m;
+    detail::parallel_chunks(32, 1, [&](std::size_t, std::size_t, std::size_t) {
+      std::this_thread::sleep_for(std::chrono::milliseconds(1));
+      const std::lock_guard lock(m);
+      ids.insert(std::this_thread::get_id());
+    });
+    _exit(chunked_sum(64) == 64LL * 63 / 2 && ids.size() == 2 ? 0 : 1);
+  }
+  int status = 0;
+  ASSERT_EQ(waitpid(child, &status, 0), child);
+  ASSERT_TRUE(WIFEXITED(status));
+  EXPECT_EQ(WEXITSTATUS(status), 0);
+}
+#endif
 
 }  // namespace
 }  // namespace contourmesh

@@ -1,7 +1,7 @@
 // SPDX-License-Identifier: BSD-3-Clause
-// A minimal parallel loop on std::thread for libsmooth (which depends on Eigen only). Work is cut into
-// fixed chunks that do not depend on the number of threads, so a reduction over chunks in chunk order
-// gives the same result on any machine.
+// A minimal parallel loop for libsmooth (which depends on Eigen only), on a pool of std::threads kept for
+// the process's life. Work is cut into fixed chunks that do not depend on the number of threads, so a
+// reduction over chunks in chunk order gives the same result on any machine.
 #pragma once
 
 #include <algorithm>
@@ -76,8 +76,18 @@ struct DefaultInitAllocator : std::allocator<T> {
 template <typename T>
 using FillVector = std::vector<T, DefaultInitAllocator<T>>;
 
+/// Runs job(context) on the calling thread and on `helpers` threads of the process's worker pool at
+/// once, and returns true when every run has returned. The pool's threads are made on first use (as many
+/// as the largest loop asked for) and then wait for work; a process forked from this one starts a pool of
+/// its own. Returns false at once, having run nothing, where the pool cannot serve: it runs another loop
+/// (another thread's, or this one called from a pool thread: a nested loop), or a thread could not be
+/// made. `job` must not throw.
+bool run_on_pool(unsigned helpers, void (*job)(void*), void* context) noexcept;
+
 /// Calls body(chunk, begin, end) for the chunks [k * chunk_size, min(n, (k + 1) * chunk_size)), on all
-/// cores. The first exception thrown by a body is rethrown after every thread has stopped.
+/// cores: the calling thread and up to worker_count() - 1 pool threads take chunks in turn. A loop the
+/// pool cannot serve (see run_on_pool) runs on the calling thread alone, with the same result. The first
+/// exception thrown by a body is rethrown after every thread has stopped.
 template <typename Body>
 void parallel_chunks(std::size_t n, std::size_t chunk_size, const Body& body) {
   chunk_size = std::max<std::size_t>(chunk_size, 1);
@@ -97,14 +107,8 @@ void parallel_chunks(std::size_t n, std::size_t chunk_size, const Body& body) {
       }
     }
   };
-  if (threads <= 1) {
-    work();
-  } else {
-    std::vector<std::thread> pool;
-    pool.reserve(threads);
-    for (unsigned t = 0; t < threads; ++t) pool.emplace_back(work);
-    for (std::thread& t : pool) t.join();
-  }
+  const auto run = [](void* context) { (*static_cast<decltype(work)*>(context))(); };
+  if (threads <= 1 || !run_on_pool(threads - 1, run, &work)) work();
   if (error) std::rethrow_exception(error);
 }
 
