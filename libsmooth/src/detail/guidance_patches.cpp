@@ -128,7 +128,7 @@ GuidancePatches make_patches(const ContourFrame& frame, const std::vector<Triang
           entry = static_cast<Index>(nl) + o;
         }
         p.entries[e] = entry;
-        p.weights[e] = area * std::exp(-(cg - c).squaredNorm() * inv_s);
+        p.weights[e] = static_cast<float>(area * std::exp(-(cg - c).squaredNorm() * inv_s));
       }
     }
   });
@@ -156,8 +156,9 @@ void guidance_normals(const Workspace& w, const GuidancePatches& p, const Eigen:
         const auto eu = static_cast<std::size_t>(e);
         const Index g = p.entries[eu];
         const auto local = static_cast<Index>(nl);
-        acc += p.weights[eu] * (g < local ? normals.col(g) : p.outer_normals.col(g - local));
-        weight += p.weights[eu];
+        const auto we = static_cast<double>(p.weights[eu]);
+        acc += we * (g < local ? normals.col(g) : p.outer_normals.col(g - local));
+        weight += we;
       }
       const double len = acc.norm();
       state.mean.col(static_cast<Index>(l)) = len > 0.0 ? Eigen::Vector3d(acc / len) : Eigen::Vector3d::Zero();

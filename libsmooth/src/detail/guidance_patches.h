@@ -20,7 +20,7 @@ namespace contourmesh::detail {
 struct GuidancePatches {
   std::vector<Index> offsets;           ///< per local face, CSR into entries
   FillVector<Index> entries;            ///< local faces; an entry >= the local faces' count is outer
-  FillVector<double> weights;           ///< per entry
+  FillVector<float> weights;            ///< per entry (single precision, as the filter's own weights)
   Eigen::Matrix3Xd outer_normals;       ///< per outer face
 };
 

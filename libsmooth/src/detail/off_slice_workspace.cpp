@@ -244,7 +244,7 @@ void spatial_weights(const Eigen::Matrix3Xd& centroids, const Eigen::VectorXd& a
   detail::resize_huge(w.ring_weights, w.ring.size());
   parallel_chunks(w.ring.size(), 16384, [&](std::size_t, std::size_t begin, std::size_t end) {
     for (std::size_t r = begin; r < end; ++r) {
-      w.ring_weights[r] = areas[w.ring[r]] * kernel[static_cast<std::size_t>(w.ring_slot[r])];
+      w.ring_weights[r] = static_cast<float>(areas[w.ring[r]] * kernel[static_cast<std::size_t>(w.ring_slot[r])]);
     }
   });
 }

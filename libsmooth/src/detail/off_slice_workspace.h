@@ -38,11 +38,12 @@ struct Workspace {
   std::vector<Index> faces;     ///< local face -> mesh face
   std::vector<Index> filtered;  ///< filtered face k -> local face (ascending)
   // Per filtered face: the corners (local vertices), and its neighbourhood in CSR (local faces, the face
-  // itself included, ascending) with area x spatial kernel per entry.
+  // itself included, ascending) with area x spatial kernel per entry, in single precision: the filter's
+  // sums run in single precision anyway, and on a real scan these are over ten million entries.
   std::vector<Triangle> corners;
   std::vector<Index> ring_offsets;
   FillVector<Index> ring;
-  FillVector<double> ring_weights;
+  FillVector<float> ring_weights;
   // The range kernel is symmetric: each pair of faces (a, b) that meet in a neighbourhood has one slot,
   // computed once per iteration however many of the two neighbourhoods it is in.
   FillVector<Index> ring_slot;       ///< per neighbourhood entry
