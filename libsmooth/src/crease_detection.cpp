@@ -149,6 +149,7 @@ void link_partners(const Mesh& mesh, const MeshAdjacency& adjacency, const std::
   detail::assign_huge(offsets, n + 1, Index{0});
   detail::parallel_chunks(n, kChunk, [&](std::size_t chunk, std::size_t begin, std::size_t end) {
     std::unique_ptr<BallScratch> scratch;  // taken at the chunk's first core vertex
+    std::vector<Index> part;               // moved into parts[chunk] at the end (the headers share cache lines)
     for (std::size_t v = begin; v < end; ++v) {
       const std::int32_t sv = mesh.slice_ids[v];
       if (!core[v] || sv < 0) continue;
@@ -161,11 +162,12 @@ void link_partners(const Mesh& mesh, const MeshAdjacency& adjacency, const std::
         const Eigen::Vector3d d = mesh.positions.col(j) - mesh.positions.col(vi);
         const double len = d.norm();
         if (len > 0.0 && along_crease(vi, d / len) && along_crease(j, d / len)) {
-          parts[chunk].push_back(j);
+          part.push_back(j);
           ++offsets[v + 1];
         }
       }
     }
+    parts[chunk] = std::move(part);
     if (scratch) pool.give_back(std::move(scratch));
   });
   for (std::size_t v = 0; v < n; ++v) offsets[v + 1] += offsets[v];

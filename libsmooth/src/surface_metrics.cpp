@@ -244,7 +244,9 @@ SurfaceAccuracy surface_accuracy(const Eigen::Matrix3Xd& positions, const std::v
     const std::size_t chunks = (n + kChunk - 1) / kChunk;
     std::vector<RegionSums> partial(chunks);
     detail::parallel_chunks(n, kChunk, [&](std::size_t c, std::size_t begin, std::size_t end) {
-      for (std::size_t k = begin; k < end; ++k) one(k, partial[c]);
+      RegionSums sums;  // stored once: the chunks' sums lie side by side and would share cache lines
+      for (std::size_t k = begin; k < end; ++k) one(k, sums);
+      partial[c] = sums;
     });
     RegionSums total;
     for (const RegionSums& p : partial) {

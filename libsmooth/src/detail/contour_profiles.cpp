@@ -446,13 +446,16 @@ NoiseEstimate profile_noise(const ContourFrame& f, const Eigen::Matrix3Xd& x, co
   std::vector<std::vector<double>> parts((samples + kChunk - 1) / kChunk);
   std::vector<std::size_t> sampled(parts.size(), 0);
   parallel_chunks(samples, kChunk, [&](std::size_t chunk, std::size_t begin, std::size_t end) {
-    std::vector<double>& d4 = parts[chunk];
+    // Filled here and stored once: the chunks' lists and counts lie side by side, and writing them per
+    // vertex made the threads share cache lines.
+    std::vector<double> d4;
+    std::size_t contour_vertices = 0;
     Profile p;
     Eigen::Vector3d m;
     for (std::size_t s = begin; s < end; ++s) {
       const Index i = static_cast<Index>(s) * stride;
       if (!f.is_contour_vertex(i)) continue;
-      ++sampled[chunk];
+      ++contour_vertices;
       if (!in_slice_normal(f, normals.col(i), m)) continue;
       if (across) {
         cross_slice_profile(f, x, normals, i, m, 2, p);
@@ -466,6 +469,8 @@ NoiseEstimate profile_noise(const ContourFrame& f, const Eigen::Matrix3Xd& x, co
       if (!regular) continue;
       d4.push_back(std::abs(p.y[0] - 4.0 * p.y[1] + 6.0 * p.y[2] - 4.0 * p.y[3] + p.y[4]));
     }
+    parts[chunk] = std::move(d4);
+    sampled[chunk] = contour_vertices;
   });
   NoiseEstimate estimate;
   for (const std::size_t c : sampled) estimate.sampled += c;

@@ -20,7 +20,7 @@ std::vector<std::vector<Index>> faces_around(const MeshAdjacency& adj, const std
   const std::size_t nl = w.faces.size();
   std::vector<std::vector<Index>> around((nl + kPatchChunk - 1) / kPatchChunk);
   parallel_chunks(nl, kPatchChunk, [&](std::size_t chunk, std::size_t begin, std::size_t end) {
-    std::vector<Index>& part = around[chunk];
+    std::vector<Index> part;  // moved into around[chunk] at the end: the lists' headers share cache lines
     std::vector<Index> local;
     for (std::size_t l = begin; l < end; ++l) {
       const Index k = w.filtered_of[l];
@@ -38,6 +38,7 @@ std::vector<std::vector<Index>> faces_around(const MeshAdjacency& adj, const std
       part.insert(part.end(), local.begin(), local.end());
       offsets[l + 1] = static_cast<Index>(local.size());
     }
+    around[chunk] = std::move(part);
   });
   return around;
 }

@@ -166,7 +166,7 @@ Workspace make_workspace(const ContourFrame& frame, const std::vector<Triangle>&
   constexpr std::size_t kChunk = 4096;
   std::vector<std::vector<Index>> parts((filtered.size() + kChunk - 1) / kChunk);
   parallel_chunks(filtered.size(), kChunk, [&](std::size_t chunk, std::size_t begin, std::size_t end) {
-    std::vector<Index>& part = parts[chunk];
+    std::vector<Index> part;  // moved into parts[chunk] at the end: the lists' headers share cache lines
     std::vector<Index> local;
     for (std::size_t k = begin; k < end; ++k) {
       const Triangle& t = triangles[static_cast<std::size_t>(filtered[k])];
@@ -180,6 +180,7 @@ Workspace make_workspace(const ContourFrame& frame, const std::vector<Triangle>&
       part.insert(part.end(), local.begin(), local.end());
       w.ring_offsets[k + 1] = static_cast<Index>(local.size());
     }
+    parts[chunk] = std::move(part);
   });
   for (std::size_t k = 0; k < filtered.size(); ++k) w.ring_offsets[k + 1] += w.ring_offsets[k];
   detail::resize_huge(w.ring, static_cast<std::size_t>(w.ring_offsets.back()));
