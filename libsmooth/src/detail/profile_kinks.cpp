@@ -65,7 +65,9 @@ Kink find_kink(const Profile& p, const KinkTestOptions& o) {
     ++kink.candidates;
     const double orthogonal = hh - xh.dot(inverse * xh);
     if (orthogonal > 1e-9 * hh) {
-      const double drop = hr * hr / orthogonal / sigma2;
+      // Compared before the division by sigma^2, which is monotone: one division on the loop's critical
+      // path instead of two (the loop is bound by their latency).
+      const double drop = hr * hr / orthogonal;
       if (drop > best) {
         best = drop;
         kink.index = k;
@@ -77,6 +79,7 @@ Kink find_kink(const Profile& p, const KinkTestOptions& o) {
     s0 += 1.0, s1 += xk, s2 += xk * xk, s3 += xk * xk * xk, r0 += r, r1 += xk * r;
   }
   if (kink.candidates == 0) return kink;
+  best /= sigma2;
   kink.statistic = best;
   // P(chi2_1 > t) = erfc(sqrt(t / 2)), times the candidates (Bonferroni): one erfc, no quantile.
   kink.p_value = std::min(1.0, kink.candidates * std::erfc(std::sqrt(0.5 * best)));
