@@ -327,14 +327,17 @@ LpaIciResult lpa_ici(const Profile& p, const LpaIciOptions& o) {
       break;
     }
     // Keep the side holding x = 0, up to and with the hinge's sample: a contiguous run of the sorted
-    // profile.
+    // profile, moved to the front of the bounded copy (in place from the second kink on: the run starts
+    // at or after the front, so copying forward reads each sample before it is overwritten).
     const int begin = kink.x > 0.0 ? 0 : kink.index, end = kink.x > 0.0 ? kink.index + 1 : current->size;
-    Profile side;
+    if (!bounded) bounded.emplace();
+    Profile& side = *bounded;
     for (int k = begin; k < end; ++k) {
-      (void)side.push(current->x[static_cast<std::size_t>(k)], current->y[static_cast<std::size_t>(k)]);
+      side.x[static_cast<std::size_t>(k - begin)] = current->x[static_cast<std::size_t>(k)];
+      side.y[static_cast<std::size_t>(k - begin)] = current->y[static_cast<std::size_t>(k)];
     }
-    bounded = side;
-    current = &*bounded;
+    side.size = end - begin;
+    current = &side;
   }
   local.one_sided_lines = o.one_sided_lines || (o.kink_side_lines && found > 0);
   LpaIciResult r = fit(*current, local);

@@ -7,6 +7,7 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <random>
 
@@ -98,6 +99,20 @@ TEST(LpaIciKinks, LeavesASmoothProfileAsItWas) {
   EXPECT_EQ(bounded.kinks, 0);
   EXPECT_DOUBLE_EQ(bounded.value, plain.value);
   EXPECT_EQ(bounded.symmetric, plain.symmetric);
+}
+
+TEST(LpaIciKinks, BoundsAProfileAtAKinkOnEachSide) {
+  // A flat bottom between two walls (slope 0.8 per slice below x = -3 and beyond x = 5), at height 0.05:
+  // the first kink found bounds the profile, the second bounds what is left (in place), and the flat
+  // middle is fitted exactly. Without the kink test the windows reach the walls and lift the estimate.
+  Profile p;
+  for (int k = -8; k <= 8; ++k) p.push(k, 0.05 + 0.8 * std::max({-3.0 - k, k - 5.0, 0.0}));
+  const LpaIciResult bounded = lpa_ici(p, options(0.1, true));
+  const LpaIciResult plain = lpa_ici(p, options(0.1, false));
+  ASSERT_TRUE(bounded.valid);
+  EXPECT_EQ(bounded.kinks, 2);
+  EXPECT_NEAR(bounded.value, 0.05, 1e-9);
+  EXPECT_GT(std::abs(plain.value - 0.05), 0.05);
 }
 
 LpaIciOptions side_lines(double sigma, bool lines) {
