@@ -145,31 +145,31 @@ void link_partners(const Mesh& mesh, const MeshAdjacency& adjacency, const std::
                    std::vector<Index>& partners) {
   const auto n = static_cast<std::size_t>(mesh.num_vertices());
   constexpr std::size_t kChunk = 4096;
-  std::vector<std::vector<Index>> parts((n + kChunk - 1) / kChunk);
   detail::assign_huge(offsets, n + 1, Index{0});
-  detail::parallel_chunks(n, kChunk, [&](std::size_t chunk, std::size_t begin, std::size_t end) {
-    std::unique_ptr<BallScratch> scratch;  // taken at the chunk's first core vertex
-    std::vector<Index> part;               // moved into parts[chunk] at the end (the headers share cache lines)
-    for (std::size_t v = begin; v < end; ++v) {
-      const std::int32_t sv = mesh.slice_ids[v];
-      if (!core[v] || sv < 0) continue;
-      if (!scratch) scratch = pool.take();
-      const auto vi = static_cast<Index>(v);
-      gather_ball(mesh, adjacency, vi, radius, *scratch);
-      for (Index j : scratch->ball) {
-        const std::int32_t sj = mesh.slice_ids[static_cast<std::size_t>(j)];
-        if (!core[static_cast<std::size_t>(j)] || sj < 0 || (sv - sj != 1 && sj - sv != 1)) continue;
-        const Eigen::Vector3d d = mesh.positions.col(j) - mesh.positions.col(vi);
-        const double len = d.norm();
-        if (len > 0.0 && along_crease(vi, d / len) && along_crease(j, d / len)) {
-          part.push_back(j);
-          ++offsets[v + 1];
+  const std::vector<std::vector<Index>> parts =
+      detail::map_chunks<std::vector<Index>>(n, kChunk, [&](std::size_t, std::size_t begin, std::size_t end) {
+        std::unique_ptr<BallScratch> scratch;  // taken at the chunk's first core vertex
+        std::vector<Index> part;
+        for (std::size_t v = begin; v < end; ++v) {
+          const std::int32_t sv = mesh.slice_ids[v];
+          if (!core[v] || sv < 0) continue;
+          if (!scratch) scratch = pool.take();
+          const auto vi = static_cast<Index>(v);
+          gather_ball(mesh, adjacency, vi, radius, *scratch);
+          for (Index j : scratch->ball) {
+            const std::int32_t sj = mesh.slice_ids[static_cast<std::size_t>(j)];
+            if (!core[static_cast<std::size_t>(j)] || sj < 0 || (sv - sj != 1 && sj - sv != 1)) continue;
+            const Eigen::Vector3d d = mesh.positions.col(j) - mesh.positions.col(vi);
+            const double len = d.norm();
+            if (len > 0.0 && along_crease(vi, d / len) && along_crease(j, d / len)) {
+              part.push_back(j);
+              ++offsets[v + 1];
+            }
+          }
         }
-      }
-    }
-    parts[chunk] = std::move(part);
-    if (scratch) pool.give_back(std::move(scratch));
-  });
+        if (scratch) pool.give_back(std::move(scratch));
+        return part;
+      });
   for (std::size_t v = 0; v < n; ++v) offsets[v + 1] += offsets[v];
   partners.clear();
   partners.reserve(static_cast<std::size_t>(offsets.back()));

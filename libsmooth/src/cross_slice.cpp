@@ -126,33 +126,31 @@ std::size_t smooth_profiles(const detail::ContourFrame& frame, const Eigen::Matr
                             Eigen::Matrix3Xd& displacement, MakeProfile make_profile) {
   const Index n = static_cast<Index>(positions.cols());
   constexpr std::size_t kChunk = 2048;
-  std::vector<std::size_t> counts((static_cast<std::size_t>(n) + kChunk - 1) / kChunk, 0);
   const std::size_t count = static_cast<std::size_t>(n);
-  detail::parallel_chunks(count, kChunk, [&](std::size_t chunk, std::size_t begin, std::size_t end) {
-    detail::Profile profile;
-    Eigen::Vector3d m;
-    // Counted here and stored once: neighbouring chunks' counts share a cache line, and an increment per
-    // vertex there made the two threads take the line from each other (6 % of the call's CPU time).
-    std::size_t estimated = 0;
-    for (std::size_t k = begin; k < end; ++k) {
-      const Index i = static_cast<Index>(k);
-      if (!frame.is_contour_vertex(i) || !detail::in_slice_normal(frame, normals.col(i), m)) continue;
-      make_profile(positions, normals, i, m, profile);
-      detail::LpaIciOptions local = lpa;
-      double scale = 1.0;  // in-slice offset per unit of the fitted ordinate
-      if (read == ProfileFrame::Tangent) {
-        const double na = to_tangent_frame(profile, frame.slice_spacing);
-        if (na == 0.0) continue;
-        local.sigma = lpa.sigma * na;  // in-slice noise seen along the normal
-        scale = 1.0 / na;
-      }
-      const detail::LpaIciResult r = detail::lpa_ici(profile, local);
-      if (!r.valid) continue;
-      displacement.col(i) += scale * r.value * m;
-      ++estimated;
-    }
-    counts[chunk] = estimated;
-  });
+  const std::vector<std::size_t> counts =
+      detail::map_chunks<std::size_t>(count, kChunk, [&](std::size_t, std::size_t begin, std::size_t end) {
+        detail::Profile profile;
+        Eigen::Vector3d m;
+        std::size_t estimated = 0;
+        for (std::size_t k = begin; k < end; ++k) {
+          const Index i = static_cast<Index>(k);
+          if (!frame.is_contour_vertex(i) || !detail::in_slice_normal(frame, normals.col(i), m)) continue;
+          make_profile(positions, normals, i, m, profile);
+          detail::LpaIciOptions local = lpa;
+          double scale = 1.0;  // in-slice offset per unit of the fitted ordinate
+          if (read == ProfileFrame::Tangent) {
+            const double na = to_tangent_frame(profile, frame.slice_spacing);
+            if (na == 0.0) continue;
+            local.sigma = lpa.sigma * na;  // in-slice noise seen along the normal
+            scale = 1.0 / na;
+          }
+          const detail::LpaIciResult r = detail::lpa_ici(profile, local);
+          if (!r.valid) continue;
+          displacement.col(i) += scale * r.value * m;
+          ++estimated;
+        }
+        return estimated;
+      });
   std::size_t total = 0;
   for (std::size_t c : counts) total += c;
   return total;

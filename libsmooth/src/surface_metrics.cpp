@@ -241,13 +241,12 @@ SurfaceAccuracy surface_accuracy(const Eigen::Matrix3Xd& positions, const std::v
 
   constexpr std::size_t kChunk = 4096;
   const auto reduce = [&](std::size_t n, const auto& one) {
-    const std::size_t chunks = (n + kChunk - 1) / kChunk;
-    std::vector<RegionSums> partial(chunks);
-    detail::parallel_chunks(n, kChunk, [&](std::size_t c, std::size_t begin, std::size_t end) {
-      RegionSums sums;  // stored once: the chunks' sums lie side by side and would share cache lines
-      for (std::size_t k = begin; k < end; ++k) one(k, sums);
-      partial[c] = sums;
-    });
+    const std::vector<RegionSums> partial =
+        detail::map_chunks<RegionSums>(n, kChunk, [&](std::size_t, std::size_t begin, std::size_t end) {
+          RegionSums sums;
+          for (std::size_t k = begin; k < end; ++k) one(k, sums);
+          return sums;
+        });
     RegionSums total;
     for (const RegionSums& p : partial) {
       total[0].merge(p[0]);

@@ -124,6 +124,25 @@ TEST(ParallelChunks, AnExceptionReachesTheCallerAndThePoolServesTheNextLoop) {
 }
 
 #if defined(__unix__)
+TEST(MapChunks, ReturnsEachChunksResultInChunkOrderOnAnyThreadCount) {
+  // 10 elements in chunks of 3: [0, 3) [3, 6) [6, 9) [9, 10); each chunk returns its range and the sum of
+  // its elements, in the same order on one thread and on four.
+  const auto run = [] {
+    return detail::map_chunks<std::vector<std::size_t>>(10, 3,
+                                                        [](std::size_t chunk, std::size_t begin, std::size_t end) {
+                                                          std::vector<std::size_t> r{chunk, begin, end, 0};
+                                                          for (std::size_t k = begin; k < end; ++k) r[3] += k;
+                                                          return r;
+                                                        });
+  };
+  const std::vector<std::vector<std::size_t>> expected{{0, 0, 3, 3}, {1, 3, 6, 12}, {2, 6, 9, 21}, {3, 9, 10, 9}};
+  for (const unsigned threads : {1u, 4u}) {
+    const detail::ScopedWorkerCount count(threads);
+    EXPECT_EQ(run(), expected) << threads << " threads";
+  }
+  EXPECT_TRUE(detail::map_chunks<int>(0, 3, [](std::size_t, std::size_t, std::size_t) { return 1; }).empty());
+}
+
 TEST(ParallelChunks, AForkedChildRunsLoopsOnAPoolOfItsOwn) {
   const detail::ScopedWorkerCount two(2);
   ASSERT_EQ(chunked_sum(64), 64LL * 63 / 2);  // the parent's pool exists before the fork

@@ -443,41 +443,43 @@ NoiseEstimate profile_noise(const ContourFrame& f, const Eigen::Matrix3Xd& x, co
   stride = std::max<Index>(stride, 1);
   const auto samples = static_cast<std::size_t>((x.cols() + stride - 1) / stride);
   constexpr std::size_t kChunk = 2048;
-  std::vector<std::vector<double>> parts((samples + kChunk - 1) / kChunk);
-  std::vector<std::size_t> sampled(parts.size(), 0);
-  parallel_chunks(samples, kChunk, [&](std::size_t chunk, std::size_t begin, std::size_t end) {
-    // Filled here and stored once: the chunks' lists and counts lie side by side, and writing them per
-    // vertex made the threads share cache lines.
-    std::vector<double> d4;
-    std::size_t contour_vertices = 0;
-    Profile p;
-    Eigen::Vector3d m;
-    for (std::size_t s = begin; s < end; ++s) {
-      const Index i = static_cast<Index>(s) * stride;
-      if (!f.is_contour_vertex(i)) continue;
-      ++contour_vertices;
-      if (!in_slice_normal(f, normals.col(i), m)) continue;
-      if (across) {
-        cross_slice_profile(f, x, normals, i, m, 2, p);
-      } else {
-        along_contour_profile(f, x, i, m, 2, p);
-      }
-      if (p.size != 5) continue;
-      // Samples should sit near -2..2; a gap (a missing slice) would make the difference meaningless.
-      bool regular = true;
-      for (int k = 0; k < 5; ++k) regular = regular && std::abs(p.x[static_cast<std::size_t>(k)] - (k - 2)) < 0.5;
-      if (!regular) continue;
-      d4.push_back(std::abs(p.y[0] - 4.0 * p.y[1] + 6.0 * p.y[2] - 4.0 * p.y[3] + p.y[4]));
-    }
-    parts[chunk] = std::move(d4);
-    sampled[chunk] = contour_vertices;
-  });
+  struct Part {
+    std::vector<double> d4;   // the chunk's fourth differences
+    std::size_t sampled = 0;  // its contour vertices
+  };
+  const std::vector<Part> parts =
+      map_chunks<Part>(samples, kChunk, [&](std::size_t, std::size_t begin, std::size_t end) {
+        Part part;
+        std::vector<double>& d4 = part.d4;
+        Profile p;
+        Eigen::Vector3d m;
+        for (std::size_t s = begin; s < end; ++s) {
+          const Index i = static_cast<Index>(s) * stride;
+          if (!f.is_contour_vertex(i)) continue;
+          ++part.sampled;
+          if (!in_slice_normal(f, normals.col(i), m)) continue;
+          if (across) {
+            cross_slice_profile(f, x, normals, i, m, 2, p);
+          } else {
+            along_contour_profile(f, x, i, m, 2, p);
+          }
+          if (p.size != 5) continue;
+          // Samples should sit near -2..2; a gap (a missing slice) would make the difference meaningless.
+          bool regular = true;
+          for (int k = 0; k < 5; ++k) regular = regular && std::abs(p.x[static_cast<std::size_t>(k)] - (k - 2)) < 0.5;
+          if (!regular) continue;
+          d4.push_back(std::abs(p.y[0] - 4.0 * p.y[1] + 6.0 * p.y[2] - 4.0 * p.y[3] + p.y[4]));
+        }
+        return part;
+      });
   NoiseEstimate estimate;
-  for (const std::size_t c : sampled) estimate.sampled += c;
+  for (const Part& part : parts) {
+    estimate.sampled += part.sampled;
+    estimate.profiles += part.d4.size();
+  }
   std::vector<double> d4;
-  for (const auto& part : parts) estimate.profiles += part.size();
   d4.reserve(estimate.profiles);
-  for (const auto& part : parts) d4.insert(d4.end(), part.begin(), part.end());
+  for (const Part& part : parts) d4.insert(d4.end(), part.d4.begin(), part.d4.end());
   if (d4.empty()) return estimate;
   std::nth_element(d4.begin(), d4.begin() + static_cast<std::ptrdiff_t>(d4.size() / 2), d4.end());
   estimate.sigma = 1.4826 * d4[d4.size() / 2] / std::sqrt(70.0);

@@ -18,9 +18,8 @@ constexpr std::size_t kPatchChunk = 2048;  // local faces per chunk of the patch
 std::vector<std::vector<Index>> faces_around(const MeshAdjacency& adj, const std::vector<Triangle>& triangles,
                                              const Workspace& w, std::vector<Index>& offsets) {
   const std::size_t nl = w.faces.size();
-  std::vector<std::vector<Index>> around((nl + kPatchChunk - 1) / kPatchChunk);
-  parallel_chunks(nl, kPatchChunk, [&](std::size_t chunk, std::size_t begin, std::size_t end) {
-    std::vector<Index> part;  // moved into around[chunk] at the end: the lists' headers share cache lines
+  return map_chunks<std::vector<Index>>(nl, kPatchChunk, [&](std::size_t, std::size_t begin, std::size_t end) {
+    std::vector<Index> part;
     std::vector<Index> local;
     for (std::size_t l = begin; l < end; ++l) {
       const Index k = w.filtered_of[l];
@@ -38,9 +37,8 @@ std::vector<std::vector<Index>> faces_around(const MeshAdjacency& adj, const std
       part.insert(part.end(), local.begin(), local.end());
       offsets[l + 1] = static_cast<Index>(local.size());
     }
-    around[chunk] = std::move(part);
+    return part;
   });
-  return around;
 }
 
 // The faces of the patches outside the workspace, numbered in ascending mesh order (any order gives the

@@ -164,24 +164,24 @@ Workspace make_workspace(const ContourFrame& frame, const std::vector<Triangle>&
   detail::assign_huge(w.ring_offsets, filtered.size() + 1, 0);
   // In fixed chunks on every core, each into its own list; the lists are joined in chunk order.
   constexpr std::size_t kChunk = 4096;
-  std::vector<std::vector<Index>> parts((filtered.size() + kChunk - 1) / kChunk);
-  parallel_chunks(filtered.size(), kChunk, [&](std::size_t chunk, std::size_t begin, std::size_t end) {
-    std::vector<Index> part;  // moved into parts[chunk] at the end: the lists' headers share cache lines
-    std::vector<Index> local;
-    for (std::size_t k = begin; k < end; ++k) {
-      const Triangle& t = triangles[static_cast<std::size_t>(filtered[k])];
-      local.clear();
-      for (int c = 0; c < 3; ++c) {
-        w.corners[k][static_cast<std::size_t>(c)] = vertex_map[static_cast<std::size_t>(t[c])];
-        for (Index g : adj.incident_faces(t[c])) local.push_back(face_map[static_cast<std::size_t>(g)]);
-      }
-      std::sort(local.begin(), local.end());
-      local.erase(std::unique(local.begin(), local.end()), local.end());
-      part.insert(part.end(), local.begin(), local.end());
-      w.ring_offsets[k + 1] = static_cast<Index>(local.size());
-    }
-    parts[chunk] = std::move(part);
-  });
+  const std::vector<std::vector<Index>> parts =
+      map_chunks<std::vector<Index>>(filtered.size(), kChunk, [&](std::size_t, std::size_t begin, std::size_t end) {
+        std::vector<Index> part;
+        std::vector<Index> local;
+        for (std::size_t k = begin; k < end; ++k) {
+          const Triangle& t = triangles[static_cast<std::size_t>(filtered[k])];
+          local.clear();
+          for (int c = 0; c < 3; ++c) {
+            w.corners[k][static_cast<std::size_t>(c)] = vertex_map[static_cast<std::size_t>(t[c])];
+            for (Index g : adj.incident_faces(t[c])) local.push_back(face_map[static_cast<std::size_t>(g)]);
+          }
+          std::sort(local.begin(), local.end());
+          local.erase(std::unique(local.begin(), local.end()), local.end());
+          part.insert(part.end(), local.begin(), local.end());
+          w.ring_offsets[k + 1] = static_cast<Index>(local.size());
+        }
+        return part;
+      });
   for (std::size_t k = 0; k < filtered.size(); ++k) w.ring_offsets[k + 1] += w.ring_offsets[k];
   detail::resize_huge(w.ring, static_cast<std::size_t>(w.ring_offsets.back()));
   parallel_chunks(parts.size(), 1, [&](std::size_t chunk, std::size_t, std::size_t) {

@@ -112,4 +112,19 @@ void parallel_chunks(std::size_t n, std::size_t chunk_size, const Body& body) {
   if (error) std::rethrow_exception(error);
 }
 
+/// parallel_chunks for a result per chunk: body(chunk, begin, end) returns the chunk's result (a count, a
+/// list, partial sums), and the results come back in chunk order, so a reduction over them in that order
+/// does not depend on the thread count. Each result is stored once, when its chunk ends: a body that
+/// wrote into a shared per-chunk array as it went (a count per vertex, a vector's header per append) made
+/// the threads take the cache line its neighbours' entries share from each other (docs/benchmarks.md).
+template <typename Result, typename Body>
+std::vector<Result> map_chunks(std::size_t n, std::size_t chunk_size, const Body& body) {
+  chunk_size = std::max<std::size_t>(chunk_size, 1);
+  std::vector<Result> results((n + chunk_size - 1) / chunk_size);
+  parallel_chunks(n, chunk_size, [&](std::size_t chunk, std::size_t begin, std::size_t end) {
+    results[chunk] = body(chunk, begin, end);
+  });
+  return results;
+}
+
 }  // namespace contourmesh::detail
