@@ -10,6 +10,7 @@
 #include "contourmesh/smooth/errors.h"
 #include "contourmesh/smooth/normals.h"
 
+#include <algorithm>
 #include <chrono>
 #include <cmath>
 #include <string>
@@ -26,6 +27,9 @@ void check_options(const CrossSliceOptions& o) {
   }
   if (!(o.gamma > 0.0 && std::isfinite(o.gamma))) fail("gamma must be a finite number > 0");
   if (!(o.precise_noise >= 0.0 && std::isfinite(o.precise_noise))) fail("precise noise must be a finite number >= 0");
+  if (!(o.noisy_reach_length >= 0.0 && std::isfinite(o.noisy_reach_length))) {
+    fail("noisy reach length must be a finite number >= 0 (mm)");
+  }
   for (const auto& noise : {o.noise_across, o.noise_along}) {
     if (noise && !(*noise >= 0.0 && std::isfinite(*noise))) fail("a noise level must be a finite number >= 0 mm");
   }
@@ -53,6 +57,14 @@ void check_options(const CrossSliceOptions& o) {
     fail("off-slice filter angle must be in (0, 90] degrees");
   }
   if (!(f.max_move >= 0.0 && std::isfinite(f.max_move))) fail("off-slice filter max move must be a finite number >= 0");
+}
+
+// The reach on noisy contours: at least 8 slices, about `length` mm, at most 30 slices.
+int noisy_reach(double length, double spacing) {
+  constexpr int kShortest = 8, kLongest = 30;
+  if (!(spacing > 0.0)) return kShortest;
+  const double slices = std::round(length / spacing);
+  return static_cast<int>(std::clamp(slices, static_cast<double>(kShortest), static_cast<double>(kLongest)));
 }
 
 // The noise level across the slices: given, estimated from the profiles across the slices, or, where too
@@ -224,8 +236,10 @@ CrossSliceResult cross_slice_smooth(const Mesh& mesh, const CrossSliceOptions& o
   // 1. Across the slices.
   const Eigen::Matrix3Xd normals = vertex_normals(mesh.positions, mesh.triangles, frame.adjacency);
   result.noise_across = noise_across(frame, mesh.positions, normals, options, result.noise_across_source);
-  // The reach: short where the contours are precise, long where they are noisy (precise_noise).
-  result.reach = options.reach.value_or(result.noise_across < options.precise_noise ? 4 : 8);
+  // The reach: short where the contours are precise, long where they are noisy (precise_noise): there
+  // at least 8 slices and about noisy_reach_length mm.
+  result.reach = options.reach.value_or(
+      result.noise_across < options.precise_noise ? 4 : noisy_reach(options.noisy_reach_length, frame.slice_spacing));
   lpa.gamma = options.gamma;
   lpa.sigma = result.noise_across;
   lpa.max_half_width = result.reach;

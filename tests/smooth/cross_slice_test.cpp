@@ -154,8 +154,8 @@ TEST(CrossSlice, ContoursJoinedOnlyThroughIntermediateContoursAreSmoothed) {
   EXPECT_LT(radial_error(r.mesh, 5, 10.0), radial_error(noisy, 5, 10.0));
 }
 
-// An unset reach follows the noise level across the slices: 4 slices for precise contours, 8 for noisy
-// ones; a reach given is kept.
+// An unset reach follows the noise level across the slices: 4 slices for precise contours, about 24 mm
+// (12 slices 2 mm apart) for noisy ones; a reach given is kept.
 TEST(CrossSlice, ReachFromTheNoiseLevelUnlessGiven) {
   const Mesh precise = make_contour_stack(test::cylinder_spec(10.0, 20));
   Mesh noisy = precise;
@@ -164,7 +164,7 @@ TEST(CrossSlice, ReachFromTheNoiseLevelUnlessGiven) {
   EXPECT_LT(a.noise_across, 0.2);
   EXPECT_EQ(a.reach, 4);
   EXPECT_GT(b.noise_across, 0.2);
-  EXPECT_EQ(b.reach, 8);
+  EXPECT_EQ(b.reach, 12);
   CrossSliceOptions o;
   o.reach = 6;
   EXPECT_EQ(cross_slice_smooth(noisy, o).reach, 6);
@@ -173,6 +173,31 @@ TEST(CrossSlice, ReachFromTheNoiseLevelUnlessGiven) {
   EXPECT_EQ(cross_slice_smooth(noisy, o).reach, 4);
   o.precise_noise = -1.0;
   EXPECT_THROW((void)cross_slice_smooth(noisy, o), InvalidInputError);
+}
+
+// On noisy contours the reach is a length across the slices, at least 8 slices and at most 30: 24 mm is
+// 24 slices 1 mm apart, 8 slices (not 5) 5 mm apart; a length of 0 keeps 8 at any spacing.
+TEST(CrossSlice, NoisyReachIsALengthOfAtLeastEightSlices) {
+  const auto noisy_stack = [](double spacing) {
+    ContourStackSpec spec = test::cylinder_spec(10.0, 20);
+    spec.slice_spacing = spacing;
+    Mesh m = make_contour_stack(spec);
+    add_noise(m, {.sigma = 0.4, .seed = 2, .direction = NoiseDirection::InPlane});
+    return m;
+  };
+  const Mesh fine = noisy_stack(1.0), thick = noisy_stack(5.0);
+  const CrossSliceResult a = cross_slice_smooth(fine), b = cross_slice_smooth(thick);
+  ASSERT_GT(a.noise_across, 0.2);
+  ASSERT_GT(b.noise_across, 0.2);
+  EXPECT_EQ(a.reach, 24);
+  EXPECT_EQ(b.reach, 8);
+  CrossSliceOptions o;
+  o.noisy_reach_length = 100.0;
+  EXPECT_EQ(cross_slice_smooth(fine, o).reach, 30);
+  o.noisy_reach_length = 0.0;
+  EXPECT_EQ(cross_slice_smooth(fine, o).reach, 8);
+  o.noisy_reach_length = -1.0;
+  EXPECT_THROW((void)cross_slice_smooth(fine, o), InvalidInputError);
 }
 
 // The noise across the slices is estimated from five-slice profiles; on a stack too short to give them

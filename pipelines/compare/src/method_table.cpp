@@ -201,24 +201,25 @@ std::string off_slice_settings(const OffSliceFilterOptions& f) {
 std::string cross_slice_settings(const SmoothOptions& o) {
   const CrossSliceOptions& c = o.cross_slice;
   std::ostringstream s;
-  s << "profiles across " << (c.reach ? std::to_string(*c.reach)
-                               : "4 (noise below " + number(c.precise_noise) + " mm) or 8") << " slices each way"
-    << (c.stages == CrossSliceStages::AcrossThenAlong ? ", then along " + std::to_string(c.along_reach) +
-                                                            " contour vertices each way"
-                                                      : " only")
+  const std::string noisy_reach = c.noisy_reach_length > 0.0
+                                      ? "about " + number(c.noisy_reach_length) + " mm (at least 8 slices)"
+                                      : std::string("8 slices");
+  s << "profiles across "
+    << (c.reach ? std::to_string(*c.reach) + " slices each way"
+                : "4 slices each way (noise below " + number(c.precise_noise) + " mm) or " + noisy_reach)
+    << (c.stages == CrossSliceStages::AcrossThenAlong
+            ? ", then along " + std::to_string(c.along_reach) + " contour vertices each way"
+            : " only")
     << ", LPA-ICI windows (gamma " << c.gamma << ", "
     << (c.across_model == ProfileModel::Circle ? "circles" : "parabolas") << " across"
-    << (c.across_kinks == ProfileKinks::Bound
-            ? ", bounded at slope breaks, false rate " + number(c.kink_false_rate) +
-                  (c.kink_sides == KinkSides::Lines ? ", lines beside them" : "")
-            : std::string())
+    << (c.across_kinks == ProfileKinks::Bound ? ", bounded at slope breaks, false rate " + number(c.kink_false_rate) +
+                                                    (c.kink_sides == KinkSides::Lines ? ", lines beside them" : "")
+                                              : std::string())
     << ") for a noise level "
     << (c.noise_across ? number(*c.noise_across) + " mm" : std::string("estimated from the mesh"))
-    << off_slice_settings(c.off_slice)
-    << "; labels: creases of the result (radius " << c.features.radius << " mm"
-    << (c.features.confirm == CreaseConfirmation::Ball
-            ? ", confirmed over " + number(c.features.confirm_radius) + " mm"
-            : std::string())
+    << off_slice_settings(c.off_slice) << "; labels: creases of the result (radius " << c.features.radius << " mm"
+    << (c.features.confirm == CreaseConfirmation::Ball ? ", confirmed over " + number(c.features.confirm_radius) + " mm"
+                                                       : std::string())
     << ", band " << c.features.band << " mm)"
     << (c.features.link_radius > 0.0
             ? ", lines linked across adjacent slices within " + number(c.features.link_radius) + " mm"

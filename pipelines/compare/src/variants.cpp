@@ -99,6 +99,8 @@ const std::vector<Key>& keys() {
       {"gamma", kCrossSlice, [](SmoothOptions& o, const Value& v) { o.cross_slice.gamma = v.number(); }},
       {"precise-noise", kCrossSlice,
        [](SmoothOptions& o, const Value& v) { o.cross_slice.precise_noise = v.number(); }},
+      {"noisy-reach-length", kCrossSlice,
+       [](SmoothOptions& o, const Value& v) { o.cross_slice.noisy_reach_length = v.number(); }},
       {"noise-across", kCrossSlice, [](SmoothOptions& o, const Value& v) { o.cross_slice.noise_across = v.number(); }},
       {"noise-along", kCrossSlice, [](SmoothOptions& o, const Value& v) { o.cross_slice.noise_along = v.number(); }},
       {"min-profile-share", kCrossSlice,

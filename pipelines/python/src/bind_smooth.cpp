@@ -182,6 +182,7 @@ MethodConfig method_config(const py::object& method_arg, Options& o, Mesh& mesh)
     o.take_int("along_reach", co.along_reach);
     o.take_double("gamma", co.gamma);
     o.take_double("precise_noise", co.precise_noise);
+    o.take_double("noisy_reach_length", co.noisy_reach_length);
     o.take_double("noise_across", co.noise_across);
     o.take_double("noise_along", co.noise_along);
     o.take_double("min_profile_share", co.min_profile_share);

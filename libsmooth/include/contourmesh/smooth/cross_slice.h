@@ -172,10 +172,15 @@ struct CrossSliceOptions {
   double gamma = 2.0;
   /// The rule for an unset `reach`, mm, >= 0: where the noise across the slices (estimated or given) is
   /// below this, the contours are precise and a window's bias on a curved profile is most of what is left
-  /// to correct, so the reach is 4 slices; otherwise 8, to average segmentation error that differs from
-  /// slice to slice. The phantoms' estimates: 0.02-0.09 mm under CT noise, 0.36-0.39 mm under 0.4 mm of
-  /// contour noise (docs/smoothing.md, "The reach from the noise level").
+  /// to correct, so the reach is 4 slices; otherwise the noisy reach below, to average segmentation error
+  /// that differs from slice to slice. The phantoms' estimates: 0.02-0.09 mm under CT noise, 0.36-0.39 mm
+  /// under 0.4 mm of contour noise (docs/smoothing.md, "The reach from the noise level").
   double precise_noise = 0.2;
+  /// The reach of an unset `reach` on noisy contours (noise across at least `precise_noise`), as a length
+  /// along the slice axis, mm, finite and >= 0: max(8, round(noisy_reach_length / slice spacing)) slices, at
+  /// most 30. 24 mm gives 12 slices at 2 mm, 24 at 1 mm and 8 at 3 mm or more; 0 gives 8 at any spacing
+  /// (the rule before 2026-12-07). Measured in docs/smoothing.md, "The reach on noisy contours".
+  double noisy_reach_length = 24.0;
   /// Noise standard deviation of the contour offsets across the slices and along the contours, mm.
   /// Unset: estimated from the mesh (robust fourth differences of the profiles; docs/smoothing.md).
   std::optional<double> noise_across, noise_along;
