@@ -8,6 +8,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <utility>
 
 namespace contourmesh {
 namespace {
@@ -178,26 +179,26 @@ TEST(CrossSlice, ReachFromTheNoiseLevelUnlessGiven) {
 // On noisy contours the reach is a length across the slices, at least 8 slices and at most 30: 24 mm is
 // 24 slices 1 mm apart, 8 slices (not 5) 5 mm apart; a length of 0 keeps 8 at any spacing.
 TEST(CrossSlice, NoisyReachIsALengthOfAtLeastEightSlices) {
-  const auto noisy_stack = [](double spacing) {
+  const auto noisy_cylinder = [](double spacing) {
     ContourStackSpec spec = test::cylinder_spec(10.0, 20);
     spec.slice_spacing = spacing;
     Mesh m = make_contour_stack(spec);
     add_noise(m, {.sigma = 0.4, .seed = 2, .direction = NoiseDirection::InPlane});
     return m;
   };
-  const Mesh fine = noisy_stack(1.0), thick = noisy_stack(5.0);
-  const CrossSliceResult a = cross_slice_smooth(fine), b = cross_slice_smooth(thick);
-  ASSERT_GT(a.noise_across, 0.2);
-  ASSERT_GT(b.noise_across, 0.2);
-  EXPECT_EQ(a.reach, 24);
-  EXPECT_EQ(b.reach, 8);
-  CrossSliceOptions o;
-  o.noisy_reach_length = 100.0;
-  EXPECT_EQ(cross_slice_smooth(fine, o).reach, 30);
-  o.noisy_reach_length = 0.0;
-  EXPECT_EQ(cross_slice_smooth(fine, o).reach, 8);
-  o.noisy_reach_length = -1.0;
-  EXPECT_THROW((void)cross_slice_smooth(fine, o), InvalidInputError);
+  const Mesh fine = noisy_cylinder(1.0);
+  const CrossSliceResult thick = cross_slice_smooth(noisy_cylinder(5.0));
+  ASSERT_GT(thick.noise_across, 0.2);  // noisy: the long reach applies
+  EXPECT_EQ(thick.reach, 8);
+  const std::pair<double, int> length_and_slices[] = {{24.0, 24}, {12.0, 12}, {100.0, 30}, {0.0, 8}};
+  for (const auto& [length, slices] : length_and_slices) {
+    CrossSliceOptions o;
+    o.noisy_reach_length = length;
+    EXPECT_EQ(cross_slice_smooth(fine, o).reach, slices) << length << " mm";
+  }
+  CrossSliceOptions negative;
+  negative.noisy_reach_length = -1.0;
+  EXPECT_THROW((void)cross_slice_smooth(fine, negative), InvalidInputError);
 }
 
 // The noise across the slices is estimated from five-slice profiles; on a stack too short to give them
