@@ -2,6 +2,8 @@
 // Conventions shared by the contourmesh subcommands: exit codes, error reporting, JSON output.
 #pragma once
 
+#include "spacing.h"
+
 #include <contourmesh/smooth/mesh.h>
 
 #include <Eigen/Core>
@@ -72,10 +74,6 @@ int last_exit_code();
 
 /// Prints `json` as one line on stdout.
 void print_json(const nlohmann::json& json);
-
-/// Parses "sx,sy,sz": three comma-separated finite numbers > 0 (voxel spacing in mm); throws
-/// InvalidInputError quoting the text otherwise.
-[[nodiscard]] Eigen::Vector3d parse_spacing(const std::string& text);
 
 /// Registers --max-vertices N on `command`: meshes read or produced with more vertices are refused
 /// (exit 2) before the memory is allocated. Default kDefaultMaxVertices.

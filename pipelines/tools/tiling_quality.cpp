@@ -15,6 +15,8 @@
 // whose normal is within 10 degrees of the slice axis); the share of the area in faces whose smallest
 // angle is under 10 degrees; the share of vertices without ids. Real scans (with --data): the same mesh
 // measures, at the thresholds of the tiling targets.
+#include "spacing.h"
+
 #include <contourmesh/reconstruct/phantom.h>
 #include <contourmesh/reconstruct/phantom_truth.h>
 #include <contourmesh/reconstruct/reconstruction.h>
@@ -126,17 +128,6 @@ Row scan_row(const std::filesystem::path& path, const std::string& name, double 
   return row_of(name, *image, r, threshold);
 }
 
-// "sx,sy,sz" in mm, each > 0.
-Eigen::Vector3d parse_spacing(const std::string& text) {
-  Eigen::Vector3d v;
-  char tail = 0;
-  if (std::sscanf(text.c_str(), "%lf,%lf,%lf%c", &v.x(), &v.y(), &v.z(), &tail) != 3 || !(v.minCoeff() > 0.0) ||
-      !v.allFinite())
-    throw InvalidInputError("--spacing must be three comma-separated numbers > 0 in mm (e.g. 0.7,0.7,2), got '" + text +
-                            "'");
-  return v;
-}
-
 std::string fixed(double v, int digits) {
   char buffer[64];
   std::snprintf(buffer, sizeof buffer, "%.*f", digits, v);
@@ -213,7 +204,7 @@ int main(int argc, char** argv) {
   app.add_flag("--json", json, "One JSON array instead of the Markdown table");
   CLI11_PARSE(app, argc, argv);
   try {
-    const Eigen::Vector3d spacing = parse_spacing(spacing_text);
+    const Eigen::Vector3d spacing = cli::parse_spacing(spacing_text);
     std::vector<PhantomShape> shapes;
     if (phantom == "all") {
       shapes = all_phantom_shapes();
